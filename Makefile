@@ -1,0 +1,83 @@
+# Manipulator Jacobians: the two commands are `make book` and `make test`.
+# Each sets up what it needs (a virtual environment with pinned packages, the
+# npm front-end files, Chromium for the browser tests) and then does its job.
+
+SHELL := /bin/bash
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+BIN := $(VENV)/bin
+PY_STAMP := $(VENV)/.installed-stamp
+NPM_STAMP := node_modules/.installed-stamp
+JB_FLAGS := -W -n --keep-going
+export MPLBACKEND := Agg
+export PYDEVD_DISABLE_FILE_VALIDATION := 1
+
+.PHONY: help setup book test test-lib test-notebooks test-browser bench lab slides exercises clean distclean vendor browser
+
+help:
+	@echo "make book       build the book into _build/html"
+	@echo "make test       run every test (library, notebooks, book build, browser)"
+	@echo "make lab        JupyterLab on the chapters, live widgets"
+	@echo "make slides     reveal.js decks into _build/slides"
+	@echo "make exercises  student notebooks into _build/exercises"
+	@echo "make bench      speed benchmark against modern_robotics and Pinocchio"
+
+# ------------------------------------------------------------------ set-up
+$(PY_STAMP): requirements.txt constraints.txt pyproject.toml
+	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip
+	$(PY) -m pip install -q -r requirements.txt -c constraints.txt
+	$(PY) -m pip install -q --no-deps --no-build-isolation -e .
+	@touch $@
+
+$(NPM_STAMP): package.json package-lock.json
+	npm ci --no-audit --no-fund --loglevel=error
+	@touch $@
+
+setup: $(PY_STAMP) $(NPM_STAMP)
+
+vendor: setup
+	$(PY) tools/vendor.py
+
+# Debian's Chromium for the browser tests (never `playwright install`).
+browser:
+	@command -v chromium >/dev/null 2>&1 || { \
+	  echo "Installing Debian's chromium for the browser tests"; \
+	  if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq chromium >/dev/null; }
+
+# ------------------------------------------------------------------ the book
+book: vendor
+	$(BIN)/jupyter-book build . $(JB_FLAGS)
+	@echo "The book is in _build/html/index.html"
+
+# ------------------------------------------------------------------ tests
+test: setup
+	$(MAKE) test-lib
+	$(MAKE) test-notebooks
+	$(MAKE) book
+	$(MAKE) test-browser
+
+test-lib: setup
+	$(BIN)/pytest --ignore=tests/browser --cov=jacobians --cov-report=term:skip-covered -q lib/jacobians tests
+
+test-notebooks: setup
+	rm -rf _build/nbval && mkdir -p _build/nbval
+	$(PY) tools/to_ipynb.py _build/nbval
+	cd _build/nbval && ../../$(BIN)/pytest --nbval-lax -p no:cacheprovider -q .
+
+test-browser: setup browser
+	$(BIN)/pytest tests/browser -q
+
+bench: setup
+	$(PY) tools/bench.py
+
+lab: setup
+	$(BIN)/jupyter lab --notebook-dir=. chapters
+
+clean:
+	rm -rf _build _vendor
+
+distclean: clean
+	rm -rf $(VENV) node_modules

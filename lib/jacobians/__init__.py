@@ -1,0 +1,63 @@
+"""jacobians: manipulator Jacobians in the conventions of Modern Robotics.
+
+Twists and every 6-row quantity are angular first, (omega, v); a chain's screw
+axes are the columns of a 6 x n array. Importing this package imports numpy
+only; :mod:`jacobians.symbolic`, :mod:`jacobians.plotting`,
+:mod:`jacobians.widgets` and :mod:`jacobians.grading` import sympy,
+matplotlib and ipywidgets when they are imported.
+
+>>> import numpy as np
+>>> import jacobians as jac
+>>> arm = jac.robots.planar_2r()
+>>> J_s = jac.space_jacobian(arm, [0.3, 0.4])
+>>> J_b = jac.body_jacobian(arm, [0.3, 0.4])
+>>> np.allclose(jac.space_to_body(J_s, arm.fk([0.3, 0.4])), J_b)
+True
+"""
+
+from . import analysis, lie, representations, robots
+from .chain import SerialChain
+from .jacobian import (
+    analytic_jacobian,
+    body_jacobian,
+    body_to_geometric,
+    body_to_space,
+    geometric_jacobian,
+    geometric_to_analytic,
+    geometric_to_body,
+    geometric_to_space,
+    link_jacobians,
+    numerical_jacobian,
+    pose_coordinates,
+    space_jacobian,
+    space_to_body,
+    space_to_geometric,
+)
+from .lie import adjoint
+from .representations import RepresentationSingularityError
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "SerialChain",
+    "space_jacobian",
+    "body_jacobian",
+    "geometric_jacobian",
+    "analytic_jacobian",
+    "pose_coordinates",
+    "space_to_body",
+    "body_to_space",
+    "body_to_geometric",
+    "geometric_to_body",
+    "space_to_geometric",
+    "geometric_to_space",
+    "geometric_to_analytic",
+    "link_jacobians",
+    "numerical_jacobian",
+    "adjoint",
+    "RepresentationSingularityError",
+    "lie",
+    "representations",
+    "robots",
+    "analysis",
+]

@@ -1,0 +1,149 @@
+r"""Teaching robots used throughout the course.
+
+Every function returns a :class:`~jacobians.SerialChain`. Lengths are in the
+units you pass (metres for the UR5). Planar arms move in the x–y plane of {s},
+their joints turn about z, and at the home pose the links lie along the x axis.
+
+>>> import jacobians as jac
+>>> arm = jac.robots.planar_3r(l1=1.0, l2=1.0, l3=1.0)
+>>> arm.screw_axes.T
+array([[ 0.,  0.,  1.,  0.,  0.,  0.],
+       [ 0.,  0.,  1.,  0., -1.,  0.],
+       [ 0.,  0.,  1.,  0., -2.,  0.]])
+>>> jac.robots.ur5().dof
+6
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._validation import positive_float
+from .chain import SerialChain
+
+__all__ = ["planar", "planar_2r", "planar_3r", "ur5", "spatial_rrp", "scara", "spatial_5r", "zyx_wrist", "PLANAR_NAMES"]
+
+PLANAR_NAMES = ("planar_2r", "planar_3r")
+
+
+def _revolute(axis, point):
+    w = np.asarray(axis, dtype=float)
+    q = np.asarray(point, dtype=float)
+    return np.concatenate([w, -np.cross(w, q)])
+
+
+def _prismatic(direction):
+    return np.concatenate([np.zeros(3), np.asarray(direction, dtype=float)])
+
+
+def _translation(p):
+    T = np.eye(4)
+    T[:3, 3] = p
+    return T
+
+
+def planar(lengths, name: str | None = None) -> SerialChain:
+    r"""A planar arm of revolute joints with the given link lengths.
+
+    Joint i turns about z through :math:`(l_1 + \dots + l_{i-1}, 0, 0)`; the tool
+    frame {b} sits at :math:`(l_1 + \dots + l_n, 0, 0)` with the orientation of {s}.
+    Link frame i is at the middle of link i (the centre of mass of a uniform rod),
+    oriented like {s} at home.
+    """
+    if not hasattr(lengths, "__len__") or isinstance(lengths, str):
+        raise TypeError(f"Expected a sequence of link lengths, got {type(lengths).__name__}")
+    ls = [positive_float(v, f"l{i + 1}") for i, v in enumerate(lengths)]
+    if not ls:
+        raise ValueError("Expected at least one link length")
+    x = np.concatenate([[0.0], np.cumsum(ls)])
+    S = np.stack([_revolute([0, 0, 1], [x[i], 0, 0]) for i in range(len(ls))], axis=1)
+    links = np.stack([_translation([x[i] + ls[i] / 2, 0, 0]) for i in range(len(ls))])
+    return SerialChain(S, _translation([x[-1], 0, 0]), link_homes=links, name=name or f"planar {len(ls)}R")
+
+
+def planar_2r(l1: float = 1.0, l2: float = 1.0) -> SerialChain:
+    """Planar 2R arm: joints about z at (0,0,0) and (l1,0,0); tool at (l1+l2,0,0)."""
+    return planar([l1, l2], name="planar 2R")
+
+
+def planar_3r(l1: float = 1.0, l2: float = 1.0, l3: float = 1.0) -> SerialChain:
+    """Planar 3R arm: joints about z at (0,0,0), (l1,0,0), (l1+l2,0,0); tool at (l1+l2+l3,0,0)."""
+    return planar([l1, l2, l3], name="planar 3R")
+
+
+def ur5() -> SerialChain:
+    r"""The UR5 of Modern Robotics, Example 4.5, in metres.
+
+    :math:`W_1 = 0.109, W_2 = 0.082, L_1 = 0.425, L_2 = 0.392, H_1 = 0.089, H_2 = 0.095`.
+    """
+    W1, W2, L1, L2, H1, H2 = 0.109, 0.082, 0.425, 0.392, 0.089, 0.095
+    S = np.array([
+        [0, 0, 1, 0, 0, 0],
+        [0, 1, 0, -H1, 0, 0],
+        [0, 1, 0, -H1, 0, L1],
+        [0, 1, 0, -H1, 0, L1 + L2],
+        [0, 0, -1, -W1, L1 + L2, 0],
+        [0, 1, 0, H2 - H1, 0, L1 + L2],
+    ], dtype=float).T
+    M = np.array([[-1, 0, 0, L1 + L2], [0, 0, 1, W1 + W2], [0, 1, 0, H1 - H2], [0, 0, 0, 1]], dtype=float)
+    return SerialChain(S, M, name="UR5")
+
+
+def spatial_rrp(h: float = 1.0, reach: float = 1.0) -> SerialChain:
+    r"""A spatial RRP (polar) arm.
+
+    Joint 1 turns about z through the origin, joint 2 about y through
+    :math:`(0, 0, h)`, joint 3 slides along x (the arm's direction at home).
+    The tool is at :math:`(\text{reach}, 0, h)` at home.
+    """
+    h, reach = positive_float(h, "h"), positive_float(reach, "reach")
+    S = np.stack([_revolute([0, 0, 1], [0, 0, 0]), _revolute([0, 1, 0], [0, 0, h]), _prismatic([1, 0, 0])], axis=1)
+    return SerialChain(S, _translation([reach, 0, h]), name="spatial RRP")
+
+
+def scara(l1: float = 0.5, l2: float = 0.4, h: float = 0.3) -> SerialChain:
+    r"""A SCARA arm (RRPR): two revolute joints about z, a vertical slide (down), a revolute wrist about z.
+
+    Joints 1, 2, 4 turn about z through :math:`(0,0,0)`, :math:`(l_1,0,0)`,
+    :math:`(l_1+l_2,0,0)`; joint 3 slides along :math:`-z`. Tool at
+    :math:`(l_1+l_2, 0, h)` at home.
+    """
+    l1, l2, h = positive_float(l1, "l1"), positive_float(l2, "l2"), positive_float(h, "h")
+    S = np.stack([
+        _revolute([0, 0, 1], [0, 0, 0]),
+        _revolute([0, 0, 1], [l1, 0, 0]),
+        _prismatic([0, 0, -1]),
+        _revolute([0, 0, 1], [l1 + l2, 0, 0]),
+    ], axis=1)
+    return SerialChain(S, _translation([l1 + l2, 0, h]), name="SCARA")
+
+
+def spatial_5r(h: float = 0.5, l1: float = 1.0, l2: float = 1.0, l3: float = 0.5, l4: float = 0.3) -> SerialChain:
+    r"""A spatial 5R arm for comparing space and body columns.
+
+    Axes at home: z through the origin; y through :math:`(0,0,h)`; y through
+    :math:`(l_1,0,h)`; x through :math:`(l_1+l_2,0,h)`; z through
+    :math:`(l_1+l_2+l_3,0,h)`. Tool at :math:`(l_1+l_2+l_3+l_4, 0, h)`.
+    """
+    h, l1, l2, l3, l4 = (positive_float(v, k) for v, k in zip((h, l1, l2, l3, l4), ("h", "l1", "l2", "l3", "l4")))
+    S = np.stack([
+        _revolute([0, 0, 1], [0, 0, 0]),
+        _revolute([0, 1, 0], [0, 0, h]),
+        _revolute([0, 1, 0], [l1, 0, h]),
+        _revolute([1, 0, 0], [l1 + l2, 0, h]),
+        _revolute([0, 0, 1], [l1 + l2 + l3, 0, h]),
+    ], axis=1)
+    return SerialChain(S, _translation([l1 + l2 + l3 + l4, 0, h]), name="spatial 5R")
+
+
+def zyx_wrist(tool: float = 0.2) -> SerialChain:
+    r"""A wrist of three intersecting revolute joints about z, y and x (through the origin).
+
+    Its orientation is :math:`R = R_z(\theta_1)R_y(\theta_2)R_x(\theta_3)`, so its
+    ZYX coordinates are the joint angles; it reaches gimbal lock at
+    :math:`\theta_2 = \pm\pi/2`, where axes 1 and 3 line up. The tool point is at
+    :math:`(\text{tool}, 0, 0)` at home.
+    """
+    tool = positive_float(tool, "tool", allow_zero=True)
+    S = np.stack([_revolute([0, 0, 1], [0, 0, 0]), _revolute([0, 1, 0], [0, 0, 0]), _revolute([1, 0, 0], [0, 0, 0])], axis=1)
+    return SerialChain(S, _translation([tool, 0, 0]), name="ZYX wrist")
