@@ -81,3 +81,10 @@ clean:
 
 distclean: clean
 	rm -rf $(VENV) node_modules
+
+# ------------------------------------------------------------------ exercises and slides
+exercises: setup
+	$(PY) tools/make_exercises.py _build/exercises
+
+slides: vendor
+	$(PY) tools/build_slides.py _build/slides
