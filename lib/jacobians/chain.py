@@ -69,7 +69,7 @@ class SerialChain:
     >>> chain.dof, chain.joint_types
     (2, 'RR')
     >>> chain.body_axes[:, 0]
-    array([ 0.,  0.,  1.,  0.,  2.,  0.])
+    array([0., 0., 1., 0., 2., 0.])
     """
 
     def __init__(self, screw_axes, home, link_homes=None, name: str | None = None):

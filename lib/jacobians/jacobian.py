@@ -209,7 +209,7 @@ def pose_coordinates(T, representation: str = "zyx") -> np.ndarray:
 
     >>> import numpy as np
     >>> T = np.eye(4); T[:3, 3] = [1, 2, 3]
-    >>> pose_coordinates(T)
+    >>> pose_coordinates(T) + 0.0
     array([0., 0., 0., 1., 2., 3.])
     """
     representation = check_representation(representation)

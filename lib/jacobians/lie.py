@@ -342,7 +342,7 @@ def ad(twist) -> np.ndarray:
 
     :math:`[\mathrm{ad}_{\mathcal V_1}]\mathcal V_2` is the Lie bracket of two twists. MR: ``ad``.
 
-    >>> ad([0, 0, 1, 0, 0, 0])[:3, :3]
+    >>> ad([0, 0, 1, 0, 0, 0])[:3, :3] + 0.0
     array([[ 0., -1.,  0.],
            [ 1.,  0.,  0.],
            [ 0.,  0.,  0.]])

@@ -24,7 +24,7 @@ angular velocity expressed in the fixed frame {s}.
 >>> R = rotation_from_coordinates(phi, "zyx")
 >>> np.allclose(coordinates_from_rotation(R, "zyx"), phi)
 True
->>> float(np.linalg.det(rate_to_angular_velocity(phi, "zyx"))) == -np.cos(-0.2)
+>>> bool(np.isclose(np.linalg.det(rate_to_angular_velocity(phi, "zyx")), -np.cos(-0.2)))
 True
 """
 

@@ -6,7 +6,7 @@ their joints turn about z, and at the home pose the links lie along the x axis.
 
 >>> import jacobians as jac
 >>> arm = jac.robots.planar_3r(l1=1.0, l2=1.0, l3=1.0)
->>> arm.screw_axes.T
+>>> arm.screw_axes.T + 0.0
 array([[ 0.,  0.,  1.,  0.,  0.,  0.],
        [ 0.,  0.,  1.,  0., -1.,  0.],
        [ 0.,  0.,  1.,  0., -2.,  0.]])
@@ -21,7 +21,7 @@ import numpy as np
 from ._validation import positive_float
 from .chain import SerialChain
 
-__all__ = ["planar", "planar_2r", "planar_3r", "ur5", "spatial_rrp", "scara", "spatial_5r", "zyx_wrist", "PLANAR_NAMES"]
+__all__ = ["planar", "planar_2r", "planar_3r", "ur5", "spatial_rrp", "scara", "spatial_5r", "zyx_wrist", "zyz_wrist", "PLANAR_NAMES"]
 
 PLANAR_NAMES = ("planar_2r", "planar_3r")
 
@@ -147,3 +147,20 @@ def zyx_wrist(tool: float = 0.2) -> SerialChain:
     tool = positive_float(tool, "tool", allow_zero=True)
     S = np.stack([_revolute([0, 0, 1], [0, 0, 0]), _revolute([0, 1, 0], [0, 0, 0]), _revolute([1, 0, 0], [0, 0, 0])], axis=1)
     return SerialChain(S, _translation([tool, 0, 0]), name="ZYX wrist")
+
+
+def zyz_wrist(tool: float = 0.2) -> SerialChain:
+    r"""A spherical wrist of three intersecting revolute joints about z, y and z.
+
+    Its orientation is :math:`R = R_z(\theta_1)R_y(\theta_2)R_z(\theta_3)`: a
+    kinematic singularity at :math:`\theta_2 = 0` (axes 1 and 3 line up), but
+    full rank at :math:`\theta_2 = \pm\pi/2`, where its ZYX (roll–pitch–yaw)
+    coordinates can reach gimbal lock. So with this wrist the analytic
+    Jacobian in ZYX coordinates blows up while the geometric Jacobian stays
+    well-conditioned: a representation singularity, not a robot singularity.
+    (For :func:`zyx_wrist` the two coincide: its ZYX analytic Jacobian is the
+    identity and its geometric Jacobian loses rank at gimbal lock.)
+    """
+    tool = positive_float(tool, "tool", allow_zero=True)
+    S = np.stack([_revolute([0, 0, 1], [0, 0, 0]), _revolute([0, 1, 0], [0, 0, 0]), _revolute([0, 0, 1], [0, 0, 0])], axis=1)
+    return SerialChain(S, _translation([0, 0, tool]), name="ZYZ wrist")

@@ -1,0 +1,179 @@
+"""Tests of SerialChain: construction, forward kinematics, DH, validation."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+import jacobians as jac
+from jacobians import lie
+from jacobians.testing import random_chain, random_theta
+
+seeds = st.integers(0, 2**32 - 1)
+
+
+@settings(max_examples=40, deadline=None)
+@given(seeds)
+def test_fk_space_and_body_forms_agree(seed):
+    rng = np.random.default_rng(seed)
+    chain = random_chain(rng)
+    theta = random_theta(chain, rng)
+    T = np.eye(4)
+    for i in range(chain.dof):
+        T = T @ lie.exp_se3(chain.screw_axes[:, i] * theta[i])
+    T_space = T @ chain.home
+    T_body = chain.home.copy()
+    for i in range(chain.dof):
+        T_body = T_body @ lie.exp_se3(chain.body_axes[:, i] * theta[i])
+    assert np.allclose(chain.fk(theta), T_space, atol=1e-10)
+    assert np.allclose(T_body, T_space, atol=1e-10)
+    assert np.allclose(chain.body_axes, jac.adjoint(np.linalg.inv(chain.home)) @ chain.screw_axes)
+
+
+@settings(max_examples=20, deadline=None)
+@given(seeds, st.sampled_from([(2,), (3, 2), (1, 1, 4)]))
+def test_fk_batches(seed, shape):
+    rng = np.random.default_rng(seed)
+    chain = random_chain(rng)
+    thetas = random_theta(chain, rng, shape)
+    T = chain.fk(thetas)
+    assert T.shape == shape + (4, 4)
+    flat = thetas.reshape(-1, chain.dof)
+    assert np.allclose(T.reshape(-1, 4, 4), np.stack([chain.fk(t) for t in flat]), atol=1e-12)
+    P = chain.prefix_transforms(thetas)
+    assert P.shape == shape + (chain.dof + 1, 4, 4)
+    assert np.allclose(P[..., -1, :, :] @ chain.home, T, atol=1e-10)
+    assert chain.link_poses(thetas).shape == shape + (chain.dof, 4, 4)
+    assert chain.joint_positions(thetas).shape == shape + (chain.dof + 1, 3)
+
+
+def test_planar_joint_positions():
+    arm = jac.robots.planar_3r(1.0, 0.5, 0.25)
+    pts = arm.joint_positions([np.pi / 2, -np.pi / 2, 0.0])
+    assert np.allclose(pts, [[0, 0, 0], [0, 1, 0], [0.5, 1, 0], [0.75, 1, 0]], atol=1e-12)
+
+
+def test_attributes_are_read_only_copies():
+    S = jac.robots.planar_2r().screw_axes.copy()
+    chain = jac.SerialChain(S, np.eye(4))
+    S[0, 0] = 5.0
+    assert chain.screw_axes[0, 0] == 0.0
+    with pytest.raises(ValueError):
+        chain.screw_axes[0, 0] = 1.0
+    assert chain.dof == 2 and chain.joint_types == "RR"
+    assert "2 joints" in repr(chain)
+
+
+def test_home_is_reorthonormalised():
+    M = np.eye(4)
+    M[:3, :3] = lie.rotation_about("z", 0.3)
+    M[0, 0] += 1e-8
+    chain = jac.SerialChain(jac.robots.planar_2r().screw_axes, M)
+    R = chain.home[:3, :3]
+    assert np.allclose(R.T @ R, np.eye(3), atol=1e-14)
+
+
+# ---------------------------------------------------------------- Denavit–Hartenberg
+
+def test_from_dh_planar_2r_matches_screw_description():
+    dh = jac.SerialChain.from_dh(a=[1.0, 0.7], alpha=[0, 0], d=[0, 0])
+    ref = jac.robots.planar_2r(1.0, 0.7)
+    rng = np.random.default_rng(0)
+    for th in rng.uniform(-np.pi, np.pi, (10, 2)):
+        assert np.allclose(dh.fk(th), ref.fk(th))
+        assert np.allclose(jac.space_jacobian(dh, th), jac.space_jacobian(ref, th))
+
+
+def test_from_dh_link_frames_follow_the_dh_product():
+    a, alpha, d = [0.3, 0.5, 0.1], [np.pi / 2, 0.0, -np.pi / 2], [0.4, 0.0, 0.2]
+    chain = jac.SerialChain.from_dh(a, alpha, d, offset=[0.1, -0.2, 0.3], joint_types="RRP")
+    q = np.array([0.5, -0.3, 0.25])
+
+    def A(theta, di, ai, al):
+        Rz = np.eye(4); Rz[:3, :3] = lie.rotation_about("z", theta)
+        Tz = np.eye(4); Tz[2, 3] = di
+        Tx = np.eye(4); Tx[0, 3] = ai
+        Rx = np.eye(4); Rx[:3, :3] = lie.rotation_about("x", al)
+        return Rz @ Tz @ Tx @ Rx
+
+    T = np.eye(4)
+    frames = []
+    off = [0.1, -0.2, 0.3]
+    for i in range(3):
+        if i < 2:
+            T = T @ A(q[i] + off[i], d[i], a[i], alpha[i])
+        else:
+            T = T @ A(0.0, d[i] + q[i], a[i], alpha[i])
+        frames.append(T)
+    assert np.allclose(chain.fk(q), frames[-1], atol=1e-12)
+    assert np.allclose(chain.link_poses(q), np.stack(frames), atol=1e-12)
+
+
+def test_from_dh_modified_matches_classical_for_planar_arm():
+    # Craig's frames for the planar 2R of note 002: 0T1 = Rz(t1), 1T2 = Tx(l1) Rz(t2), tool Tx(l2)
+    l1, l2 = 0.8, 0.5
+    tool = np.eye(4)
+    tool[0, 3] = l2
+    craig = jac.SerialChain.from_dh(a=[0.0, l1], alpha=[0, 0], d=[0, 0], convention="modified", tool=tool)
+    ref = jac.robots.planar_2r(l1, l2)
+    for th in np.random.default_rng(1).uniform(-3, 3, (5, 2)):
+        assert np.allclose(craig.fk(th), ref.fk(th))
+
+
+def test_roboticstoolbox_dh_agrees():
+    rtb = pytest.importorskip("roboticstoolbox")
+    a, alpha, d = [0.0, 0.4318, 0.0203], [np.pi / 2, 0.0, -np.pi / 2], [0.0, 0.0, 0.15]
+    robot = rtb.DHRobot([rtb.RevoluteDH(a=a[i], alpha=alpha[i], d=d[i]) for i in range(3)])
+    chain = jac.SerialChain.from_dh(a, alpha, d)
+    for q in np.random.default_rng(2).uniform(-3, 3, (5, 3)):
+        assert np.allclose(chain.fk(q), robot.fkine(q).A, atol=1e-10)
+        J0 = robot.jacob0(q)  # rows (v, omega) of the tool origin in the base frame
+        J = jac.geometric_jacobian(chain, q)
+        assert np.allclose(J0[:3], J[3:], atol=1e-10) and np.allclose(J0[3:], J[:3], atol=1e-10)
+
+
+# ---------------------------------------------------------------- bad input
+
+def _col(*v):
+    return np.array(v, dtype=float).reshape(6, 1)
+
+
+@pytest.mark.parametrize(
+    "S, M, pattern",
+    [
+        (np.zeros(6), np.eye(4), "shape \\(6, n\\)"),
+        (np.zeros((2, 6)), np.eye(4), "transposed"),
+        (np.zeros((6, 0)), np.eye(4), "at least one column"),
+        (_col(0, 0, 0, 0, 0, 0), np.eye(4), "zero"),
+        (_col(0, 0, 2, 0, 0, 0), np.eye(4), "unit angular part"),
+        (_col(0, 0, 0, 0, 0, 3), np.eye(4), "unit linear part"),
+        (_col(0, 0, 1, 0, np.nan, 0), np.eye(4), "finite"),
+        (_col(0, 0, 1, 0, 0, 0), np.eye(3), "shape \\(4, 4\\)"),
+        (_col(0, 0, 1, 0, 0, 0), np.diag([2.0, 1.0, 1.0, 1.0]), "rotation"),
+        (_col(0, 0, 1, 0, 0, 0), np.diag([1.0, 1.0, -1.0, 1.0]), "det"),
+        (_col(0, 0, 1, 0, 0, 0), np.vstack([np.eye(4)[:3], [0, 0, 1, 1]]), "last row"),
+    ],
+)
+def test_bad_chain(S, M, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        jac.SerialChain(S, M)
+
+
+def test_bad_types():
+    with pytest.raises(TypeError, match="real numbers"):
+        jac.SerialChain("S", np.eye(4))
+    with pytest.raises(TypeError, match="real numbers"):
+        jac.SerialChain(_col(0, 0, 1, 0, 0, 0), None)
+    with pytest.raises(TypeError, match="name"):
+        jac.SerialChain(_col(0, 0, 1, 0, 0, 0), np.eye(4), name=3)
+    with pytest.raises(ValueError, match="link_homes"):
+        jac.SerialChain(_col(0, 0, 1, 0, 0, 0), np.eye(4), link_homes=np.tile(np.eye(4), (2, 1, 1)))
+    with pytest.raises(ValueError, match="convention"):
+        jac.SerialChain.from_dh([1], [0], [0], convention="craig")
+    with pytest.raises(ValueError, match="joint_types"):
+        jac.SerialChain.from_dh([1], [0], [0], joint_types="X")
+    with pytest.raises(TypeError, match="joint_types"):
+        jac.SerialChain.from_dh([1], [0], [0], joint_types=["R"])
+    with pytest.raises(ValueError, match=r"alpha with shape \(1\)"):
+        jac.SerialChain.from_dh([1], [0, 0], [0])
+    with pytest.raises(ValueError, match="theta"):
+        jac.robots.planar_2r().fk([1.0])
