@@ -1,0 +1,204 @@
+"""Tests of jacobians.plotting: drawn data equal the library's values, updates move artists in place."""
+
+import os
+
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+import jacobians as jac
+from jacobians import plotting as P
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    plt.close("all")
+
+
+def test_palette_is_okabe_ito_and_has_semantic_keys():
+    okabe_ito = {"#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2", "#D55E00", "#CC79A7"}
+    for key in ("link", "joint", "space", "body", "geometric", "analytic", "velocity", "force", "singular", "ok",
+                "frame_x", "frame_y", "frame_z"):
+        assert P.PALETTE[key] in okabe_ito, key
+    assert P.PALETTE["space"] != P.PALETTE["body"]
+    assert len({P.PALETTE["frame_x"], P.PALETTE["frame_y"], P.PALETTE["frame_z"]}) == 3
+
+
+def test_draw_planar_arm_draws_joint_positions_and_updates_in_place():
+    arm = jac.robots.planar_3r(1.0, 0.8, 0.5)
+    fig, ax = plt.subplots()
+    theta = np.array([0.4, 0.6, -0.5])
+    art = P.draw_planar_arm(ax, arm, theta, setup_axes=True, title="t")
+    pts = arm.joint_positions(theta)
+    np.testing.assert_allclose(art.link_line.get_xydata(), pts[:, :2])
+    np.testing.assert_allclose(np.column_stack(art.joint_markers.get_data()), pts[:-1, :2])
+    n_lines = len(ax.lines)
+    theta2 = np.array([-1.0, 2.0, 0.3])
+    same_line = art.link_line
+    art.update(theta2)
+    assert art.link_line is same_line and len(ax.lines) == n_lines
+    np.testing.assert_allclose(art.link_line.get_xydata(), arm.joint_positions(theta2)[:, :2])
+    # tool frame x axis follows the rotation of T_sb
+    T = arm.fk(theta2)
+    x_line = art.tool_frame.axis_lines[0]
+    xs, ys = x_line.get_data()
+    d = np.array([xs[1] - xs[0], ys[1] - ys[0]])
+    np.testing.assert_allclose(d / np.linalg.norm(d), T[:2, 0], atol=1e-12)
+    np.testing.assert_allclose([xs[0], ys[0]], T[:2, 3], atol=1e-12)
+    assert ax.get_xlabel() == "x (m)" and ax.get_ylabel() == "y (m)"
+
+
+def test_twist_arrow_is_tool_velocity_from_geometric_jacobian():
+    arm = jac.robots.planar_2r(1.0, 0.7)
+    theta, rates = np.array([0.3, 1.1]), np.array([0.5, -1.2])
+    V_s = jac.space_jacobian(arm, theta) @ rates
+    fig, ax = plt.subplots()
+    art = P.draw_planar_arm(ax, arm, theta, twist=V_s)
+    pdot = (jac.geometric_jacobian(arm, theta) @ rates)[3:5]
+    np.testing.assert_allclose(art.twist_artist.vectors[0], pdot, atol=1e-12)
+    np.testing.assert_allclose(art.twist_artist.points[0], arm.fk(theta)[:2, 3], atol=1e-12)
+
+
+def test_non_planar_chain_is_refused_with_clear_error():
+    fig, ax = plt.subplots()
+    with pytest.raises(ValueError, match="planar"):
+        P.draw_planar_arm(ax, jac.robots.ur5(), np.zeros(6))
+    with pytest.raises(ValueError, match="planar"):
+        P.planar_arm_animation(jac.robots.spatial_5r(), np.zeros((3, 5)))
+    with pytest.raises(TypeError, match="SerialChain"):
+        P.draw_planar_arm(ax, "arm", [0, 0])
+
+
+def test_ellipse_points_lie_on_the_ellipse():
+    fig, ax = plt.subplots()
+    J = jac.geometric_jacobian(jac.robots.planar_2r(), [0.2, 0.9])[3:5]
+    U, s, _ = np.linalg.svd(J)
+    e = P.draw_ellipse(ax, [0.5, -0.2], s, U)
+    xy = e.line.get_xydata() - [0.5, -0.2]
+    # u = diag(1/s) U^T (x - c) has unit norm on the ellipse
+    u = (U.T @ xy.T) / s[:, None]
+    np.testing.assert_allclose(np.linalg.norm(u, axis=0), 1.0, atol=1e-12)
+    # a singular configuration gives a degenerate ellipse, not an error
+    Js = jac.geometric_jacobian(jac.robots.planar_2r(), [0.2, 0.0])[3:5]
+    U, s, _ = np.linalg.svd(Js)
+    e.update([0, 0], s, U)
+    assert np.all(np.isfinite(e.line.get_xydata()))
+
+
+@pytest.mark.parametrize("kind", ["space", "body", "geometric"])
+def test_column_arrows_match_jacobian(kind):
+    arm = jac.robots.planar_3r()
+    theta = np.array([0.3, -0.4, 1.0])
+    P_, V = P.column_arrows(arm, theta, kind)
+    T = arm.fk(theta)
+    if kind == "space":
+        np.testing.assert_allclose(V, jac.space_jacobian(arm, theta)[3:5].T, atol=1e-12)
+        np.testing.assert_allclose(P_, 0.0)
+    else:
+        # body columns turned into {s} axes equal the geometric columns' linear parts
+        np.testing.assert_allclose(V, jac.geometric_jacobian(arm, theta)[3:5].T, atol=1e-12)
+        np.testing.assert_allclose(P_, np.tile(T[:2, 3], (3, 1)), atol=1e-12)
+
+
+def test_animation_moves_arm_and_columns_and_html_has_no_cdn():
+    arm = jac.robots.planar_2r()
+    t = np.linspace(0, 1, 4)
+    thetas = np.column_stack([t, 1 - t])
+    anim = P.planar_arm_animation(arm, thetas, jacobian="space", show_velocity=[1.0, 0.5], dpi=40)
+    fig = anim._fig
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "x (m)" and ax.get_title()
+    html = P.animation_html(anim).data
+    assert "font-awesome" not in html and "https://" not in html and "http://" not in html
+    assert "<i class=\"fa" not in html
+    assert "&#9654;" in html  # the Play button is labelled
+    assert html.count("data:image/png;base64") == 4  # one inline PNG per frame
+    assert not plt.fignum_exists(fig.number)  # closed: no stray static copy
+
+
+@pytest.mark.filterwarnings("ignore:Animation was deleted")
+def test_animation_last_frame_state_matches_library():
+    arm = jac.robots.planar_3r()
+    thetas = np.array([[0.0, 0.0, 0.0], [0.5, -0.3, 0.8]])
+    anim = P.planar_arm_animation(arm, thetas, jacobian="body", dpi=40)
+    anim._func(1)
+    line = [ln for ln in anim._fig.axes[0].lines if ln.get_label() == arm.name][0]
+    np.testing.assert_allclose(line.get_xydata(), arm.joint_positions(thetas[1])[:, :2])
+    plt.close(anim._fig)
+
+
+def test_animation_rejects_bad_input():
+    arm = jac.robots.planar_2r()
+    with pytest.raises(ValueError, match=r"\(T, 2\)"):
+        P.planar_arm_animation(arm, [0.1, 0.2])
+    with pytest.raises(ValueError, match="jacobian"):
+        P.planar_arm_animation(arm, np.zeros((2, 2)), jacobian="analytic")
+    with pytest.raises(TypeError, match="Animation"):
+        P.animation_html("not an animation")
+
+
+def test_spatial_chain_axes_follow_the_joints():
+    ur5 = jac.robots.ur5()
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    theta = np.array([0.3, -0.5, 0.8, 0.2, 0.4, 0.1])
+    art = P.draw_spatial_chain(ax, ur5, theta, setup_axes=True)
+    x, y, z = art.link_line.get_data_3d()
+    np.testing.assert_allclose(np.column_stack([x, y, z]), ur5.joint_positions(theta))
+    # the current axis of joint i is the angular part of column i of J_s
+    J_s = jac.space_jacobian(ur5, theta)
+    dots = np.abs(np.sum(art.axis_directions * J_s[:3].T, axis=1))
+    np.testing.assert_allclose(dots, 1.0, atol=1e-12)
+    fig2, ax2 = plt.subplots()
+    with pytest.raises(ValueError, match="3-D axes"):
+        P.draw_spatial_chain(ax2, ur5, theta)
+
+
+def test_frame_3d_and_2d():
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    T = np.eye(4)
+    T[:3, :3] = jac.lie.rotation_about("z", 0.5)
+    T[:3, 3] = [1, 2, 3]
+    f = P.draw_frame(ax, T, "{b}", length=0.5)
+    x, y, z = f.axis_lines[2].get_data_3d()
+    np.testing.assert_allclose([x[1] - x[0], y[1] - y[0], z[1] - z[0]], 0.5 * T[:3, 2])
+    with pytest.raises(ValueError, match=r"\(4, 4\)"):
+        P.draw_frame(ax, np.eye(3), "{b}")
+
+
+def test_matrix_latex_values_and_nan():
+    J = jac.space_jacobian(jac.robots.planar_2r(), [0.0, np.pi / 2])
+    s = P.matrix_latex(J, "J_s", digits=2)
+    assert s.startswith("J_s = \\begin{bmatrix}") and s.endswith("\\end{bmatrix}")
+    body = s[len("J_s = \\begin{bmatrix} "):-len(" \\end{bmatrix}")]
+    rows = [[float(c) for c in r.split("&")] for r in body.split("\\\\")]
+    np.testing.assert_allclose(rows, J.round(2), atol=1e-12)
+    assert "-0.00" not in s
+    assert "undef" in P.matrix_latex([[np.nan, 1.0]])
+    with pytest.raises(ValueError, match="2-D"):
+        P.matrix_latex(np.zeros((2, 2, 2)))
+
+
+def test_draw_matrix_updates_text():
+    fig, ax = plt.subplots()
+    m = P.draw_matrix(ax, np.eye(2), digits=1)
+    m.update([[1.26, -2.0], [np.inf, 0.0]])
+    assert [t.get_text() for t in m.texts[0]] == ["1.3", "-2.0"]
+    assert m.texts[1][0].get_text() == "undef."
+    with pytest.raises(ValueError, match="shape"):
+        m.update(np.eye(3))
+
+
+def test_set_style_sets_readable_fonts():
+    with matplotlib.rc_context():
+        P.set_style()
+        assert matplotlib.rcParams["font.size"] >= 14
+        assert matplotlib.rcParams["axes.labelsize"] >= 14
