@@ -15,7 +15,7 @@ matplotlib and ipywidgets when they are imported.
 True
 """
 
-from . import analysis, lie, representations, robots
+from . import analysis, interop, lie, representations, robots
 from .chain import SerialChain
 from .jacobian import (
     analytic_jacobian,

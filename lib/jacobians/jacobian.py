@@ -105,7 +105,16 @@ def _evaluate(chain: SerialChain, theta, kind: str, with_pose: bool = False):
         J = K.space_columns_single(C, Rs, ps)
         R = Rs[-1] @ M[:3, :3]
         p = Rs[-1] @ M[:3, 3] + ps[-1]
-        J = _core_convert(kind, J, R, p)
+        if kind != "space":
+            # v - p x w = v + [w] p ... written as a 3x3 product on all columns at once
+            P = np.array([[0.0, -p[2], p[1]], [p[2], 0.0, -p[0]], [-p[1], p[0], 0.0]])
+            lin = J[3:] - P @ J[:3]
+            if kind == "geometric":
+                J[3:] = lin
+            else:
+                Rt = R.T
+                J[:3] = Rt @ J[:3]
+                J[3:] = Rt @ lin
         if with_pose:
             T = np.eye(4)
             T[:3, :3] = R

@@ -1,0 +1,22 @@
+"""Package-level contract: light import, public names."""
+
+import subprocess
+import sys
+
+import jacobians as jac
+
+
+def test_import_loads_numpy_only():
+    code = ("import sys, jacobians; heavy = [m for m in ('sympy', 'matplotlib', 'ipywidgets', 'scipy', 'pinocchio') "
+            "if m in sys.modules]; print(','.join(heavy))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""
+
+
+def test_public_api_names():
+    for name in ["SerialChain", "space_jacobian", "body_jacobian", "geometric_jacobian", "analytic_jacobian",
+                 "pose_coordinates", "space_to_body", "body_to_space", "body_to_geometric", "geometric_to_body",
+                 "adjoint", "robots"]:
+        assert hasattr(jac, name), name
+    for name in ["planar_2r", "planar_3r", "ur5"]:
+        assert callable(getattr(jac.robots, name))

@@ -1,0 +1,86 @@
+"""Speed benchmark of the jacobians library (`make bench`). Prints figures and ratios; asserts nothing.
+
+* one configuration of the UR5: jacobians vs modern_robotics.JacobianSpace (goal: >= 5x faster);
+* a batch of 10^5 configurations: microseconds per configuration (goal: <= 1 us),
+  compared with Pinocchio called from a Python loop.
+"""
+
+from __future__ import annotations
+
+import statistics
+import sys
+import timeit
+
+import numpy as np
+
+import jacobians as jac
+
+
+def best_of(stmt, number, repeat=7):
+    times = timeit.repeat(stmt, number=number, repeat=repeat)
+    return min(times) / number, statistics.median(times) / number
+
+
+def main() -> int:
+    import modern_robotics as mr
+
+    ur = jac.robots.ur5()
+    rng = np.random.default_rng(0)
+    theta = rng.uniform(-np.pi, np.pi, 6)
+    S, B = ur.screw_axes.copy(), ur.body_axes.copy()
+    assert np.allclose(jac.space_jacobian(ur, theta), mr.JacobianSpace(S, theta))
+
+    print("UR5, one configuration (best / median of 7 runs)")
+    rows = []
+    for label, ours, theirs in [
+        ("space Jacobian", lambda: jac.space_jacobian(ur, theta), lambda: mr.JacobianSpace(S, theta)),
+        ("body Jacobian", lambda: jac.body_jacobian(ur, theta), lambda: mr.JacobianBody(B, theta)),
+        ("forward kinematics", lambda: ur.fk(theta), lambda: mr.FKinSpace(ur.home, S, theta)),
+    ]:
+        t_ours, m_ours = best_of(ours, 2000)
+        t_mr, m_mr = best_of(theirs, 200)
+        rows.append((label, t_ours, t_mr))
+        print(f"  {label:20s} jacobians {t_ours * 1e6:7.1f} us (median {m_ours * 1e6:6.1f})   "
+              f"modern_robotics {t_mr * 1e6:7.1f} us (median {m_mr * 1e6:6.1f})   ratio {t_mr / t_ours:5.1f}x  (goal >= 5x)")
+
+    N = 100_000
+    thetas = rng.uniform(-np.pi, np.pi, (N, 6))
+    print(f"\nUR5, a batch of {N} configurations in one call (best of 5)")
+    for label, f in [("space Jacobian", jac.space_jacobian), ("body Jacobian", jac.body_jacobian),
+                     ("geometric Jacobian", jac.geometric_jacobian)]:
+        t, _ = best_of(lambda: f(ur, thetas), 1, repeat=5)
+        print(f"  {label:20s} {t * 1e3:7.1f} ms   {t / N * 1e6:5.2f} us per configuration  (goal <= 1 us)")
+    t_fk, _ = best_of(lambda: ur.fk(thetas), 1, repeat=5)
+    print(f"  {'forward kinematics':20s} {t_fk * 1e3:7.1f} ms   {t_fk / N * 1e6:5.2f} us per configuration")
+
+    try:
+        import pinocchio as pin
+
+        from jacobians.interop import SWAP, to_pinocchio_model
+    except ImportError:
+        print("\nPinocchio not installed: skipped")
+        return 0
+    model, fid = to_pinocchio_model(ur)
+    data = model.createData()
+    qs = thetas[:10_000]
+
+    def pin_loop():
+        out = np.empty((len(qs), 6, 6))
+        for k, q in enumerate(qs):
+            out[k] = pin.computeFrameJacobian(model, data, q, fid, pin.ReferenceFrame.WORLD)
+        return out
+
+    got = pin_loop()
+    assert np.allclose(SWAP @ got, jac.space_jacobian(ur, qs))
+    t_pin, _ = best_of(pin_loop, 1, repeat=3)
+    t_ours, _ = best_of(lambda: jac.space_jacobian(ur, thetas), 1, repeat=5)
+    per_pin = t_pin / len(qs)
+    per_ours = t_ours / N
+    print(f"\nPinocchio computeFrameJacobian(WORLD) from a Python loop: {per_pin * 1e6:5.2f} us per configuration")
+    print(f"jacobians batched space Jacobian:                        {per_ours * 1e6:5.2f} us per configuration"
+          f"   ratio {per_pin / per_ours:4.1f}x  (goal > 1x)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
