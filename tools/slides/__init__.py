@@ -1,0 +1,8 @@
+"""Lecture slides from the chapter sources: MyST-to-reveal conversion and templates.
+
+``myst``        turns MyST Markdown (directives, roles, labels) into the plain
+                Markdown + HTML that nbconvert renders, with styled boxes;
+``preprocess``  the nbconvert preprocessor that applies it to a notebook and
+                decides what each cell shows on a slide;
+``templates/``  the nbconvert template ``course`` (reveal.js, no CDN).
+"""

@@ -1,0 +1,165 @@
+"""The nbconvert preprocessor that turns an executed chapter into slide cells.
+
+Runs before nbconvert's own reveal metadata preprocessor. For each cell:
+
+* Markdown is split before every ``#``/``##``/``###`` heading, then converted
+  by :func:`slides.myst.convert_markdown` (directives as styled boxes, roles as
+  text, solutions dropped).
+* Slide metadata the author gave (``slideshow.slide_type``) always wins. Where
+  there is none: a ``#`` or ``##`` heading starts a slide, a ``###`` heading or
+  a definition / theorem / proposition / lemma / corollary / exercise starts a
+  subslide, anything else continues the current slide.
+* Code is hidden unless the cell has the tag ``slide-show-code``. Cells tagged
+  ``remove-cell`` and cells inside a solution are dropped; ``remove-output`` /
+  ``hide-output`` drop the outputs; stderr streams (warnings) are dropped; a
+  cell left with nothing to show is dropped.
+* Widget views cannot run without a kernel (a dead slider on a slide is a
+  bug), so they are replaced by a pointer to the live version.
+* Any ``<link>`` or ``<script src>`` to another host left in an HTML output
+  (e.g. matplotlib's jshtml font-awesome link) is removed: the deck links its
+  local font-awesome copy instead.
+"""
+
+from __future__ import annotations
+
+import copy
+import re
+from pathlib import Path
+
+import nbformat
+from nbconvert.preprocessors import Preprocessor
+from traitlets import Dict, Unicode
+
+from . import myst
+
+WIDGET_MIME = "application/vnd.jupyter.widget-view+json"
+SHOW_CODE_TAG = "slide-show-code"
+_REMOTE_TAG = re.compile(
+    r"<link\b[^>]*\bhref=[\"']?(?:https?:)?//[^>]*>|<script\b[^>]*\bsrc=[\"']?(?:https?:)?//[^>]*>\s*</script>",
+    re.I,
+)
+
+LIVE_DEMO_HTML = (
+    '<div class="live-demo">Interactive demo: run this chapter in JupyterLab '
+    "(<code>make lab</code>) to move the sliders.</div>"
+)
+
+
+def _explicit_type(cell) -> str | None:
+    return cell.get("metadata", {}).get("slideshow", {}).get("slide_type")
+
+
+def _set_type(cell, slide_type: str) -> None:
+    cell.metadata.setdefault("slideshow", {})["slide_type"] = slide_type
+
+
+def auto_slide_type(markdown: str) -> str:
+    """Slide type for a Markdown piece without author metadata (see module doc)."""
+    level = myst.leading_heading_level(markdown)
+    if level in (1, 2):
+        return "slide"
+    if level == 3:
+        return "subslide"
+    name = myst.leading_directive(markdown)
+    if name is not None:
+        kind = name.split(":", 1)[-1]
+        if kind in myst.KEY_KINDS:
+            return "subslide"
+    return "-"
+
+
+class MystSlidesPreprocessor(Preprocessor):
+    """Apply the MyST conversion and the slide rules above to a whole notebook."""
+
+    labels = Dict(help="label -> text shown for a reference to it").tag(config=True)
+    source_dir = Unicode("", help="folder of the chapter source (for local images)").tag(config=True)
+    asset_prefix = Unicode("", help="prefix of image files copied next to the deck").tag(config=True)
+
+    def preprocess(self, nb, resources):
+        ctx = myst.Context(
+            labels=dict(self.labels),
+            source_dir=Path(self.source_dir) if self.source_dir else None,
+            asset_prefix=self.asset_prefix,
+        )
+        cells = []
+        for cell in nb.cells:
+            if cell.cell_type == "markdown":
+                cells.extend(self._markdown(cell, ctx))
+            elif cell.cell_type == "code":
+                kept = self._code(cell, ctx)
+                if kept is not None:
+                    cells.append(kept)
+            # raw cells are not slide material
+        if not any(_explicit_type(c) not in ("skip", "notes") for c in cells):
+            raise ValueError("no cell is left to show on a slide")
+        nb.cells = cells
+        resources.setdefault("slides", {})
+        resources["slides"]["images"] = ctx.images
+        resources["slides"]["warnings"] = ctx.warnings
+        return nb, resources
+
+    # -------------------------------------------------------------- markdown
+    def _markdown(self, cell, ctx):
+        explicit = _explicit_type(cell)
+        out = []
+        pieces = myst.split_at_headings(cell.source)
+        for k, piece in enumerate(pieces):
+            was_in_solution = ctx.in_solution
+            text = myst.convert_markdown(piece, ctx)
+            if not text.strip():
+                continue
+            new = nbformat.v4.new_markdown_cell(text)
+            new.metadata = copy.deepcopy(dict(cell.metadata)) if k == 0 else {}
+            if k == 0 and explicit is not None:
+                slide_type = explicit
+            elif k > 0 and explicit in ("skip", "notes"):
+                # a skipped or notes cell stays so, except at a new section
+                slide_type = auto_slide_type(piece) if myst.leading_heading_level(piece) in (1, 2) else explicit
+            else:
+                slide_type = auto_slide_type(piece) if not was_in_solution else "-"
+            _set_type(new, slide_type)
+            out.append(new)
+        return out
+
+    # -------------------------------------------------------------- code
+    def _code(self, cell, ctx):
+        if ctx.in_solution:
+            return None
+        tags = set(cell.metadata.get("tags", []))
+        if "remove-cell" in tags:
+            return None
+        cell = copy.deepcopy(cell)
+        if "remove-output" in tags or "hide-output" in tags:
+            cell.outputs = []
+        outputs = []
+        for out in cell.get("outputs", []):
+            if out.output_type == "stream" and out.get("name") == "stderr":
+                continue
+            if out.output_type == "error":
+                continue
+            if out.output_type in ("display_data", "execute_result"):
+                data = out.get("data", {})
+                if WIDGET_MIME in data:
+                    out = nbformat.v4.new_output("display_data", data={"text/html": LIVE_DEMO_HTML})
+                elif "text/html" in data:
+                    data["text/html"] = _REMOTE_TAG.sub("", _as_text(data["text/html"]))
+            outputs.append(out)
+        cell.outputs = outputs
+        show_code = SHOW_CODE_TAG in tags and "remove-input" not in tags
+        if (
+            "remove-input" in tags
+            and _explicit_type(cell) is None
+            and all(o.output_type == "stream" for o in outputs)
+        ):
+            return None  # a hidden check cell: its printed "checked" line is not slide material
+        if not show_code:
+            cell.metadata.setdefault("transient", {})["remove_source"] = True
+        if not show_code and not outputs:
+            return None
+        if _explicit_type(cell) is None:
+            _set_type(cell, "-")
+        return cell
+
+
+def _as_text(value) -> str:
+    return "".join(value) if isinstance(value, list) else value
