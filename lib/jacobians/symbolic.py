@@ -29,6 +29,7 @@ from typing import Sequence
 
 import numpy as np
 import sympy as sp
+from sympy.simplify.fu import TR10i as _TR10i
 
 __all__ = [
     "SymbolicChain",
@@ -317,7 +318,7 @@ def inverse_transform(T) -> sp.Matrix:
     >>> import sympy as sp
     >>> t = sp.Symbol("t")
     >>> T = exp_se3([0, 0, 1, 0, -1, 0], t)
-    >>> sp.simplify(inverse_transform(T) * T) == sp.eye(4)
+    >>> simplify_matrix(inverse_transform(T) * T) == sp.eye(4)
     True
     """
     R, p = _split(_transform(T))
@@ -382,7 +383,15 @@ def _screw_axes(S, name: str = "S") -> sp.Matrix:
     return A
 
 
-def fk(S, M, thetas) -> sp.Matrix:
+def _tidy(A: sp.Matrix, simplify: bool, cache: dict | None = None) -> sp.Matrix:
+    """Expand every entry, and simplify it cheaply if asked (used on partial products)."""
+    if not simplify:
+        return A.applyfunc(sp.expand)
+    cache = {} if cache is None else cache
+    return A.applyfunc(lambda e: _simplify_entry(e, cache))
+
+
+def fk(S, M, thetas, simplify: bool = True) -> sp.Matrix:
     r"""Forward kinematics :math:`T_{sb} = e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_n]\theta_n} M`. MR: ``FKinSpace``.
 
     Parameters
@@ -392,41 +401,48 @@ def fk(S, M, thetas) -> sp.Matrix:
     M : sympy Matrix, shape (4, 4)
         Home pose of {b}.
     thetas : sequence of n symbols or numbers
+    simplify : bool
+        If True (default) the partial products and the result are simplified
+        with :func:`simplify_matrix` as they are built (fast, and the result
+        reads like a textbook); if False every entry is the fully expanded
+        product of sines and cosines of single joint angles.
 
     Returns
     -------
-    T_sb : sympy.Matrix, shape (4, 4), not simplified (see :func:`simplify_matrix`)
+    T_sb : sympy.Matrix, shape (4, 4)
 
     >>> arm, th, ls = planar_chain(2)
-    >>> simplify_matrix(fk(arm.screw_axes, arm.home, th))[0, 3]
+    >>> fk(arm.screw_axes, arm.home, th)[0, 3]
     l1*cos(theta1) + l2*cos(theta1 + theta2)
     """
     S = _screw_axes(S)
     M = _transform(M, "M")
     th = _thetas(thetas, S.cols)
+    cache: dict = {}
     T = sp.eye(4)
     for i in range(S.cols):
-        T = T * exp_se3(S[:, i], th[i])
-    return (T * M).applyfunc(sp.expand)
+        T = _tidy(T * exp_se3(S[:, i], th[i]), simplify, cache)
+    return _tidy(T * M, simplify, cache)
 
 
 def _ad_apply(R: sp.Matrix, p: sp.Matrix, V: sp.Matrix) -> sp.Matrix:
     """[Ad_(R,p)] V without forming the 6 x 6 matrix."""
     w = R * V[:3, 0]
     v = R * V[3:, 0] + p.cross(w)
-    return sp.Matrix.vstack(w, v).applyfunc(sp.expand)
+    return sp.Matrix.vstack(w, v)
 
 
-def space_jacobian(S, thetas) -> sp.Matrix:
+def space_jacobian(S, thetas, simplify: bool = True) -> sp.Matrix:
     r"""Space Jacobian :math:`J_s(\theta)`: column i is :math:`[\mathrm{Ad}_{e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_{i-1}]\theta_{i-1}}}]\mathcal S_i`.
 
-    MR: ``JacobianSpace``. The result is expanded but not simplified; pass it
-    to :func:`simplify_matrix` for the textbook form.
+    MR: ``JacobianSpace``.
 
     Parameters
     ----------
     S : sympy Matrix, shape (6, n)
     thetas : sequence of n symbols or numbers
+    simplify : bool
+        Simplify as it goes (default), or return the expanded products (see :func:`fk`).
 
     Returns
     -------
@@ -440,15 +456,17 @@ def space_jacobian(S, thetas) -> sp.Matrix:
     """
     S = _screw_axes(S)
     th = _thetas(thetas, S.cols)
+    cache: dict = {}
     cols = []
     T = sp.eye(4)
     for i in range(S.cols):
         cols.append(_ad_apply(T[:3, :3], T[:3, 3], S[:, i]) if i else sp.Matrix(S[:, 0]))
-        T = (T * exp_se3(S[:, i], th[i])).applyfunc(sp.expand)
-    return sp.Matrix.hstack(*cols)
+        if i < S.cols - 1:
+            T = _tidy(T * exp_se3(S[:, i], th[i]), simplify, cache)
+    return _tidy(sp.Matrix.hstack(*cols), simplify, cache)
 
 
-def body_jacobian(B, thetas) -> sp.Matrix:
+def body_jacobian(B, thetas, simplify: bool = True) -> sp.Matrix:
     r"""Body Jacobian :math:`J_b(\theta)`: column i is :math:`[\mathrm{Ad}_{e^{-[\mathcal B_n]\theta_n}\cdots e^{-[\mathcal B_{i+1}]\theta_{i+1}}}]\mathcal B_i`.
 
     MR: ``JacobianBody``.
@@ -459,6 +477,8 @@ def body_jacobian(B, thetas) -> sp.Matrix:
         Body-frame screw axes :math:`\mathcal B_i = [\mathrm{Ad}_{M^{-1}}]\mathcal S_i`
         (``SymbolicChain.body_axes``).
     thetas : sequence of n symbols or numbers
+    simplify : bool
+        Simplify as it goes (default), or return the expanded products (see :func:`fk`).
 
     Returns
     -------
@@ -473,12 +493,14 @@ def body_jacobian(B, thetas) -> sp.Matrix:
     B = _screw_axes(B, "B")
     th = _thetas(thetas, B.cols)
     n = B.cols
+    cache: dict = {}
     cols = [None] * n
     T = sp.eye(4)  # e^{-[B_n] th_n} ... e^{-[B_{i+1}] th_{i+1}}
     for i in range(n - 1, -1, -1):
         cols[i] = _ad_apply(T[:3, :3], T[:3, 3], B[:, i]) if i < n - 1 else sp.Matrix(B[:, i])
-        T = (T * exp_se3(B[:, i], -th[i])).applyfunc(sp.expand)
-    return sp.Matrix.hstack(*cols)
+        if i > 0:
+            T = _tidy(T * exp_se3(B[:, i], -th[i]), simplify, cache)
+    return _tidy(sp.Matrix.hstack(*cols), simplify, cache)
 
 
 def _space_to_geometric(J_s: sp.Matrix, p: sp.Matrix) -> sp.Matrix:
@@ -486,11 +508,11 @@ def _space_to_geometric(J_s: sp.Matrix, p: sp.Matrix) -> sp.Matrix:
     out = sp.Matrix(J_s)
     for i in range(J_s.cols):
         w = J_s[:3, i]
-        out[3:, i] = (J_s[3:, i] + w.cross(p)).applyfunc(sp.expand)
+        out[3:, i] = J_s[3:, i] + w.cross(p)
     return out
 
 
-def geometric_jacobian(S, M, thetas) -> sp.Matrix:
+def geometric_jacobian(S, M, thetas, simplify: bool = True) -> sp.Matrix:
     r"""Geometric Jacobian: rows :math:`(\omega_s, \dot p)`, with :math:`\dot p` the velocity of the origin of {b} in {s}.
 
     :math:`J = \begin{bmatrix} I & 0\\ -[p] & I\end{bmatrix} J_s`, p the
@@ -502,14 +524,15 @@ def geometric_jacobian(S, M, thetas) -> sp.Matrix:
     S : sympy Matrix, shape (6, n)
     M : sympy Matrix, shape (4, 4)
     thetas : sequence of n symbols or numbers
+    simplify : bool
+        Simplify as it goes (default), or return the expanded products (see :func:`fk`).
 
     Returns
     -------
     J : sympy.Matrix, shape (6, n)
 
     >>> arm, th, ls = planar_chain(2)
-    >>> J = simplify_matrix(geometric_jacobian(arm.screw_axes, arm.home, th))
-    >>> J[3:5, :]
+    >>> geometric_jacobian(arm.screw_axes, arm.home, th)[3:5, :]
     Matrix([
     [-l1*sin(theta1) - l2*sin(theta1 + theta2), -l2*sin(theta1 + theta2)],
     [ l1*cos(theta1) + l2*cos(theta1 + theta2),  l2*cos(theta1 + theta2)]])
@@ -517,11 +540,11 @@ def geometric_jacobian(S, M, thetas) -> sp.Matrix:
     S = _screw_axes(S)
     M = _transform(M, "M")
     th = _thetas(thetas, S.cols)
-    T = fk(S, M, th)
-    return _space_to_geometric(space_jacobian(S, th), T[:3, 3])
+    T = fk(S, M, th, simplify)
+    return _tidy(_space_to_geometric(space_jacobian(S, th, simplify), T[:3, 3]), simplify)
 
 
-def link_jacobian(S, thetas, i: int, link_home=None, frame: str = "space") -> sp.Matrix:
+def link_jacobian(S, thetas, i: int, link_home=None, frame: str = "space", simplify: bool = True) -> sp.Matrix:
     r"""Jacobian of the frame fixed to link i (1-based): joints after i do not move it.
 
     Link i is moved by joints 1..i only, so its space Jacobian is the space
@@ -541,6 +564,8 @@ def link_jacobian(S, thetas, i: int, link_home=None, frame: str = "space") -> sp
         ``"space"``: :math:`\mathcal V_{s} = J\dot\theta`; ``"body"``: the twist of
         the link frame in itself, :math:`[\mathrm{Ad}_{T_{s,i}^{-1}}]J_{s,i}`;
         ``"geometric"``: :math:`(\omega_s, \dot p_i)` of the link frame's origin.
+        The numeric counterpart is :func:`jacobians.link_jacobians` (entry i - 1).
+    simplify : bool
 
     Returns
     -------
@@ -559,18 +584,18 @@ def link_jacobian(S, thetas, i: int, link_home=None, frame: str = "space") -> sp
         raise ValueError(f"Expected a link number i with 1 <= i <= {n} (links are numbered from 1), got {i}")
     if frame not in ("space", "body", "geometric"):
         raise ValueError(f"Expected frame 'space', 'body' or 'geometric', got {frame!r}")
-    J = space_jacobian(S[:, :i], th[:i])
+    if frame != "space" and link_home is None:
+        raise ValueError(f"frame={frame!r} needs link_home, the home pose M_i of the frame fixed to link {i}")
+    J = space_jacobian(S[:, :i], th[:i], simplify)
     J = sp.Matrix.hstack(J, sp.zeros(6, n - i))
     if frame == "space":
         return J
-    if link_home is None:
-        raise ValueError(f"frame={frame!r} needs link_home, the home pose M_i of the frame fixed to link {i}")
     M_i = _transform(link_home, "link_home")
-    T_i = fk(S[:, :i], M_i, th[:i])
+    T_i = fk(S[:, :i], M_i, th[:i], simplify)
     if frame == "geometric":
-        return _space_to_geometric(J, T_i[:3, 3])
+        return _tidy(_space_to_geometric(J, T_i[:3, 3]), simplify)
     Tinv = inverse_transform(T_i)
-    return sp.Matrix.hstack(*[_ad_apply(Tinv[:3, :3], Tinv[:3, 3], J[:, k]) for k in range(n)])
+    return _tidy(sp.Matrix.hstack(*[_ad_apply(Tinv[:3, :3], Tinv[:3, 3], J[:, k]) for k in range(n)]), simplify)
 
 
 # ---------------------------------------------------------------- chains
@@ -628,23 +653,19 @@ class SymbolicChain:
 
     def fk(self, thetas=None, simplify: bool = True) -> sp.Matrix:
         """:func:`fk` of this chain."""
-        T = fk(self.screw_axes, self.home, self._th(thetas))
-        return simplify_matrix(T) if simplify else T
+        return fk(self.screw_axes, self.home, self._th(thetas), simplify)
 
     def space_jacobian(self, thetas=None, simplify: bool = True) -> sp.Matrix:
         """:func:`space_jacobian` of this chain."""
-        J = space_jacobian(self.screw_axes, self._th(thetas))
-        return simplify_matrix(J) if simplify else J
+        return space_jacobian(self.screw_axes, self._th(thetas), simplify)
 
     def body_jacobian(self, thetas=None, simplify: bool = True) -> sp.Matrix:
         """:func:`body_jacobian` of this chain (from its body axes)."""
-        J = body_jacobian(self.body_axes, self._th(thetas))
-        return simplify_matrix(J) if simplify else J
+        return body_jacobian(self.body_axes, self._th(thetas), simplify)
 
     def geometric_jacobian(self, thetas=None, simplify: bool = True) -> sp.Matrix:
         """:func:`geometric_jacobian` of this chain."""
-        J = geometric_jacobian(self.screw_axes, self.home, self._th(thetas))
-        return simplify_matrix(J) if simplify else J
+        return geometric_jacobian(self.screw_axes, self.home, self._th(thetas), simplify)
 
     @classmethod
     def from_numeric(cls, chain, exact: bool = True, thetas=None) -> "SymbolicChain":
@@ -737,27 +758,40 @@ def planar_chain(n: int, lengths=None):
 
 # ---------------------------------------------------------------- simplification and numbers
 
+def _is_trig_power(t) -> bool:
+    return (t.is_Pow and isinstance(t.base, (sp.sin, sp.cos)) and t.exp.is_Integer and t.exp >= 2)
+
+
+def _pythagoras(e: sp.Expr, keep) -> sp.Expr:
+    """Rewrite every power (>= 2) of the trig function other than ``keep`` with sin^2 + cos^2 = 1, and expand."""
+    other = sp.cos if keep is sp.sin else sp.sin
+
+    def lower(t):
+        if _is_trig_power(t) and isinstance(t.base, other):
+            x = t.base.args[0]
+            return other(x) ** (t.exp - 2) * (1 - keep(x) ** 2)
+        return t
+
+    for _ in range(8):  # each pass lowers every exponent by 2
+        new = sp.expand(e.replace(_is_trig_power, lower))
+        if new == e:
+            break
+        e = new
+    return e
+
+
 def _simplify_entry(e: sp.Expr, cache: dict) -> sp.Expr:
+    """Expand, cancel sin^2 + cos^2, then fold c_a c_b - s_a s_b into c_{a+b} (Fu's rule TR10i)."""
     if e in cache:
         return cache[e]
     out = sp.expand(e)
-    if out.has(sp.sin, sp.cos, sp.tan):
-        # Fu's rule-based simplification turns products of sines and cosines of
-        # single angles into sin(theta1 + theta2) forms much faster than
-        # trigsimp; collecting on the non-trig symbols first keeps each call small.
-        trig_syms = set().union(*[a.free_symbols for a in out.atoms(sp.sin, sp.cos, sp.tan)])
-        others = sorted(out.free_symbols - trig_syms, key=str)
-        if others:
-            collected = sp.collect(out, others, evaluate=False)
-            out = sp.Add(*[sp.fu(coef) * (1 if k == 1 else k) for k, coef in collected.items()])
-        else:
-            out = sp.fu(out)
-        out = sp.expand(out) if sp.count_ops(sp.expand(out)) <= sp.count_ops(out) else out
-        # fu may leave e.g. sin(a)**2 + cos(a)**2 pieces in unusual shapes; one cheap pass
-        if sp.count_ops(out) > 40:
-            alt = sp.trigsimp(out)
-            if sp.count_ops(alt) < sp.count_ops(out):
-                out = alt
+    if out.has(sp.sin, sp.cos):
+        if any(_is_trig_power(t) for t in out.atoms(sp.Pow)):
+            out = min([out, _pythagoras(out, sp.cos), _pythagoras(out, sp.sin)], key=sp.count_ops)
+        out = _TR10i(out)
+        if any(_is_trig_power(t) for t in out.atoms(sp.Pow)):
+            # folding may have produced new squares of angle sums
+            out = _TR10i(min([out, _pythagoras(out, sp.cos), _pythagoras(out, sp.sin)], key=sp.count_ops))
     cache[e] = out
     return out
 
@@ -765,12 +799,14 @@ def _simplify_entry(e: sp.Expr, cache: dict) -> sp.Expr:
 def simplify_matrix(A) -> sp.Matrix:
     r"""Simplify every entry of a matrix of sines, cosines and lengths.
 
-    Each entry is expanded, collected on the symbols that do not appear
-    inside a sine or cosine (link lengths), and each coefficient is
-    simplified with Fu's trigonometric rules (``sympy.fu``), which turn
-    :math:`c_1c_2 - s_1s_2` into :math:`c_{12}` quickly; long leftovers get
-    one ``trigsimp`` pass. Repeated entries are simplified once. The planar
-    3R Jacobians simplify in a fraction of a second.
+    Each entry is expanded; powers of sines and cosines are reduced with
+    :math:`\sin^2 + \cos^2 = 1` when that shortens the entry; then Fu's rule
+    TR10i folds sums of products into sines and cosines of angle sums
+    (:math:`c_1c_2 - s_1s_2 \to c_{12}`, :math:`s_1c_2 + c_1s_2 \to s_{12}`).
+    These targeted rules are much faster than ``sympy.trigsimp`` and give the
+    textbook forms (planar 3R Jacobians in a fraction of a second, the UR5's in
+    a few seconds). Repeated entries are simplified once. Not a general
+    simplifier: rational functions are only expanded.
 
     Parameters
     ----------
