@@ -1,0 +1,110 @@
+"""Write the student exercise notebooks: no solutions, no outputs.
+
+The sources exercises/NN_name.md are the instructor versions (MyST Markdown
+notebooks whose solution cells carry the tag ``solution``). For each of them
+this script writes DEST/NN_name.ipynb with
+
+* every cell tagged ``solution`` removed (the dropdown's opening and closing
+  Markdown cells, the solution code, the instructor-only asserts);
+* no outputs and no execution counts;
+* the MyST-only markup a plain Jupyter front end shows as raw text turned into
+  plain Markdown: the ``{exercise}`` block becomes a quoted task, ``{doc}`` and
+  ``{ref}`` roles become plain text.
+
+Usage: python tools/make_exercises.py DEST   (``make exercises`` uses _build/exercises)
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+import jupytext
+import nbformat
+
+ROOT = Path(__file__).resolve().parent.parent
+SOURCES = ROOT / "exercises"
+SOLUTION_TAG = "solution"
+
+_EXERCISE = re.compile(r"```\{exercise\}[^\n]*\n((?::[^\n]*\n)*)(.*?)\n```", re.S)
+_ROLE = re.compile(r"\{(?:doc|ref|numref|prf:ref)\}`([^`<]*?)(?:\s*<([^>]*)>)?`")
+_LABEL = re.compile(r"^\([\w-]+\)=\s*$", re.M)
+
+
+def _role_text(match: re.Match) -> str:
+    text, target = match.group(1).strip(), match.group(2)
+    if target:  # {ref}`words <target>`
+        return text
+    name = Path(text).stem if "/" in text or text.startswith("..") else text
+    return f"the chapter *{name.replace('_', ' ')}*" if "/chapters/" in text or text.startswith("../") else name
+
+
+def _plain_markdown(source: str) -> str:
+    source = _EXERCISE.sub(lambda m: "> **Task.** " + m.group(2).strip().replace("\n", "\n> "), source)
+    source = _ROLE.sub(_role_text, source)
+    source = _LABEL.sub("", source)
+    return source.strip("\n")
+
+
+def student_notebook(path: Path) -> nbformat.NotebookNode:
+    """The student version of one source notebook."""
+    nb = jupytext.read(path)
+    cells = []
+    for cell in nb.cells:
+        tags = cell.get("metadata", {}).get("tags", [])
+        if SOLUTION_TAG in tags:
+            continue
+        if cell.cell_type == "code":
+            cell.outputs = []
+            cell.execution_count = None
+        elif cell.cell_type == "markdown":
+            cell.source = _plain_markdown(cell.source)
+            if not cell.source.strip():
+                continue
+        cells.append(cell)
+    banner = nbformat.v4.new_markdown_cell(
+        "*Student version, generated from `exercises/" + path.name + "` by `make exercises`. "
+        "Run the cells from the top; put your answer in each `answer = ...` cell and run the check "
+        "cell below it. Set the environment variable `JACOBIANS_SEED` (or `SEED` in the first code "
+        "cell) to get your own numbers.*")
+    nb.cells = [banner] + cells
+    nb.metadata.pop("mystnb", None)
+    jt = nb.metadata.get("jupytext")
+    if isinstance(jt, dict):  # a plain .ipynb: no pairing with the source
+        jt.pop("text_representation", None)
+        if not jt:
+            nb.metadata.pop("jupytext")
+    return nb
+
+
+def check_student(nb: nbformat.NotebookNode) -> None:
+    """Raise AssertionError if a solution or an output slipped through."""
+    for cell in nb.cells:
+        assert SOLUTION_TAG not in cell.get("metadata", {}).get("tags", []), "a solution cell remains"
+        if cell.cell_type == "code":
+            assert not cell.get("outputs"), "a code cell has outputs"
+            assert cell.get("execution_count") is None, "a code cell has an execution count"
+        assert "solution-start" not in cell.source and "solution-end" not in cell.source, "solution markup remains"
+
+
+def main(dest: Path) -> int:
+    dest.mkdir(parents=True, exist_ok=True)
+    paths = sorted(SOURCES.glob("[0-9][0-9]_*.md"))
+    if not paths:
+        print("make_exercises: no exercise sources found in", SOURCES, file=sys.stderr)
+        return 1
+    for path in paths:
+        nb = student_notebook(path)
+        check_student(nb)
+        nbformat.validate(nb)
+        nbformat.write(nb, dest / f"{path.stem}.ipynb")
+    print(f"make_exercises: wrote {len(paths)} student notebooks to {dest}")
+    return 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
+    sys.exit(main(Path(sys.argv[1])))
