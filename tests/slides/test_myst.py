@@ -200,3 +200,27 @@ def test_every_chapter_converts_without_raw_myst_left(source):
             assert not re.search(r"\{[\w:-]+\}`", outside_code), out
             assert not re.search(r"^\s*\([^()\s]+\)=\s*$", outside_code, re.M), out
     assert not ctx.in_solution, "a {solution-start} without {solution-end}"
+
+
+def test_skipped_prose_keeps_its_definition_results_and_warnings():
+    from slides.preprocess import piece_slide_type
+
+    cell = ("Long prose the author skipped.\n\n```{prf:definition} D\n:label: d\nBody.\n```\n\n"
+            "More prose.\n\n```{prf:proof}\nBecause.\n```\n\n```{tip}\nA tip.\n```\n\n## Next section\ntext")
+    pieces = myst.split_cell(cell)
+    assert len(pieces) == 6
+    types = [piece_slide_type(p, k, "skip") for k, p in enumerate(pieces)]
+    assert types == ["skip", "-", "skip", "fragment", "skip", "slide"]
+    assert [piece_slide_type(p, k, None) for k, p in enumerate(pieces)] == ["-", "-", "-", "-", "-", "slide"]
+    assert [piece_slide_type(p, k, "notes") for k, p in enumerate(pieces)][-1] == "slide"
+    # the re-serialised directive converts exactly like the original
+    ctx = myst.Context()
+    assert myst.convert_markdown(pieces[1], ctx) == myst.convert_markdown(
+        "```{prf:definition} D\n:label: d\nBody.\n```", myst.Context())
+
+
+def test_colon_directive_survives_splitting():
+    pieces = myst.split_cell(":::{important}\n:class: x\nKey **fact**.\n:::\nafter")
+    assert len(pieces) == 2
+    out = myst.convert_markdown(pieces[0], myst.Context())
+    assert 'class="box box-important"' in out and "Key **fact**." in out and ":class:" not in out

@@ -470,6 +470,28 @@ def split_at_headings(text: str, max_level: int = 3) -> list[str]:
     return [t for t in texts if t.strip()]
 
 
+def split_cell(text: str) -> list[str]:
+    """Split a Markdown cell before every heading (level <= 3) and around every top-level directive.
+
+    Each piece can then get its own slide type: a definition inside a cell the
+    author marked ``skip`` (for its prose) still reaches the slides.
+    """
+    out: list[str] = []
+    for piece in split_at_headings(text):
+        buf: list[str] = []
+        for kind, block in split_blocks(piece):
+            if kind == "directive":
+                if any(x.strip() for x in buf):
+                    out.append("\n".join(buf).strip("\n"))
+                buf = []
+                out.append(_unsplit(block))
+            else:
+                buf.append(block)
+        if any(x.strip() for x in buf):
+            out.append("\n".join(buf).strip("\n"))
+    return out
+
+
 def _unsplit(d: Directive) -> str:
     """Re-serialise a parsed directive (used when only splitting, not converting)."""
     fence = "`" * max(3, _longest_backticks(d.body) + 1)

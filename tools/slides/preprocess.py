@@ -2,13 +2,18 @@
 
 Runs before nbconvert's own reveal metadata preprocessor. For each cell:
 
-* Markdown is split before every ``#``/``##``/``###`` heading, then converted
-  by :func:`slides.myst.convert_markdown` (directives as styled boxes, roles as
+* Markdown is split before every ``#``/``##``/``###`` heading and around
+  every top-level directive, then converted by
+  :func:`slides.myst.convert_markdown` (directives as styled boxes, roles as
   text, solutions dropped).
-* Slide metadata the author gave (``slideshow.slide_type``) always wins. Where
-  there is none: a ``#`` or ``##`` heading starts a slide, a ``###`` heading or
-  a definition / theorem / proposition / lemma / corollary / exercise starts a
-  subslide, anything else continues the current slide.
+* Slide metadata the author gave (``slideshow.slide_type``) holds for the
+  cell's first piece (see :func:`piece_slide_type` for the rest). Where there
+  is none: a ``#`` or ``##`` heading starts a slide, a ``###`` heading or a
+  definition / theorem / proposition / lemma / corollary / exercise starts a
+  subslide, anything else continues the current slide. A cell marked
+  ``skip`` keeps its prose off the slides but still shows the definitions,
+  results, exercises and warnings in it (proofs as fragments): the authoring
+  guide uses ``skip`` for long prose, and a definition must reach the slides.
 * Code is hidden unless the cell has the tag ``slide-show-code``. Cells tagged
   ``remove-cell`` and cells inside a solution are dropped; ``remove-output`` /
   ``hide-output`` drop the outputs; stderr streams (warnings) are dropped; a
@@ -45,6 +50,11 @@ LIVE_DEMO_HTML = (
 )
 
 
+#: boxes shown even when the author marked their cell ``skip`` (meant for its prose)
+SHOWN_EVEN_IF_SKIPPED = {"definition", "theorem", "proposition", "lemma", "corollary", "proof",
+                         "exercise", "warning", "important"}
+
+
 def _explicit_type(cell) -> str | None:
     return cell.get("metadata", {}).get("slideshow", {}).get("slide_type")
 
@@ -65,6 +75,37 @@ def auto_slide_type(markdown: str) -> str:
         kind = name.split(":", 1)[-1]
         if kind in myst.KEY_KINDS:
             return "subslide"
+    return "-"
+
+
+def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool = False) -> str:
+    """Slide type of the ``k``-th piece of a Markdown cell whose metadata says ``explicit``.
+
+    * no metadata: the first piece by :func:`auto_slide_type`, later pieces
+      continue the slide unless they start with a heading;
+    * ``skip``: the prose stays off the slides, but a definition, result,
+      exercise or warning in the cell is shown (on the current slide; a proof
+      as a fragment), and a later ``#``/``##`` heading starts a slide;
+    * ``notes``: stays notes, except a later ``#``/``##`` heading;
+    * anything else: the first piece has it, later pieces as with no metadata.
+    """
+    level = myst.leading_heading_level(piece)
+    name = myst.leading_directive(piece)
+    kind = name.split(":", 1)[-1] if name else None
+    if in_solution:
+        return "-"
+    if explicit == "skip":
+        if k > 0 and level in (1, 2):
+            return "slide"
+        if kind in SHOWN_EVEN_IF_SKIPPED:
+            return "fragment" if kind == "proof" else "-"
+        return "skip"
+    if explicit == "notes":
+        return "slide" if (k > 0 and level in (1, 2)) else "notes"
+    if k == 0:
+        return explicit if explicit is not None else auto_slide_type(piece)
+    if level:
+        return auto_slide_type(piece)
     return "-"
 
 
@@ -102,22 +143,14 @@ class MystSlidesPreprocessor(Preprocessor):
     def _markdown(self, cell, ctx):
         explicit = _explicit_type(cell)
         out = []
-        pieces = myst.split_at_headings(cell.source)
-        for k, piece in enumerate(pieces):
+        for k, piece in enumerate(myst.split_cell(cell.source)):
             was_in_solution = ctx.in_solution
             text = myst.convert_markdown(piece, ctx)
             if not text.strip():
                 continue
             new = nbformat.v4.new_markdown_cell(text)
             new.metadata = copy.deepcopy(dict(cell.metadata)) if k == 0 else {}
-            if k == 0 and explicit is not None:
-                slide_type = explicit
-            elif k > 0 and explicit in ("skip", "notes"):
-                # a skipped or notes cell stays so, except at a new section
-                slide_type = auto_slide_type(piece) if myst.leading_heading_level(piece) in (1, 2) else explicit
-            else:
-                slide_type = auto_slide_type(piece) if not was_in_solution else "-"
-            _set_type(new, slide_type)
+            _set_type(new, piece_slide_type(piece, k, explicit, was_in_solution))
             out.append(new)
         return out
 
