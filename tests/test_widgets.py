@@ -1,0 +1,295 @@
+"""Tests of jacobians.widgets: drive each widget programmatically and compare what it shows with the library."""
+
+import os
+import re
+
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np
+import pytest
+
+import jacobians as jac
+from jacobians import widgets as Wd
+from jacobians.lie import adjoint, exp_se3
+from jacobians.representations import angular_velocity_to_rate
+
+
+def parse_bmatrix(tex):
+    """Numbers of the first bmatrix in a LaTeX string (NaN for 'undef.')."""
+    body = re.search(r"\\begin\{bmatrix\}(.*?)\\end\{bmatrix\}", tex).group(1)
+    rows = []
+    body = re.sub(r"\\color\{[^}]*\}", "", body)
+    for r in body.split(r"\\"):
+        rows.append([np.nan if "undef" in c else float(re.sub(r"[^0-9eE.+-]", "", c)) for c in r.split("&")])
+    return np.array(rows)
+
+
+# ---------------------------------------------------------------- the formulas the explorer displays
+
+@pytest.mark.parametrize("chain", [jac.robots.planar_3r(1.0, 0.7, 0.4), jac.robots.ur5()], ids=["3R", "UR5"])
+def test_displayed_formulas_hold(chain):
+    rng = np.random.default_rng(3)
+    th = rng.uniform(-np.pi, np.pi, chain.dof)
+    S, B = chain.screw_axes, chain.body_axes
+    n = chain.dof
+    # space: column i = Ad(e^[S1]th1 ... e^[S_{i-1}]th_{i-1}) S_i
+    J_s = jac.space_jacobian(chain, th)
+    T = np.eye(4)
+    for i in range(n):
+        np.testing.assert_allclose(J_s[:, i], adjoint(T) @ S[:, i], atol=1e-10)
+        T = T @ exp_se3(S[:, i] * th[i])
+    # body: column i = Ad(e^-[Bn]thn ... e^-[B_{i+1}]th_{i+1}) B_i
+    J_b = jac.body_jacobian(chain, th)
+    T = np.eye(4)
+    for i in reversed(range(n)):
+        np.testing.assert_allclose(J_b[:, i], adjoint(T) @ B[:, i], atol=1e-10)
+        T = T @ exp_se3(-B[:, i] * th[i])
+    # geometric = diag(R, R) J_b
+    R = chain.fk(th)[:3, :3]
+    np.testing.assert_allclose(jac.geometric_jacobian(chain, th), np.block([[R, 0 * R], [0 * R, R]]) @ J_b,
+                               atol=1e-10)
+    # analytic = diag(B(phi)^-1, I) J, and it is d(phi, p)/d theta (finite differences)
+    phi = jac.pose_coordinates(chain.fk(th), "zyx")[:3]
+    J = jac.geometric_jacobian(chain, th)
+    J_a = jac.analytic_jacobian(chain, th, "zyx")
+    np.testing.assert_allclose(J_a[:3], angular_velocity_to_rate(phi, "zyx") @ J[:3], atol=1e-9)
+    num = jac.numerical_jacobian(lambda q: jac.pose_coordinates(chain.fk(q), "zyx"), th)
+    np.testing.assert_allclose(J_a, num, atol=1e-6)
+
+
+def test_ellipse_semi_axes_are_singular_values():
+    J_v = jac.geometric_jacobian(jac.robots.planar_2r(), [0.3, 0.8])[3:5]
+    s, U = Wd.velocity_force_ellipses(J_v)
+    # points U diag(s) u with |u| = 1 are exactly the images J_v qdot with |qdot| = 1 (extremes)
+    for k in range(2):
+        qdot = np.linalg.svd(J_v)[2][k]
+        np.testing.assert_allclose(np.abs(U[:, k] @ (J_v @ qdot)), s[k], atol=1e-12)
+    # force ellipse: f = u_k / s_k gives |J_v^T f| = 1
+    for k in range(2):
+        np.testing.assert_allclose(np.linalg.norm(J_v.T @ (U[:, k] / s[k])), 1.0, atol=1e-12)
+    with pytest.raises(ValueError, match=r"\(2, n\)"):
+        Wd.velocity_force_ellipses(np.zeros((3, 2)))
+
+
+# ---------------------------------------------------------------- 1. explorer
+
+@pytest.fixture(scope="module")
+def explorer3():
+    return Wd.planar_arm_explorer(jac.robots.planar_3r(1.0, 0.8, 0.5))
+
+
+@pytest.mark.parametrize("kind", ["space", "body", "geometric", "analytic"])
+def test_explorer_shows_library_jacobian(explorer3, kind):
+    w = explorer3
+    arm = w.chain
+    th, rates = np.array([0.4, -0.9, 1.3]), np.array([0.5, -1.0, 0.25])
+    before = w.render_count
+    w.set(theta=th, rates=rates, kind=kind)
+    assert w.render_count == before + 1  # one redraw for three changes
+    ref = {"space": jac.space_jacobian, "body": jac.body_jacobian, "geometric": jac.geometric_jacobian,
+           "analytic": lambda c, t: jac.analytic_jacobian(c, t, "zyx")}[kind](arm, th)
+    np.testing.assert_allclose(w.jacobian, ref, atol=1e-12)
+    np.testing.assert_allclose(parse_bmatrix(w.matrix_latex), ref.round(3), atol=1.1e-3)
+    assert parse_bmatrix(w.matrix_latex).shape == (6, 3)
+    np.testing.assert_allclose(w.twist, ref @ rates, atol=1e-12)
+    assert "$$" in w.matrix_html.value and Wd.JACOBIAN_SYMBOLS[kind] in w.matrix_html.value
+    # drawn arm and tool-velocity arrow
+    np.testing.assert_allclose(w.arm.link_line.get_xydata(), arm.joint_positions(th)[:, :2], atol=1e-12)
+    pdot = (jac.geometric_jacobian(arm, th) @ rates)[3:5]
+    np.testing.assert_allclose(w.pdot_arrow.vectors[0], pdot * w.vel_scale, atol=1e-12)
+    np.testing.assert_allclose(w.pdot_arrow.points[0], arm.fk(th)[:2, 3], atol=1e-12)
+    if kind == "space":
+        V_s = jac.space_jacobian(arm, th) @ rates
+        np.testing.assert_allclose(w.vs_arrow.vectors[0], V_s[3:5] * w.vel_scale, atol=1e-12)
+    assert w.png[:8] == b"\x89PNG\r\n\x1a\n" and w.image.value == w.png
+
+
+def test_explorer_slider_drives_redraw_and_ellipse(explorer3):
+    w = explorer3
+    w.set(theta=[0.2, 0.5, 0.5], rates=[1, 1, 1], kind="geometric")
+    png0 = w.png
+    w.angle_sliders[1].value = -0.7
+    th = w.theta
+    assert th[1] == pytest.approx(-0.7)
+    np.testing.assert_allclose(w.arm.link_line.get_xydata(), w.chain.joint_positions(th)[:, :2], atol=1e-12)
+    assert w.png != png0
+    J_v = jac.geometric_jacobian(w.chain, th)[3:5]
+    sig = np.linalg.svd(J_v, compute_uv=False)
+    np.testing.assert_allclose(w.sigma, sig, atol=1e-12)
+    xy = w.vel_ellipse.line.get_xydata()
+    U = np.linalg.svd(J_v)[0]
+    u = (U.T @ (xy - w.chain.fk(th)[:2, 3]).T) / (sig * w.vel_scale)[:, None]
+    np.testing.assert_allclose(np.linalg.norm(u, axis=0), 1.0, atol=1e-9)  # on the ellipse U diag(s) u, |u| = 1
+    np.testing.assert_allclose(np.abs(u).max(axis=1), 1.0, atol=1e-3)  # reaches both semi-axes (90 samples)
+
+
+def test_explorer_singular_and_extreme_values_do_not_raise():
+    w = Wd.planar_arm_explorer(jac.robots.planar_2r(1.0, 1.0))
+    w.set(theta=[0.3, 0.0], rates=[2.0, -2.0])
+    assert w.sigma_min < 1e-12 and w.level == "bad"
+    assert "SINGULAR" in w.status.value
+    assert np.all(np.isfinite(w.force_ellipse.line.get_xydata()))
+    w.set(theta=[np.pi, -np.pi], kind="analytic")
+    assert np.all(np.isfinite(w.jacobian))  # planar arm: ZYX pitch stays 0
+    w.set(theta=[0.3, 0.05])
+    assert w.level == "warn"
+    w.set(theta=[0.3, 1.5])
+    assert w.level == "ok"
+    assert w.arm.link_line.get_color() == Wd.PALETTE["link"]
+    with pytest.raises(ValueError, match="kind"):
+        w.set(kind="spatial")
+
+
+def test_explorer_play_sweeps_the_chosen_joint():
+    w = Wd.planar_arm_explorer()
+    w.sweep_dropdown.value = 0
+    w.play.value = w.play.max // 2
+    assert w.theta[0] == pytest.approx(0.0, abs=0.01)
+    w.play.value = w.play.max
+    assert w.theta[0] == pytest.approx(np.pi, abs=0.01)
+
+
+def test_non_planar_chains_are_refused():
+    with pytest.raises(ValueError, match="planar"):
+        Wd.planar_arm_explorer(jac.robots.ur5())
+    with pytest.raises(ValueError, match="planar"):
+        Wd.resolved_rate_explorer(jac.robots.spatial_5r())
+    with pytest.raises(TypeError, match="SerialChain"):
+        Wd.planar_arm_explorer("2R")
+    with pytest.raises(ValueError, match=r"\(\.\.\., 2\)"):
+        Wd.planar_arm_explorer(theta=[1, 2, 3])
+
+
+# ---------------------------------------------------------------- 2. columns
+
+def test_columns_moving_a_joint_changes_the_predicted_columns():
+    w = Wd.columns_explorer(column=3)
+    n = w.chain.dof
+    th = w.theta
+    for j in range(1, n + 1):
+        w.move_joint(j, th[j - 1] + 0.37)
+        assert w.last_moved_joint == j
+        assert w.changed_space_columns == list(range(j + 1, n + 1))
+        assert w.changed_body_columns == list(range(1, j))
+        th = w.theta
+    np.testing.assert_allclose(w.J_s, jac.space_jacobian(w.chain, th), atol=1e-12)
+    np.testing.assert_allclose(w.J_b, jac.body_jacobian(w.chain, th), atol=1e-12)
+    shown = re.findall(r"\\begin\{bmatrix\}.*?\\end\{bmatrix\}", w.matrix_html.value)
+    np.testing.assert_allclose(parse_bmatrix(shown[0]), w.J_s.round(3), atol=1.1e-3)
+    np.testing.assert_allclose(parse_bmatrix(shown[1]), w.J_b.round(3), atol=1.1e-3)
+    assert w.roles(3) == ([1, 2], [4, 5])
+    assert w.role_colors == [Wd.PALETTE["space"]] * 2 + ["black"] + [Wd.PALETTE["body"]] * 2
+    assert [s.style.handle_color for s in w.angle_sliders] == w.role_colors
+
+
+def test_columns_planar_and_bad_column():
+    w = Wd.columns_explorer(jac.robots.planar_3r(), column=1)
+    assert w.planar and w.roles() == ([], [2, 3])
+    w.set(column=2)
+    assert [m.get_markeredgecolor() for m in w.role_points] == [Wd.PALETTE["space"], "black", Wd.PALETTE["body"]]
+    with pytest.raises(ValueError, match="column"):
+        w.set(column=7)
+    with pytest.raises(ValueError, match="column"):
+        Wd.columns_explorer(column=0)
+
+
+# ---------------------------------------------------------------- 3. gimbal lock
+
+def test_gimbal_lock_at_exactly_90_degrees_shows_undefined():
+    w = Wd.gimbal_lock_explorer((30.0, 60.0, 0.0))
+    na60 = w.norms[0]
+    w.set(theta2_deg=89.0)
+    assert w.norms[0] > 10 * na60  # the analytic Jacobian blows up ...
+    assert w.norms[1] < 2.0 and w.sigma_min_omega > 0.9  # ... the geometric one does not
+    w.set(theta2_deg=90.0)
+    assert w.angles_deg[1] == 90.0
+    assert w.singular and np.isnan(w.J_a[:3]).all() and np.isfinite(w.J).all()
+    assert "undef" in w.matrix_latex["J_a"] and "undefined" in w.status.value
+    assert w.level == "bad"
+    assert w.det_B == pytest.approx(-np.cos(w.phi[1]), abs=1e-12)
+    np.testing.assert_allclose(w.B, jac.representations.rate_to_angular_velocity(w.phi, "zyx"), atol=1e-12)
+    w.set(theta2_deg=-90.0)
+    assert w.singular
+    w.set(angles_deg=[180.0, 45.0, -180.0])
+    assert not w.singular
+    np.testing.assert_allclose(w.J_a, jac.analytic_jacobian(w.chain, np.radians(w.angles_deg), "zyx"), atol=1e-12)
+
+
+def test_gimbal_lock_zyx_wrist_coincides():
+    w = Wd.gimbal_lock_explorer((10.0, 45.0, 20.0), wrist="zyx")
+    np.testing.assert_allclose(w.J_a[:3], np.eye(3), atol=1e-12)  # its ZYX angles are its joint angles
+    w.set(theta2_deg=90.0)
+    assert w.singular and w.sigma_min_omega < 1e-9 and "singular" in w.status.value
+    w.set(wrist="zyz")
+    assert w.chain.name == "ZYZ wrist"
+    with pytest.raises(ValueError, match="wrist"):
+        w.set(wrist="xyz")
+
+
+# ---------------------------------------------------------------- 4. resolved rate
+
+def test_resolved_rate_tracks_a_circle_and_rates_match_pinv():
+    w = Wd.resolved_rate_explorer(path="circle", method="pinv")
+    err = np.linalg.norm(w.x_des - w.x_act, axis=1).max()
+    assert err < 0.01 * w.reach
+    k = 40
+    w.set(step=k)
+    th = w.thetas[k]
+    np.testing.assert_allclose(w.arm.link_line.get_xydata(), w.chain.joint_positions(th)[:, :2], atol=1e-12)
+    J_v = jac.geometric_jacobian(w.chain, th)[3:5]
+    dt = w.t[1] - w.t[0]
+    np.testing.assert_allclose(w.thetas[k + 1], th + dt * w.rates_hist[k], atol=1e-12)
+    xdot = np.linalg.lstsq(J_v, J_v @ w.rates_hist[k], rcond=None)[0]
+    np.testing.assert_allclose(w.rates_hist[k], xdot, atol=1e-9)  # minimum-norm solution
+    xs, ys = w.rate_lines[0].get_data()
+    np.testing.assert_allclose(ys, w.rates_hist[:, 0])
+
+
+def test_resolved_rate_singularity_pinv_blows_up_dls_stays_bounded():
+    w = Wd.resolved_rate_explorer(path="to full reach", method="pinv")
+    peak_pinv = w.peak_rate
+    assert w.sigma_hist[-1] < 0.05 * w.reach
+    w.set(method="dls", damping=0.1)
+    peak_dls = w.peak_rate
+    assert peak_dls < peak_pinv / 2
+    err_dls = np.linalg.norm(w.x_des[-1] - w.x_act[-1])
+    assert err_dls > 1e-3  # the price: it does not reach the boundary point
+    w.set(path="past the base", method="pinv", step=10_000)
+    assert w.step == w.n_steps - 1 and np.all(np.isfinite(w.rates_hist))
+    with pytest.raises(ValueError, match="method"):
+        w.set(method="jacobian transpose")
+
+
+# ---------------------------------------------------------------- static counterparts
+
+@pytest.mark.parametrize("make", [
+    lambda: Wd.planar_arm_explorer_animation(frames=3, dpi=40),
+    lambda: Wd.columns_explorer_animation(frames=5, dpi=40),
+    lambda: Wd.gimbal_lock_animation(frames=6, dpi=40),
+    lambda: Wd.resolved_rate_animation(frames=3, dpi=40),
+], ids=["explorer", "columns", "gimbal", "resolved_rate"])
+def test_static_animations_embed_without_cdn(make):
+    from jacobians.plotting import animation_html
+
+    anim = make()
+    n_frames = anim._save_count if hasattr(anim, "_save_count") else None
+    html = animation_html(anim).data
+    assert "http://" not in html and "https://" not in html
+    assert html.count("data:image/png;base64") >= 3
+    if n_frames:
+        assert html.count("data:image/png;base64") == n_frames
+
+
+def test_static_explorer_animation_panel_shows_jacobian():
+    anim = Wd.planar_arm_explorer_animation(kind="body", frames=4, dpi=40, sweep=1)
+    w = anim._explorer
+    anim._func(2)
+    np.testing.assert_allclose(w.matrix_artist.values, jac.body_jacobian(w.chain, w.theta), atol=1e-12)
+    assert w.theta[0] == pytest.approx(np.linspace(-np.pi, np.pi, 4)[2])
+    with pytest.raises(ValueError, match="sweep"):
+        Wd.planar_arm_explorer_animation(sweep=3)
+    anim._draw_was_started = True  # silence "deleted without rendering"
