@@ -1,0 +1,389 @@
+"""Tests of jacobians.symbolic: the sympy layer against the numeric library,
+against finite differences, against closed forms derived by hand, and on bad input."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import jacobians as jac
+from jacobians import lie
+from jacobians import symbolic as sym
+
+RNG = np.random.default_rng(20261121)
+s, c = sp.sin, sp.cos
+
+
+def _random_thetas(n, k=6):
+    return RNG.uniform(-np.pi, np.pi, size=(k, n))
+
+
+def _is_zero_matrix(A):
+    return sym.simplify_matrix(A).is_zero_matrix
+
+
+# ------------------------------------------------------------------ Lie helpers
+
+def test_skew_is_cross_product():
+    a, b = sp.symbols("a b", real=True)
+    w = sp.Matrix([a, 2, b])
+    x = sp.Matrix([1, a, 3])
+    assert sp.expand(sym.skew(w) * x - w.cross(x)) == sp.zeros(3, 1)
+    assert sym.skew([1, 2, 3]) == -sym.skew([1, 2, 3]).T
+
+
+def test_exp_so3_is_a_rotation_and_matches_numeric():
+    t = sp.Symbol("t", real=True)
+    axis = sp.Matrix([2, -1, 2]) / 3  # unit length
+    R = sym.exp_so3(axis, t)
+    assert _is_zero_matrix(R.T * R - sp.eye(3))
+    assert sym.exp_so3(sym.skew(axis), t) == R  # both input forms agree
+    for val in (-2.0, 0.3, 3.0):
+        num = lie.exp_so3(np.array(axis, dtype=float).ravel() * val)
+        assert np.allclose(np.array(R.subs(t, val), dtype=float), num, atol=1e-12)
+
+
+@pytest.mark.parametrize("col", [
+    [0, 0, 1, 0, -2, 0],            # revolute about z through (2, 0, 0)
+    [0, 1, 0, -0.5, 0, 0.25],       # revolute about y, off the origin
+    [0.6, 0, 0.8, 1, 2, 3],         # a screw with pitch (unit omega)
+    [0, 0, 0, 0, 0.6, 0.8],         # prismatic
+])
+def test_exp_se3_matches_numeric(col):
+    t = sp.Symbol("t", real=True)
+    T = sym.exp_se3([sp.nsimplify(v) for v in col], t)
+    for val in (-1.7, 0.4, 2.9):
+        num = lie.exp_se3(np.array(col, dtype=float) * val)
+        assert np.allclose(np.array(T.subs(t, val), dtype=float), num, atol=1e-12)
+
+
+def test_exp_se3_derivative_is_the_twist():
+    # d/dt e^{[S]t} at t = 0 is [S]: an identity, not a copy of the formula
+    t = sp.Symbol("t", real=True)
+    a, b = sp.symbols("a b", real=True)
+    S = sp.Matrix([0, 0, 1, a, b, 0])
+    T = sym.exp_se3(S, t)
+    assert sp.simplify(T.diff(t).subs(t, 0) - sym.matrix_from_twist(S)) == sp.zeros(4, 4)
+
+
+def test_adjoint_and_inverse_against_numeric():
+    T_num = lie.exp_se3(np.array([0.3, -0.2, 0.5, 1.0, -2.0, 0.7]))
+    T = sp.Matrix(T_num)
+    assert np.allclose(np.array(sym.adjoint(T), dtype=float), lie.adjoint(T_num), atol=1e-12)
+    assert np.allclose(np.array(sym.inverse_transform(T), dtype=float), np.linalg.inv(T_num), atol=1e-12)
+
+
+def test_adjoint_identity_symbolic():
+    # T [V] T^-1 = [Ad_T V] for a symbolic T
+    t = sp.Symbol("t", real=True)
+    T = sym.exp_se3([0, 1, 0, -1, 0, 2], t)
+    V = sp.Matrix(sp.symbols("w1 w2 w3 v1 v2 v3", real=True))
+    lhs = T * sym.matrix_from_twist(V) * sym.inverse_transform(T)
+    rhs = sym.matrix_from_twist(sym.adjoint(T) * V)
+    assert _is_zero_matrix(lhs - rhs)
+
+
+def test_twist_matrix_round_trip():
+    V = sp.Matrix(sp.symbols("w1 w2 w3 v1 v2 v3"))
+    assert sym.twist_from_matrix(sym.matrix_from_twist(V)) == V
+    assert sym.matrix_from_twist(V)[3, :] == sp.zeros(1, 4)
+
+
+# ------------------------------------------------------------------ planar chains
+
+@pytest.mark.parametrize("n", [1, 2, 3, 4])
+def test_planar_chain_matches_robots_planar(n):
+    arm, th, ls = sym.planar_chain(n)
+    assert len(th) == n and len(ls) == n
+    assert all(l.is_positive for l in ls) and all(t.is_real for t in th)
+    lengths = RNG.uniform(0.3, 2.0, size=n)
+    num = jac.robots.planar(list(lengths))
+    subs = dict(zip(ls, lengths))
+    assert np.allclose(np.array(arm.screw_axes.subs(subs), dtype=float), num.screw_axes)
+    assert np.allclose(np.array(arm.home.subs(subs), dtype=float), num.home)
+    assert np.allclose(np.array(arm.body_axes.subs(subs), dtype=float), num.body_axes)
+    fs = {name: sym.lambdify_matrix(getattr(arm, name)(), th + ls)
+          for name in ("space_jacobian", "body_jacobian", "geometric_jacobian", "fk")}
+    thetas = _random_thetas(n)
+    x = np.concatenate([thetas, np.broadcast_to(lengths, thetas.shape)], axis=-1)
+    assert np.allclose(fs["space_jacobian"](x), jac.space_jacobian(num, thetas), atol=1e-12)
+    assert np.allclose(fs["body_jacobian"](x), jac.body_jacobian(num, thetas), atol=1e-12)
+    assert np.allclose(fs["geometric_jacobian"](x), jac.geometric_jacobian(num, thetas), atol=1e-12)
+    assert np.allclose(fs["fk"](x), num.fk(thetas), atol=1e-12)
+
+
+def test_planar_chain_numeric_lengths_and_to_numeric_chain():
+    arm, th, ls = sym.planar_chain(2, lengths=[sp.Rational(1, 2), 2])
+    assert ls == (sp.Rational(1, 2), 2)
+    assert arm.params == ()
+    num = sym.to_numeric_chain(arm)
+    assert np.allclose(num.screw_axes, jac.robots.planar_2r(0.5, 2.0).screw_axes)
+    a = sp.Symbol("a", positive=True)
+    arm2, _, _ = sym.planar_chain(2, lengths=[a, 2 * a])
+    assert arm2.params == (a,)
+    assert np.allclose(sym.to_numeric_chain(arm2, {a: 0.5}).home, jac.robots.planar_2r(0.5, 1.0).home)
+
+
+def test_planar_2r_textbook_closed_forms():
+    """Closed forms derived by hand (s1 = sin theta1, c12 = cos(theta1 + theta2), ...)."""
+    arm, (t1, t2), (l1, l2) = sym.planar_chain(2)
+    s1, c1, s12, c12 = s(t1), c(t1), s(t1 + t2), c(t1 + t2)
+    # position rows of the geometric Jacobian = d/dtheta of (x, y)
+    J_p = sp.Matrix([[-l1 * s1 - l2 * s12, -l2 * s12],
+                     [l1 * c1 + l2 * c12, l2 * c12]])
+    J = arm.geometric_jacobian()
+    assert J[3:5, :] == J_p                       # textbook form, exactly
+    assert J[:3, :] == sp.Matrix([[0, 0], [0, 0], [1, 1]])
+    assert J[5, :] == sp.zeros(1, 2)
+    # independent derivation: differentiate the forward kinematics
+    p = arm.fk()[:2, 3]
+    assert _is_zero_matrix(p.jacobian([t1, t2]) - J_p)
+    # the lecture note's (2,1) entry l1*c1 is wrong: it misses l2*c12
+    wrong = J_p.copy()
+    wrong[1, 0] = l1 * c1
+    assert not _is_zero_matrix(wrong - J_p)
+    assert sp.simplify(J_p[1, 0] - wrong[1, 0] - l2 * c12) == 0
+    # space and body Jacobians
+    assert arm.space_jacobian() == sp.Matrix([[0, 0], [0, 0], [1, 1], [0, l1 * s1], [0, -l1 * c1], [0, 0]])
+    assert arm.body_jacobian() == sp.Matrix([[0, 0], [0, 0], [1, 1],
+                                             [l1 * s(t2), 0], [l1 * c(t2) + l2, l2], [0, 0]])
+    # manipulability of the position rows: |det J_p| = l1 l2 |sin theta2|
+    assert sp.simplify(sym.simplify_matrix(sp.Matrix([J_p.det()]))[0] - l1 * l2 * s(t2)) == 0
+
+
+def test_planar_3r_textbook_closed_forms():
+    arm, (t1, t2, t3), (l1, l2, l3) = sym.planar_chain(3)
+    s1, c1, s12, c12 = s(t1), c(t1), s(t1 + t2), c(t1 + t2)
+    s123, c123 = s(t1 + t2 + t3), c(t1 + t2 + t3)
+    J_s = sp.Matrix([[0, 0, 0], [0, 0, 0], [1, 1, 1],
+                     [0, l1 * s1, l1 * s1 + l2 * s12],
+                     [0, -l1 * c1, -l1 * c1 - l2 * c12],
+                     [0, 0, 0]])
+    J_b = sp.Matrix([[0, 0, 0], [0, 0, 0], [1, 1, 1],
+                     [l1 * s(t2 + t3) + l2 * s(t3), l2 * s(t3), 0],
+                     [l1 * c(t2 + t3) + l2 * c(t3) + l3, l2 * c(t3) + l3, l3],
+                     [0, 0, 0]])
+    J = sp.Matrix([[0, 0, 0], [0, 0, 0], [1, 1, 1],
+                   [-l1 * s1 - l2 * s12 - l3 * s123, -l2 * s12 - l3 * s123, -l3 * s123],
+                   [l1 * c1 + l2 * c12 + l3 * c123, l2 * c12 + l3 * c123, l3 * c123],
+                   [0, 0, 0]])
+    assert arm.space_jacobian() == J_s
+    assert arm.body_jacobian() == J_b
+    assert arm.geometric_jacobian() == J
+    T = arm.fk()
+    assert T[:2, 3] == sp.Matrix([l1 * c1 + l2 * c12 + l3 * c123, l1 * s1 + l2 * s12 + l3 * s123])
+    assert T[:3, :3] == sym.exp_so3([0, 0, 1], t1 + t2 + t3)
+
+
+@pytest.mark.parametrize("n", [2, 3])
+def test_relations_between_jacobians_simplify_to_zero(n):
+    arm, th, _ = sym.planar_chain(n)
+    T = arm.fk()
+    J_s, J_b, J = arm.space_jacobian(), arm.body_jacobian(), arm.geometric_jacobian()
+    assert _is_zero_matrix(J_b - sym.adjoint(sym.inverse_transform(T)) * J_s)
+    assert _is_zero_matrix(J_s - sym.adjoint(T) * J_b)
+    R = T[:3, :3]
+    assert _is_zero_matrix(J - sp.diag(R, R) * J_b)
+
+
+def _symbolic_rrp():
+    h, r = sp.symbols("h r", positive=True)
+    S = sp.Matrix([[0, 0, 1, 0, 0, 0], [0, 1, 0, -h, 0, 0], [0, 0, 0, 1, 0, 0]]).T
+    M = sp.eye(4)
+    M[0, 3], M[2, 3] = r, h
+    return sym.SymbolicChain(S, M, params=(h, r)), (h, r)
+
+
+def test_spatial_rrp_symbolic_against_numeric_and_twist_definition():
+    arm, (h, r) = _symbolic_rrp()
+    th = arm.thetas
+    T = arm.fk()
+    J_s = arm.space_jacobian()
+    # definition: [V_s] = Tdot T^-1, so column i is the twist of dT/dtheta_i T^-1
+    Tinv = sym.inverse_transform(T)
+    for i in range(3):
+        col = sym.twist_from_matrix(sym.simplify_matrix(T.diff(th[i]) * Tinv))
+        assert _is_zero_matrix(col - J_s[:, i])
+    J_b = arm.body_jacobian()
+    for i in range(3):
+        col = sym.twist_from_matrix(sym.simplify_matrix(Tinv * T.diff(th[i])))
+        assert _is_zero_matrix(col - J_b[:, i])
+    # numbers
+    num = jac.robots.spatial_rrp(h=0.7, reach=1.3)
+    vals = {h: 0.7, r: 1.3}
+    thetas = _random_thetas(3)
+    for A, ref in ((J_s, jac.space_jacobian(num, thetas)), (J_b, jac.body_jacobian(num, thetas)),
+                   (arm.geometric_jacobian(), jac.geometric_jacobian(num, thetas)), (T, num.fk(thetas))):
+        f = sym.lambdify_matrix(A.subs(vals), th)
+        assert np.allclose(f(thetas), ref, atol=1e-12)
+
+
+def test_geometric_jacobian_is_derivative_of_position():
+    arm, _ = _symbolic_rrp()
+    T = arm.fk()
+    J = arm.geometric_jacobian()
+    assert _is_zero_matrix(T[:3, 3].jacobian(list(arm.thetas)) - J[3:, :])
+
+
+@pytest.fixture(scope="module")
+def ur5_symbolic():
+    """The UR5's symbolic Jacobians, computed once (the slowest thing in this file)."""
+    chain = jac.robots.ur5()
+    arm = sym.SymbolicChain.from_numeric(chain)
+    return chain, arm, {"space": arm.space_jacobian(), "body": arm.body_jacobian(),
+                        "geometric": arm.geometric_jacobian(), "fk": arm.fk()}
+
+
+def test_ur5_symbolic_matches_numeric(ur5_symbolic):
+    chain, arm, out = ur5_symbolic
+    thetas = _random_thetas(6, 8)
+    refs = {"space": jac.space_jacobian(chain, thetas), "body": jac.body_jacobian(chain, thetas),
+            "geometric": jac.geometric_jacobian(chain, thetas), "fk": chain.fk(thetas)}
+    for key, A in out.items():
+        assert np.allclose(sym.lambdify_matrix(A, arm.thetas)(thetas), refs[key], atol=1e-12), key
+    # a few entries in closed form (MR Example 5.7's structure): the first three
+    # columns of J_s are z, -s1 x + c1 y (twice) in the angular rows
+    assert out["space"][:3, 0] == sp.Matrix([0, 0, 1])
+    assert out["space"][:3, 1] == sp.Matrix([-s(arm.thetas[0]), c(arm.thetas[0]), 0])
+
+
+@pytest.mark.parametrize("factory", [jac.robots.scara, jac.robots.zyx_wrist])
+def test_from_numeric_matches_numeric(factory):
+    chain = factory()
+    arm = sym.SymbolicChain.from_numeric(chain)
+    assert arm.dof == chain.dof
+    thetas = _random_thetas(chain.dof, 4)
+    for simplify in (True, False):
+        pairs = ((arm.space_jacobian(simplify=simplify), jac.space_jacobian(chain, thetas)),
+                 (arm.body_jacobian(simplify=simplify), jac.body_jacobian(chain, thetas)),
+                 (arm.geometric_jacobian(simplify=simplify), jac.geometric_jacobian(chain, thetas)),
+                 (arm.fk(simplify=simplify), chain.fk(thetas)))
+        for A, ref in pairs:
+            assert np.allclose(sym.lambdify_matrix(A, arm.thetas)(thetas), ref, atol=1e-12)
+
+
+def test_from_numeric_exact_rationals_and_floats():
+    ur5 = jac.robots.ur5()
+    exact = sym.SymbolicChain.from_numeric(ur5)
+    assert exact.screw_axes[5, 2] == sp.Rational(17, 40)
+    floats = sym.SymbolicChain.from_numeric(ur5, exact=False)
+    assert isinstance(floats.screw_axes[5, 2], sp.Float)
+
+
+def test_ur5_jacobian_is_finite_difference_of_fk(ur5_symbolic):
+    chain, arm, out = ur5_symbolic
+    f_T = sym.lambdify_matrix(out["fk"], arm.thetas)
+    f_J = sym.lambdify_matrix(out["geometric"], arm.thetas)
+    theta = RNG.uniform(-np.pi, np.pi, 6)
+    fd = jac.numerical_jacobian(lambda x: f_T(x)[:3, 3], theta)
+    assert np.allclose(f_J(theta)[3:], fd, atol=1e-8)
+
+
+def test_link_jacobians_against_numeric():
+    arm, th, ls = sym.planar_chain(3)
+    lengths = [0.8, 1.1, 0.5]
+    num = jac.robots.planar(lengths)
+    subs = dict(zip(ls, lengths))
+    thetas = _random_thetas(3, 3)
+    for frame in ("space", "body", "geometric"):
+        ref = jac.link_jacobians(num, thetas, frame=frame)
+        for i in range(1, 4):
+            M_i = sp.Matrix(num.link_homes[i - 1]).applyfunc(sp.nsimplify)
+            J_i = sym.link_jacobian(arm.screw_axes.subs(subs).applyfunc(sp.nsimplify), th, i,
+                                    link_home=M_i, frame=frame)
+            assert J_i[:, i:].is_zero_matrix
+            assert np.allclose(sym.lambdify_matrix(J_i, th)(thetas), ref[:, i - 1], atol=1e-12)
+
+
+def test_simplify_matrix_strategy():
+    a, b, l = sp.symbols("a b l", real=True)
+    A = sp.Matrix([[s(a) ** 2 + c(a) ** 2, l * (c(a) * c(b) - s(a) * s(b))],
+                   [s(a) * c(b) + c(a) * s(b), s(a) ** 4 - c(a) ** 4 + 2 * c(a) ** 2]])
+    out = sym.simplify_matrix(A)
+    assert out[0, 0] == 1
+    assert out[0, 1] == l * c(a + b)
+    assert out[1, 0] == s(a + b)
+    assert out[1, 1] == 1  # sin^4 - cos^4 = sin^2 - cos^2
+    assert sym.simplify_matrix(sp.Matrix([[l + 1]])) == sp.Matrix([[l + 1]])
+
+
+def test_lambdify_matrix_shapes_and_calls():
+    a, b = sp.symbols("a b")
+    f = sym.lambdify_matrix(sp.Matrix([[a, b], [a * b, 1]]), [a, b])
+    assert f([2.0, 3.0]).shape == (2, 2)
+    assert np.allclose(f([2.0, 3.0]), [[2, 3], [6, 1]])
+    x = RNG.normal(size=(4, 5, 2))
+    out = f(x)
+    assert out.shape == (4, 5, 2, 2)
+    assert np.allclose(out[..., 1, 0], x[..., 0] * x[..., 1])
+    assert np.allclose(out[..., 1, 1], 1.0)
+    assert np.allclose(f(2.0, np.array([1.0, 2.0]))[:, 1, 0], [2.0, 4.0])
+    assert f.symbols == (a, b)
+    with pytest.raises(ValueError, match=r"\(\.\.\., 2\)"):
+        f([1.0, 2.0, 3.0])
+    with pytest.raises(TypeError, match="2 values"):
+        f(1.0, 2.0, 3.0)
+    with pytest.raises(ValueError, match="not in symbols"):
+        sym.lambdify_matrix(sp.Matrix([[a, b]]), [a])
+    with pytest.raises(TypeError, match="str"):
+        sym.lambdify_matrix(sp.Matrix([[a]]), "a")
+    with pytest.raises(ValueError, match="distinct"):
+        sym.lambdify_matrix(sp.Matrix([[a]]), [a, a])
+
+
+def test_importing_jacobians_does_not_import_sympy():
+    code = "import sys, jacobians; assert 'sympy' not in sys.modules, 'sympy imported'"
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+# ------------------------------------------------------------------ bad input
+
+@pytest.mark.parametrize("call, exc, match", [
+    (lambda: sym.skew("x y z"), TypeError, "sympy Matrix"),
+    (lambda: sym.skew([1, 2]), ValueError, "3 entries"),
+    (lambda: sym.skew(None), TypeError, "sympy Matrix"),
+    (lambda: sym.exp_so3([1, 1, 0], 0.3), ValueError, "unit rotation axis"),
+    (lambda: sym.exp_so3(sp.Matrix([[0, 1, 0], [1, 0, 0], [0, 0, 0]]), 0.3), ValueError, "skew-symmetric"),
+    (lambda: sym.exp_so3([0, 0, 1], "t"), TypeError, "theta"),
+    (lambda: sym.exp_so3(sp.zeros(2, 2), 1), ValueError, "3 x 3"),
+    (lambda: sym.exp_se3([0, 0, 2, 0, 0, 0], 1), ValueError, "unit angular part"),
+    (lambda: sym.exp_se3([0, 0, 0, 0, 0, 2], 1), ValueError, "unit linear part"),
+    (lambda: sym.exp_se3([0, 0, 1, 0, 0], 1), ValueError, "6 entries"),
+    (lambda: sym.exp_se3([0, 0, 1, 0, 0, 0], 1 + 2j), TypeError, "real"),
+    (lambda: sym.exp_se3([0, 0, 1, 0, 0, 0], float("nan")), ValueError, "finite"),
+    (lambda: sym.adjoint(sp.eye(3)), ValueError, r"shape \(4, 4\)"),
+    (lambda: sym.adjoint(sp.ones(4, 4)), ValueError, "last row"),
+    (lambda: sym.inverse_transform([[1, 2], [3]]), TypeError, "nested list"),
+    (lambda: sym.twist_from_matrix(sp.ones(4, 4)), ValueError, "skew-symmetric"),
+    (lambda: sym.twist_from_matrix(sym.matrix_from_twist([1, 0, 0, 0, 0, 0]) + sp.Matrix(4, 4, lambda i, j: int(i == 3))),
+     ValueError, "zero last row"),
+    (lambda: sym.fk(sp.ones(3, 6), sp.eye(4), [1, 2, 3]), ValueError, "transposed"),
+    (lambda: sym.fk(sp.zeros(6, 0), sp.eye(4), []), ValueError, "at least one column"),
+    (lambda: sym.fk(sp.Matrix([0, 0, 1, 0, 0, 0]), sp.eye(4), [1, 2]), ValueError, "1 joint variables"),
+    (lambda: sym.fk(sp.Matrix([0, 0, 1, 0, 0, 0]), sp.eye(4), "t"), TypeError, "joint symbols"),
+    (lambda: sym.space_jacobian(sp.Matrix([0, 0, 0, 0, 0, 0]), [1]), ValueError, "unit linear part"),
+    (lambda: sym.body_jacobian(np.ones((6, 2)) * (1 + 1j), [1, 2]), TypeError, "complex"),
+    (lambda: sym.link_jacobian(sp.Matrix([0, 0, 1, 0, 0, 0]), [1], 0), ValueError, "1 <= i <= 1"),
+    (lambda: sym.link_jacobian(sp.Matrix([0, 0, 1, 0, 0, 0]), [1], 1.0), TypeError, "integer"),
+    (lambda: sym.link_jacobian(sp.Matrix([0, 0, 1, 0, 0, 0]), [1], 1, frame="body"), ValueError, "link_home"),
+    (lambda: sym.link_jacobian(sp.Matrix([0, 0, 1, 0, 0, 0]), [1], 1, frame="world"), ValueError, "frame"),
+    (lambda: sym.planar_chain(0), ValueError, "at least one joint"),
+    (lambda: sym.planar_chain(True), TypeError, "integer"),
+    (lambda: sym.planar_chain(2, lengths=[1]), ValueError, "2 link lengths"),
+    (lambda: sym.planar_chain(2, lengths=[1, -1]), ValueError, "positive"),
+    (lambda: sym.planar_chain(2, lengths="12"), TypeError, "link lengths"),
+    (lambda: sym.SymbolicChain.from_numeric("ur5"), TypeError, "SerialChain"),
+    (lambda: sym.SymbolicChain(sp.Matrix([0, 0, 1, 0, 0, 0]), sp.eye(4), params="l"), TypeError, "params"),
+    (lambda: sym.to_numeric_chain(sym.planar_chain(2)[0]), ValueError, "missing"),
+    (lambda: sym.to_numeric_chain(sym.planar_chain(2)[0], [1, 2]), TypeError, "dict"),
+    (lambda: sym.to_numeric_chain("arm"), TypeError, "SymbolicChain"),
+    (lambda: sym.simplify_matrix(3), TypeError, "sympy Matrix"),
+    (lambda: sym.exp_so3([0, 0, 1], sp.Eq(sp.Symbol("x"), 1)), TypeError, "sympy expression"),
+])
+def test_bad_input_is_refused_clearly(call, exc, match):
+    with pytest.raises(exc, match=match):
+        call()
