@@ -1,0 +1,525 @@
+"""Open a page of the built book in Chromium and list what a reader would see wrong.
+
+Used by ``test_pages.py`` (every page of the table of contents must come back
+clean) and by ``test_checker_catches.py`` (pages broken on purpose must come
+back with the right complaint). Nothing here asserts; :func:`check_page`
+returns a :class:`PageReport` whose ``problems`` maps an aspect ("console",
+"offline", "math", ...) to a list of human-readable complaints.
+"""
+
+from __future__ import annotations
+
+import functools
+import http.server
+import re
+import tempfile
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+from urllib.parse import unquote, urlsplit
+
+import yaml
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+DESKTOP = {"width": 1280, "height": 900}
+PHONE = {"width": 390, "height": 844}
+MAX_PAGE_BYTES = 3 * 1024 * 1024
+
+ASPECTS = ("load", "console", "offline", "math", "images", "animations", "solutions", "links", "errors", "weight")
+
+# Console messages that are not errors of the book. Each entry: (console type,
+# exact text, why it is harmless). Only types "error" and page errors fail a
+# page; warnings are printed with the report, never filtered silently.
+HARMLESS_CONSOLE: list[tuple[str, str, str]] = [
+    # Nothing is filtered today: every known console error of the stack is
+    # fixed in _ext/offline_fixes.py (see its docstring). The html-manager's
+    # warning 'strict mode: use allowUnionTypes to allow union type keyword at
+    # "#/properties/state/..." (strictTypes)' is a console *warning* printed by
+    # the JSON-schema validator bundled in @jupyter-widgets/html-manager 1.0.6
+    # while it compiles the widget-state schema; the state still validates and
+    # the widgets render. Warnings do not fail a page, so it needs no entry.
+]
+
+
+# ---------------------------------------------------------------- the book
+def pages_from_toc(toc_path: Path) -> list[str]:
+    """HTML paths (relative to the build) of every page named in a Jupyter Book ``_toc.yml``."""
+    toc = yaml.safe_load(Path(toc_path).read_text(encoding="utf-8"))
+    if not isinstance(toc, dict) or "root" not in toc:
+        raise ValueError(f"Expected a Jupyter Book _toc.yml with a 'root' entry, got {toc_path}")
+    files = [toc["root"]]
+
+    def walk(entries):
+        for entry in entries or []:
+            if not isinstance(entry, dict):
+                continue
+            if "file" in entry:
+                files.append(entry["file"])
+            for key in ("parts", "chapters", "sections"):
+                walk(entry.get(key))
+
+    for key in ("parts", "chapters", "sections"):
+        walk(toc.get(key))
+    out = []
+    for f in files:
+        stem = re.sub(r"\.(md|ipynb|rst)$", "", str(f))
+        out.append(stem + ".html")
+    return list(dict.fromkeys(out))
+
+
+class _QuietHandler(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, *args):  # keep the test output readable
+        pass
+
+
+class BookServer:
+    """The built HTML on http://127.0.0.1:<free port>/, in a daemon thread."""
+
+    def __init__(self, root: Path):
+        self.root = Path(root)
+        handler = functools.partial(_QuietHandler, directory=str(self.root))
+        self.httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+        self.httpd.daemon_threads = True
+        self.base = f"http://127.0.0.1:{self.httpd.server_port}/"
+        self.thread = threading.Thread(target=self.httpd.serve_forever, daemon=True)
+
+    def __enter__(self):
+        self.thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self.httpd.shutdown()
+        self.httpd.server_close()
+
+
+def launch_browser(playwright):
+    """Chromium from Debian (never a downloaded one), headless, fresh profile."""
+    if not Path(CHROMIUM).exists():
+        raise FileNotFoundError(f"{CHROMIUM} is missing: `make browser` installs Debian's chromium")
+    profile = tempfile.mkdtemp(prefix="book-browser-profile-")
+    context = playwright.chromium.launch_persistent_context(
+        profile,
+        executable_path=CHROMIUM,
+        args=CHROMIUM_ARGS,
+        headless=True,
+        viewport=DESKTOP,
+        service_workers="block",
+    )
+    return context, profile
+
+
+# ---------------------------------------------------------------- the report
+@dataclass
+class PageReport:
+    path: str
+    problems: dict[str, list[str]] = field(default_factory=lambda: {a: [] for a in ASPECTS})
+    notes: list[str] = field(default_factory=list)
+    total_bytes: int = 0
+    own_bytes: int = 0
+    requests: int = 0
+    seconds: float = 0.0
+    counts: dict[str, int] = field(default_factory=dict)
+    sizes: list[tuple[str, int]] = field(default_factory=list)
+
+    def add(self, aspect: str, message: str) -> None:
+        self.problems.setdefault(aspect, []).append(message)
+
+    def summary(self) -> str:
+        c = self.counts
+        return (
+            f"{self.path:40s} {self.total_bytes / 1024:8.0f} KiB total "
+            f"({self.own_bytes / 1024:6.0f} KiB page+images, {self.requests:3d} requests) "
+            f"math {c.get('math_rendered', 0)}/{c.get('math_source', 0)}  img {c.get('images', 0)}  "
+            f"anim {c.get('animations', 0)}  dropdowns {c.get('dropdowns', 0)}  "
+            f"links {c.get('links', 0)}  {self.seconds:4.1f} s"
+        )
+
+
+def _harmless(kind: str, text: str) -> bool:
+    return any(kind == k and text == t for k, t, _why in HARMLESS_CONSOLE)
+
+
+# Visible text, with code, scripts and typeset math taken out.
+_VISIBLE_TEXT_JS = """
+() => {
+  const root = document.querySelector('main') || document.body;
+  const clone = root.cloneNode(true);
+  clone.querySelectorAll('pre, code, script, style, noscript, mjx-container, mjx-assistive-mml, '
+    + 'textarea, .highlight, template').forEach(e => e.remove());
+  return clone.textContent;
+}
+"""
+
+RAW_TEX_PATTERNS = [
+    (re.compile(r"\$\$"), "$$"),
+    (re.compile(r"\\\[|\\\]"), "\\[ or \\]"),
+    (re.compile(r"\\\(|\\\)"), "\\( or \\)"),
+    (re.compile(r"\\begin\{|\\end\{"), "\\begin{...}"),
+    (re.compile(r"\\(?:frac|dot|mathcal|mathrm|mathbb|theta|omega|left|right|hat|sum|int|cdot|times)\b"),
+     "a TeX command"),
+    (re.compile(r"(?<![\w$])\$[^$\s][^$\n]{0,200}?[^$\s\\]\$(?![\w$])"), "$...$"),
+]
+
+
+def raw_tex_in(text: str) -> list[str]:
+    """Snippets of visible text that look like TeX MathJax did not typeset.
+
+    >>> raw_tex_in("the Jacobian $J_s$ maps")
+    ['$...$: ...the Jacobian $J_s$ maps...']
+    >>> raw_tex_in("costs 5 dollars, the twist V_s")
+    []
+    """
+    found = []
+    for pattern, name in RAW_TEX_PATTERNS:
+        for m in pattern.finditer(text):
+            a, b = max(0, m.start() - 20), min(len(text), m.end() + 20)
+            snippet = " ".join(text[a:b].split())
+            found.append(f"{name}: ...{snippet}...")
+            if len(found) > 8:
+                return found
+    return found
+
+
+def _local_target(url: str, base: str, root: Path) -> tuple[Path | None, str]:
+    """File of the build a same-origin URL points at (index.html for folders), and its fragment."""
+    parts = urlsplit(url)
+    rel = unquote(parts.path[len(urlsplit(base).path):]) if parts.path.startswith(urlsplit(base).path) else None
+    if rel is None:
+        return None, parts.fragment
+    target = root / rel
+    if rel == "" or rel.endswith("/"):
+        target = target / "index.html"
+    return target, unquote(parts.fragment)
+
+
+_ID_CACHE: dict[Path, set[str]] = {}
+
+
+def _ids_in(path: Path) -> set[str]:
+    if path not in _ID_CACHE:
+        text = path.read_text(encoding="utf-8", errors="replace")
+        _ID_CACHE[path] = set(re.findall(r"""\b(?:id|name)=["']([^"']+)["']""", text))
+    return _ID_CACHE[path]
+
+
+def check_page(context, base: str, root: Path, path: str, shots: Path | None = None,
+               phone: bool = True, settle_ms: int = 300) -> PageReport:
+    """Load ``path`` (relative to the build root) like a reader and report every problem seen."""
+    import time
+
+    t0 = time.monotonic()
+    report = PageReport(path)
+    root = Path(root)
+    page_file = root / path
+    if not page_file.exists():
+        report.add("load", f"{path} is in the table of contents but not in the build ({page_file})")
+        return report
+
+    host = urlsplit(base).hostname
+    responses = []
+    page = context.new_page()
+    page.set_viewport_size(DESKTOP)
+
+    # Every request is recorded; any to another host is aborted and is a failure.
+    # (Routing also turns off the HTTP cache, so each page's weight is complete.)
+    def route(r):
+        url = r.request.url
+        scheme = urlsplit(url).scheme
+        if scheme in ("data", "blob", "about"):
+            return r.continue_()
+        if urlsplit(url).hostname != host:
+            report.add("offline", f"request to another host, blocked: {url}")
+            return r.abort("blockedbyclient")
+        return r.continue_()
+
+    page.route("**/*", route)
+
+    def on_console(msg):
+        if msg.type == "error":
+            text = msg.text
+            if _harmless("error", text):
+                return
+            # failed loads are reported once, by the request handlers below
+            if text.startswith("Failed to load resource"):
+                loc = msg.location.get("url", "") if isinstance(msg.location, dict) else ""
+                if loc and urlsplit(loc).hostname != host:
+                    return  # a blocked external request, already reported under "offline"
+            report.add("console", f"console error: {text} ({msg.location.get('url', '')})")
+        elif msg.type == "warning":
+            report.notes.append(f"console warning: {msg.text[:160]}")
+
+    page.on("console", on_console)
+    page.on("pageerror", lambda err: report.add("console", f"page error (uncaught exception): {err}"))
+
+    def on_failed(req):
+        if urlsplit(req.url).hostname != host:
+            return  # blocked by us: reported under "offline"
+        report.add("load", f"request failed: {req.url} ({req.failure})")
+
+    page.on("requestfailed", on_failed)
+
+    def on_response(resp):
+        responses.append(resp)
+        if resp.status >= 400:
+            report.add("load", f"HTTP {resp.status} for {resp.url}")
+
+    page.on("response", on_response)
+
+    url = base + path
+    try:
+        page.goto(url, wait_until="load", timeout=30_000)
+    except Exception as exc:  # noqa: BLE001 - a page that does not load is the finding
+        report.add("load", f"could not load {url}: {exc}")
+        page.close()
+        return report
+
+    # Let MathJax finish (it is loaded with defer and typesets asynchronously).
+    has_mathjax = page.evaluate("() => !!(window.MathJax && window.MathJax.startup)")
+    if has_mathjax:
+        try:
+            page.evaluate("() => MathJax.startup.promise.then(() => true)")
+        except Exception as exc:  # noqa: BLE001
+            report.add("math", f"MathJax did not finish typesetting: {exc}")
+    try:
+        page.wait_for_load_state("networkidle", timeout=10_000)
+    except Exception:  # noqa: BLE001
+        report.notes.append("network did not go idle within 10 s")
+    page.wait_for_timeout(settle_ms)
+
+    # ---- errors shown to the reader: tracebacks, error outputs
+    err = page.evaluate(
+        """() => {
+          const out = [];
+          document.querySelectorAll('.output.error, .output.traceback, .cell_output .traceback, '
+            + 'div.highlight-ipythontb, .system-message, .problematic').forEach(e =>
+            out.push(e.className + ': ' + e.textContent.trim().slice(0, 160)));
+          const t = (document.querySelector('main') || document.body).innerText;
+          if (t.includes('Traceback (most recent call last)')) out.push('a Python traceback is shown in the page');
+          return out;
+        }"""
+    )
+    for e in err:
+        report.add("errors", e)
+
+    # ---- math
+    source_html = page_file.read_text(encoding="utf-8", errors="replace")
+    n_source = len(re.findall(r"""class=["'][^"']*\bmath\b""", source_html))
+    n_rendered = page.evaluate("() => document.querySelectorAll('mjx-container').length")
+    n_errors = page.evaluate(
+        "() => Array.from(document.querySelectorAll('mjx-merror, [data-mjx-error]'))"
+        ".map(e => (e.getAttribute('data-mjx-error') || e.textContent).slice(0, 120))"
+    )
+    report.counts.update(math_source=n_source, math_rendered=n_rendered)
+    if n_source and n_rendered < n_source:
+        report.add("math", f"{n_source} math elements in the HTML but only {n_rendered} typeset by MathJax")
+    if n_source and not has_mathjax:
+        report.add("math", "the page has math but MathJax is not loaded")
+    for e in n_errors:
+        report.add("math", f"MathJax could not typeset: {e}")
+    for snippet in raw_tex_in(page.evaluate(_VISIBLE_TEXT_JS)):
+        report.add("math", f"raw TeX in the visible text: {snippet}")
+
+    # ---- images: loaded, with real alt text
+    page.evaluate("() => document.querySelectorAll('img[loading=lazy]').forEach(i => i.loading = 'eager')")
+    page.evaluate(
+        "() => Promise.allSettled(Array.from(document.images).map(i => i.complete ? null : i.decode()))"
+    )
+    imgs = page.evaluate(
+        """() => Array.from(document.images).map(i => ({
+              src: i.currentSrc || i.src || '', alt: i.getAttribute('alt'),
+              w: i.naturalWidth, complete: i.complete,
+              anim: !!i.closest('.animation'), id: i.id}))"""
+    )
+    report.counts["images"] = len(imgs)
+    for im in imgs:
+        name = im["src"][:80] if not im["src"].startswith("data:") else f"<img id={im['id']!r} data URI>"
+        if not im["src"] and im["anim"]:
+            pass  # an animation's frame is set by its script; checked under "animations"
+        elif im["w"] == 0:
+            report.add("images", f"image did not load: {name}")
+        alt = (im["alt"] or "").strip()
+        if not alt:
+            report.add("images", f"image without alt text: {name}")
+        elif re.search(r"\.(png|jpe?g|svg|gif|webp)$", alt, re.I) or alt.startswith(("../", "_images/")):
+            report.add("images", f"alt text is a file name, not a description: {alt!r} ({name})")
+
+    # ---- animations (matplotlib jshtml): press play, the frame changes
+    anims = page.locator("div.animation")
+    report.counts["animations"] = anims.count()
+    for k in range(anims.count()):
+        a = anims.nth(k)
+        img = a.locator("img").first
+        play = a.locator("button[onclick*='play_animation']").first
+        pause = a.locator("button[onclick*='pause_animation']").first
+        if img.count() == 0 or play.count() == 0:
+            report.add("animations", f"animation {k + 1}: no frame image or no play button")
+            continue
+        try:
+            a.scroll_into_view_if_needed(timeout=5_000)
+            before = img.evaluate("i => i.src")
+            slider = a.locator("input[type=range]").first
+            v0 = slider.input_value() if slider.count() else None
+            play.click(timeout=5_000)
+            changed = page.wait_for_function(
+                "([i, s]) => i.src !== s", arg=[img.element_handle(), before], timeout=5_000
+            )
+            changed.dispose()
+            if pause.count():
+                pause.click(timeout=5_000)
+            if slider.count() and slider.input_value() == v0:
+                report.add("animations", f"animation {k + 1}: the frame changed but the slider did not move")
+        except Exception as exc:  # noqa: BLE001
+            report.add("animations", f"animation {k + 1}: pressing play did not change the frame ({exc.__class__.__name__})")
+        if not before or not before.startswith("data:image"):
+            report.add("animations", f"animation {k + 1}: shows no frame before play")
+
+    # ---- dropdowns (exercise solutions, togglebutton admonitions, sphinx-design)
+    drops = page.evaluate(
+        """() => {
+          const out = [];
+          document.querySelectorAll('.admonition.dropdown, details.sd-dropdown, details.toggle-details')
+            .forEach((e, k) => { e.setAttribute('data-bookcheck', 'd' + k);
+              out.push({key: 'd' + k, cls: e.className, tag: e.tagName,
+                        title: (e.querySelector('.admonition-title, summary') || e).textContent.trim().slice(0, 60)}); });
+          return out;
+        }"""
+    )
+    report.counts["dropdowns"] = len(drops)
+    for d in drops:
+        sel = f"[data-bookcheck='{d['key']}']"
+        box = page.locator(sel)
+        label = f"dropdown {d['title']!r}"
+        try:
+            box.scroll_into_view_if_needed(timeout=5_000)
+            if d["tag"] == "DETAILS":
+                body = box.locator(":scope > :not(summary)").first
+                opener = box.locator(":scope > summary").first
+            else:
+                body = box.locator(":scope > :not(.admonition-title)").first
+                opener = box.locator(":scope > .admonition-title").first
+            if body.count() == 0:
+                report.add("solutions", f"{label}: no content")
+                continue
+            if body.is_visible():
+                report.add("solutions", f"{label}: content visible before it is opened (toggle not set up)")
+                continue
+            btn = opener.locator("button.toggle-button")
+            (btn.first if btn.count() else opener).click(timeout=5_000)
+            body.wait_for(state="visible", timeout=3_000)
+        except Exception as exc:  # noqa: BLE001
+            report.add("solutions", f"{label}: does not open when clicked ({exc.__class__.__name__})")
+
+    # ---- internal links resolve to a file and anchor of the build
+    hrefs = page.evaluate(
+        "() => Array.from(document.querySelectorAll('a[href]')).map(a => a.href)"
+        ".concat(Array.from(document.querySelectorAll('link[href], script[src], img[src]'))"
+        ".map(e => e.href || e.src))"
+    )
+    local = [h for h in dict.fromkeys(hrefs) if h.startswith(base)]
+    report.counts["links"] = len(local)
+    for h in local:
+        target, frag = _local_target(h, base, root)
+        if target is None or not target.exists():
+            report.add("links", f"link to a file not in the build: {h}")
+            continue
+        if frag and target.suffix == ".html" and frag not in _ids_in(target):
+            report.add("links", f"link to a missing anchor: {h}")
+
+    # ---- weight
+    total = own = 0
+    for resp in responses:
+        try:
+            size = resp.request.sizes()["responseBodySize"]
+        except Exception:  # noqa: BLE001
+            size = int(resp.headers.get("content-length", 0) or 0)
+        total += size
+        report.sizes.append((resp.url, size))
+        if "/_static/" not in resp.url:
+            own += size
+    report.total_bytes, report.own_bytes, report.requests = total, own, len(responses)
+    if total > MAX_PAGE_BYTES:
+        report.add("weight", f"page weighs {total / 2**20:.2f} MiB (> 3 MiB) over {len(responses)} requests")
+
+    # ---- screenshots, desktop then phone
+    if shots is not None:
+        shots.mkdir(parents=True, exist_ok=True)
+        stem = path.replace("/", "__").removesuffix(".html")
+        page.evaluate("() => window.scrollTo(0, 0)")
+        page.screenshot(path=str(shots / f"{stem}__desktop.png"), full_page=True)
+        if phone:
+            page.set_viewport_size(PHONE)
+            page.wait_for_timeout(200)
+            overflow = page.evaluate("() => document.documentElement.scrollWidth")
+            if overflow > PHONE["width"] + 2:
+                report.notes.append(f"at phone width the page scrolls sideways ({overflow} px wide)")
+            page.screenshot(path=str(shots / f"{stem}__phone.png"), full_page=True)
+    page.close()
+    report.seconds = time.monotonic() - t0
+    return report
+
+
+def search(context, base: str, query: str) -> list[str]:
+    """Result links (relative to the build) of the book's own search page."""
+    page = context.new_page()
+    host = urlsplit(base).hostname
+    page.route("**/*", lambda r: r.continue_() if urlsplit(r.request.url).hostname in (host, None)
+               else r.abort("blockedbyclient"))
+    page.goto(f"{base}search.html?q={query}", wait_until="load")
+    page.wait_for_function(
+        "() => { const s = document.querySelector('#search-results');"
+        " return s && (s.querySelectorAll('ul.search li').length > 0 || /found|did not match/i.test(s.textContent)); }",
+        timeout=15_000,
+    )
+    page.wait_for_timeout(300)
+    links = page.evaluate(
+        "() => Array.from(document.querySelectorAll('#search-results ul.search li a')).map(a => a.href)"
+    )
+    page.close()
+    return [urlsplit(h).path[len(urlsplit(base).path):] for h in links]
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python tests/browser/bookcheck.py HTML_DIR [PAGE ...]``: print full reports (for authors)."""
+    import argparse
+
+    from playwright.sync_api import sync_playwright
+
+    ap = argparse.ArgumentParser(description=main.__doc__)
+    ap.add_argument("html", type=Path)
+    ap.add_argument("pages", nargs="*", help="pages relative to HTML_DIR (default: all of --toc)")
+    ap.add_argument("--toc", type=Path, default=Path(__file__).resolve().parents[2] / "_toc.yml")
+    ap.add_argument("--shots", type=Path, default=None)
+    ap.add_argument("--sizes", action="store_true", help="list every response and its size")
+    args = ap.parse_args(argv)
+    pages = args.pages or pages_from_toc(args.toc)
+    bad = 0
+    with BookServer(args.html) as server, sync_playwright() as p:
+        context, _profile = launch_browser(p)
+        for path in pages:
+            r = check_page(context, server.base, args.html, path, shots=args.shots, phone=args.shots is not None)
+            print(r.summary())
+            for aspect, msgs in r.problems.items():
+                for m in msgs:
+                    bad += 1
+                    print(f"   [{aspect}] {m}")
+            for n in dict.fromkeys(r.notes):
+                print(f"   (note) {n}")
+            if args.sizes:
+                for url, size in sorted(r.sizes, key=lambda t: -t[1]):
+                    print(f"   {size / 1024:8.1f} KiB  {url}")
+        context.close()
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,106 @@
+"""Fixtures for the browser tests: the built book served on 127.0.0.1 and Debian's Chromium.
+
+Environment:
+  BOOK_HTML   the built HTML folder (default: _build/html of the repository)
+  BOOK_TOC    the table of contents naming the pages to test (default: _toc.yml)
+  BOOK_ARTIFACTS  where screenshots go (default: _build/test-artifacts/browser)
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+sys.path.insert(0, str(HERE))
+
+import bookcheck  # noqa: E402
+
+
+def _env_path(name: str, default: Path) -> Path:
+    value = os.environ.get(name)
+    path = Path(value) if value else default
+    return path if path.is_absolute() else (ROOT / path)
+
+
+BOOK_HTML = _env_path("BOOK_HTML", ROOT / "_build" / "html")
+BOOK_TOC = _env_path("BOOK_TOC", ROOT / "_toc.yml")
+ARTIFACTS = _env_path("BOOK_ARTIFACTS", ROOT / "_build" / "test-artifacts" / "browser")
+
+
+def pytest_report_header(config):
+    return [f"browser tests: book {BOOK_HTML}, toc {BOOK_TOC}, screenshots {ARTIFACTS}"]
+
+
+@pytest.fixture(scope="session")
+def book_html() -> Path:
+    if not (BOOK_HTML / "index.html").exists():
+        pytest.fail(
+            f"The built book is missing: no {BOOK_HTML / 'index.html'}. "
+            "Build it first (`make book`), or point BOOK_HTML at a built HTML folder.",
+            pytrace=False,
+        )
+    return BOOK_HTML
+
+
+@pytest.fixture(scope="session")
+def book_url(book_html):
+    with bookcheck.BookServer(book_html) as server:
+        yield server.base
+
+
+@pytest.fixture(scope="session")
+def browser_context():
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        try:
+            context, profile = bookcheck.launch_browser(p)
+        except FileNotFoundError as exc:
+            pytest.fail(str(exc), pytrace=False)
+        try:
+            yield context
+        finally:
+            context.close()
+            shutil.rmtree(profile, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def artifacts() -> Path:
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    return ARTIFACTS
+
+
+@pytest.fixture(scope="session")
+def page_reports(book_html, book_url, browser_context, artifacts):
+    """Each page is opened once; the per-aspect tests read its report."""
+    cache: dict[str, bookcheck.PageReport] = {}
+
+    def get(path: str) -> bookcheck.PageReport:
+        if path not in cache:
+            cache[path] = bookcheck.check_page(browser_context, book_url, book_html, path, shots=artifacts)
+        return cache[path]
+
+    yield get
+    if cache:
+        lines = ["", "Page weight and what was checked, per page:"]
+        lines += ["  " + r.summary() for r in cache.values()]
+        notes = [(r.path, n) for r in cache.values() for n in dict.fromkeys(r.notes)]
+        if notes:
+            lines.append("Notes (not failures):")
+            lines += [f"  {p}: {n}" for p, n in notes]
+        lines.append(f"Screenshots: {artifacts}")
+        _SUMMARY.extend(lines)
+
+
+_SUMMARY: list[str] = []
+
+
+def pytest_terminal_summary(terminalreporter):
+    for line in _SUMMARY:
+        terminalreporter.write_line(line)

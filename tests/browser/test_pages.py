@@ -1,0 +1,88 @@
+"""Every page of the table of contents, opened in Chromium as a reader would.
+
+Each page is loaded once (see ``page_reports`` in conftest.py); each test
+below asserts one aspect of what was seen, so a failure names the page and
+the aspect. The run prints each page's weight; screenshots at 1280 px and
+390 px wide land in _build/test-artifacts/browser/.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+import bookcheck
+from conftest import BOOK_TOC
+
+PAGES = bookcheck.pages_from_toc(BOOK_TOC)
+
+
+def _assert_clean(report: bookcheck.PageReport, aspect: str) -> None:
+    problems = report.problems.get(aspect, [])
+    assert not problems, f"{report.path}: {aspect}:\n  " + "\n  ".join(problems)
+
+
+def test_toc_lists_pages():
+    assert len(PAGES) >= 2, f"expected the table of contents {BOOK_TOC} to name pages, got {PAGES}"
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_page_loads_without_failed_requests(page_reports, path):
+    """The page exists in the build, every request it makes succeeds (no 404)."""
+    _assert_clean(page_reports(path), "load")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_no_console_errors(page_reports, path):
+    _assert_clean(page_reports(path), "console")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_nothing_loads_from_another_host(page_reports, path):
+    """The book works offline: MathJax, scripts, fonts and images all come from the build."""
+    _assert_clean(page_reports(path), "offline")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_math_is_typeset(page_reports, path):
+    _assert_clean(page_reports(path), "math")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_images_load_and_have_alt_text(page_reports, path):
+    _assert_clean(page_reports(path), "images")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_animations_play(page_reports, path):
+    _assert_clean(page_reports(path), "animations")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_solutions_open(page_reports, path):
+    _assert_clean(page_reports(path), "solutions")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_internal_links_resolve(page_reports, path):
+    _assert_clean(page_reports(path), "links")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_no_error_output_shown(page_reports, path):
+    """No traceback or Sphinx error box reaches the reader."""
+    _assert_clean(page_reports(path), "errors")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_page_weight_under_3_mb(page_reports, path):
+    report = page_reports(path)
+    assert report.total_bytes > 0, f"{path}: no bytes were recorded, the weight check saw nothing"
+    _assert_clean(report, "weight")
+
+
+def test_search_finds_adjoint(book_url, browser_context):
+    """The Sphinx search page, fed "adjoint", lists the pages that define it."""
+    hits = bookcheck.search(browser_context, book_url, "adjoint")
+    assert hits, "searching the book for 'adjoint' found nothing"
+    defining = {"chapters/conventions.html", "chapters/01_twists.html"}
+    assert defining & set(hits), f"searching 'adjoint' found {hits}, not the conventions page nor chapter 1"
