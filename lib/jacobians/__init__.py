@@ -16,6 +16,7 @@ True
 """
 
 from . import analysis, interop, lie, representations, robots
+from . import statics, velocity
 from .chain import SerialChain
 from .jacobian import (
     analytic_jacobian,
