@@ -336,6 +336,9 @@ def _compare(ans: np.ndarray, ref: np.ndarray, mistakes: list[Mistake], rtol: fl
         return _fb(False, f"Your answer has shape {ans.shape}, but this {what} has shape {ref.shape}"
                    + (" (6 rows (omega, v), one column per joint)." if ref.ndim == 2 and ref.shape[0] == 6 else "."),
                    mistake="wrong_shape")
+    if ref.ndim == 2 and ref.shape[0] == ref.shape[1] and _close(ans.T, ref, rtol, atol):
+        return _fb(False, "Your matrix is the transpose of the right one: rows and columns are swapped.",
+                   mistake="transposed")
     if ref.ndim == 2 and ref.shape[1] > 1:
         # Columns in the wrong order: every column matches some other column.
         perm = []
@@ -509,7 +512,8 @@ class Exercise:
                                "did you forget `return`?", mistake="returned_none")
                 return _fb(False, f"On test {case + 1} ({label}) your function's result could not be graded: "
                            + r.message, mistake="bad_return")
-            fb = _compare(arr, ref, mistakes, self.rtol, self.atol, self.what, self.hint)
+            # Code is compared tightly: the same computation agrees to rounding error.
+            fb = _compare(arr, ref, mistakes, 1e-6, 1e-8, self.what, self.hint)
             if not fb.correct:
                 fb.message = f"On test {case + 1} ({label}): {fb.message}"
                 return fb
@@ -517,32 +521,29 @@ class Exercise:
 
     def _check_symbolic(self, answer) -> Feedback:
         sp = _sympy()
-        is_sym = _is_sympy(answer) or (
-            isinstance(answer, (list, tuple)) and _contains_sympy(answer))
         ref = self.reference
         names = {str(s): s for s in self.symbols.values()}
-        # Exact route: simplification of the difference.
-        if is_sym and isinstance(answer, (sp.MatrixBase, sp.Expr)):
-            try:
-                if isinstance(answer, sp.MatrixBase) and answer.shape == ref.shape:
-                    sub = {s: names[str(s)] for s in answer.free_symbols if str(s) in names}
-                    diff = (answer.xreplace(sub) - ref).applyfunc(sp.simplify)
-                    if all(e == 0 for e in diff):
-                        return _fb(True, f"Your {self.what} simplifies to the reference.")
-            except Exception:
-                pass
-        # Numeric route: evaluate at random points and compare, mistakes included.
+        # Numeric route first (fast, and it names mistakes): evaluate at random points.
         rng = np.random.default_rng(self.seed + 77)
-        verdicts = []
         for _ in range(3):
-            point = {name: float(rng.uniform(0.3, 1.4)) * float(rng.choice([-1, 1]) if name.startswith("th") else 1)
+            point = {name: float(rng.uniform(0.3, 1.4)) * (float(rng.choice([-1, 1])) if name.startswith("th") else 1.0)
                      for name in names}
             arr = _as_array(answer, subs=point)
             r = _eval_sym(ref, point)
             ms = [Mistake(m.name, _eval_sym(m.value, point), m.message) for m in self.mistakes]
-            verdicts.append(_compare(arr, r, ms, 1e-6, 1e-8, self.what, self.hint))
-            if not verdicts[-1].correct:
-                return verdicts[-1]
+            verdict = _compare(arr, r, ms, 1e-6, 1e-8, self.what, self.hint)
+            if not verdict.correct:
+                return verdict
+        # Exact route: the difference simplifies to zero.
+        if _is_sympy(answer) and isinstance(answer, (sp.MatrixBase, sp.Expr)):
+            try:
+                A = answer if isinstance(answer, sp.MatrixBase) else sp.Matrix([answer])
+                sub = {s: names[str(s)] for s in A.free_symbols if str(s) in names}
+                diff = (A.xreplace(sub).reshape(*ref.shape) - ref).applyfunc(sp.simplify)
+                if all(e == 0 for e in diff):
+                    return _fb(True, f"Your {self.what} simplifies to the reference.")
+            except Exception:
+                pass
         return _fb(True, f"Your {self.what} agrees with the reference at random values of "
                    f"{', '.join(sorted(names))}.")
 

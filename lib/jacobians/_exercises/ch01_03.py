@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import sympy as sp
 
@@ -229,7 +231,9 @@ def _sym_adj(T):
     return A
 
 
+@functools.lru_cache(maxsize=1)
 def _sym_planar_2r():
+    """Symbolic S, M, J_s, J_b, B of the planar 2R arm, built from exponentials and adjoints (cached)."""
     th1, th2, l1, l2 = _sym_2r()
     S1 = sp.Matrix([0, 0, 1, 0, 0, 0])
     S2 = sp.Matrix([0, 0, 1, 0, -l1, 0])
@@ -237,13 +241,17 @@ def _sym_planar_2r():
     E2 = _sym_exp(S2, th2)
     M = sp.eye(4)
     M[0, 3] = l1 + l2
-    J_s = sp.Matrix.hstack(S1, _sym_adj(E1) * S2).applyfunc(sp.simplify)
-    T = (E1 * E2 * M).applyfunc(sp.simplify)
-    Tinv = sp.eye(4)
-    Tinv[:3, :3] = T[:3, :3].T
-    Tinv[:3, 3] = -T[:3, :3].T * T[:3, 3]
-    J_b = (_sym_adj(Tinv) * J_s).applyfunc(sp.simplify)
-    B = (_sym_adj(Tinv.subs({th1: 0, th2: 0})) * sp.Matrix.hstack(S1, S2)).applyfunc(sp.simplify)
+
+    def tidy(A):
+        return A.applyfunc(lambda e: sp.trigsimp(sp.expand(sp.expand_trig(e))))
+
+    J_s = tidy(sp.Matrix.hstack(S1, _sym_adj(E1) * S2))
+    Minv = sp.eye(4)
+    Minv[0, 3] = -(l1 + l2)
+    B = tidy(_sym_adj(Minv) * sp.Matrix.hstack(S1, S2))
+    # Body recursion: J_b2 = B2, J_b1 = Ad(e^{-[B2] theta2}) B1.
+    J_b = tidy(sp.Matrix.hstack(_sym_adj(_sym_exp(B[:, 1], -th2)) * B[:, 0], B[:, 1]))
+    T = E1 * E2 * M
     return (th1, th2, l1, l2), sp.Matrix.hstack(S1, S2), M, J_s, J_b, B, T
 
 

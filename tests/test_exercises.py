@@ -1,0 +1,408 @@
+"""Every exercise: reference accepted, each catalogued mistake rejected with its own message,
+references cross-checked against the library, garbage answered politely, and the student
+notebooks written by tools/make_exercises.py free of solutions and outputs."""
+
+from __future__ import annotations
+
+import importlib.util
+import re
+import sys
+from collections import Counter
+from pathlib import Path
+
+import nbformat
+import numpy as np
+import pytest
+import sympy as sp
+
+import jacobians as jac
+from jacobians import grading
+from jacobians.grading import Feedback
+
+ROOT = Path(__file__).resolve().parent.parent
+IDS = grading.exercise_ids()
+SEEDS = [0, 1, 2, 3, 7]
+KINDS = {eid: grading.load(eid).kind for eid in IDS}
+
+
+def _accepted_answer(ex):
+    return ex.reference if ex.kind in ("function", "predicate") else ex.solution()
+
+
+# ------------------------------------------------------------------ coverage
+
+def test_at_least_four_exercises_per_chapter_and_a_mix_of_kinds():
+    per_chapter = Counter(eid.split("_")[0] for eid in IDS)
+    assert sorted(per_chapter) == [f"ch0{i}" for i in range(1, 10)]
+    assert min(per_chapter.values()) >= 4
+    kinds = Counter(KINDS.values())
+    assert kinds["numeric"] >= 20 and kinds["function"] >= 8 and kinds["symbolic"] >= 3 and kinds["predicate"] >= 2
+
+
+def test_every_exercise_appears_in_its_notebook():
+    for eid in IDS:
+        chapter = eid[2:4]
+        (src,) = ROOT.glob(f"exercises/{chapter}_*.md")
+        text = src.read_text()
+        assert f'grading.load("{eid}", seed=SEED)' in text
+        assert f'grading.check("{eid}", answer, seed=SEED)' in text
+
+
+# ------------------------------------------------------------------ reference accepted
+
+@pytest.mark.parametrize("eid", IDS)
+def test_reference_accepted_for_several_seeds(eid):
+    for seed in SEEDS:
+        ex = grading.load(eid, seed=seed)
+        fb = grading.check(eid, _accepted_answer(ex), seed=seed)
+        assert fb.correct and fb.kind == "correct", (seed, fb)
+
+
+# ------------------------------------------------------------------ catalogue of mistakes
+
+@pytest.mark.parametrize("eid", [e for e in IDS if KINDS[e] in ("numeric", "symbolic")])
+def test_each_catalogued_mistake_rejected_with_its_own_message(eid):
+    seen = set()
+    for seed in SEEDS:
+        ex = grading.load(eid, seed=seed)
+        messages = {}
+        for m in ex.mistakes:
+            fb = grading.check(eid, m.value, seed=seed)
+            assert not fb.correct, (seed, m.name)
+            assert fb.mistake == m.name and fb.message == m.message, (seed, m.name, fb)
+            messages[m.name] = fb.message
+            seen.add(m.name)
+        assert len(set(messages.values())) == len(messages), "two mistakes share one message"
+    assert len(seen) >= 2, f"{eid}: fewer than two catalogued mistakes ever active"
+
+
+@pytest.mark.parametrize("eid", [e for e in IDS if KINDS[e] == "numeric"])
+def test_generic_mistakes_detected(eid):
+    for seed in SEEDS[:3]:
+        ex = grading.load(eid, seed=seed)
+        ref = np.asarray(ex.solution(), dtype=float)
+        wrong = ref.copy()
+        wrong.flat[-1] += 0.37 * (1 + abs(wrong.flat[-1]))
+        fb = ex.check(wrong)
+        assert not fb.correct and fb.mistake in ("wrong_entry", "wrong_value") or fb.mistake in {
+            m.name for m in ex.mistakes}, fb
+        if ref.ndim == 2 and ref.shape[0] != ref.shape[1]:
+            assert ex.check(ref.T).mistake == "transposed"
+        if ref.ndim >= 1:
+            bad_shape = np.zeros(ref.size + 1)
+            assert ex.check(bad_shape).mistake == "wrong_shape"
+
+
+def test_named_mistakes_of_the_issue_are_all_catalogued_somewhere():
+    names = set()
+    for eid in IDS:
+        for seed in SEEDS[:2]:
+            ex = grading.load(eid, seed=seed)
+            names |= {m.name for m in ex.mistakes}
+            if ex.kind == "function":
+                rng = np.random.default_rng(ex.seed + 1000)
+                names |= {m.name for m in ex.make_case(rng)[2]}
+    for required in ("body_for_space", "space_for_body", "v_omega_swapped", "home_axes", "home_axis_column_2",
+                     "sign_column_1", "R_missing", "only_angular_rotated", "degrees_for_radians", "frame_mismatch"):
+        assert required in names, required
+
+
+def _replayed_cases(ex):
+    rng = np.random.default_rng(ex.seed + 1000)
+    return [ex.make_case(rng) for _ in range(ex.n_cases)]
+
+
+def _imitating(cases, name):
+    """A 'student' function that makes mistake ``name`` on the checker's own test inputs."""
+    def student(*args):
+        for case_args, ref, mistakes, _ in cases:
+            if all(np.array_equal(np.asarray(a), np.asarray(b)) for a, b in zip(case_args, args)):
+                return next((m.value for m in mistakes if m.name == name), ref)
+        raise AssertionError("unexpected input")
+    return student
+
+
+@pytest.mark.parametrize("eid", [e for e in IDS if KINDS[e] == "function"])
+def test_function_mistakes_rejected_with_their_message(eid):
+    for seed in (0, 3):
+        ex = grading.load(eid, seed=seed)
+        cases = _replayed_cases(ex)
+        first_args, first_ref, first_mistakes, _ = cases[0]
+        names = [m.name for m in first_mistakes]
+        assert len(names) >= 2
+        for m in first_mistakes:
+            if np.asarray(m.value).shape == np.asarray(first_ref).shape and np.allclose(m.value, first_ref):
+                continue
+            fb = ex.check(_imitating(cases, m.name))
+            assert not fb.correct and fb.mistake == m.name and m.message in fb.message, (m.name, fb)
+            assert fb.message.startswith("On test ")
+
+
+def test_a_realistic_wrong_space_jacobian_function():
+    def forgot_adjoint(S, theta):
+        return np.array(S, dtype=float)
+
+    def reversed_product(S, theta):
+        J = np.zeros_like(S)
+        T = np.eye(4)
+        for i in range(S.shape[1]):
+            J[:, i] = jac.lie.adjoint(T) @ S[:, i]
+            T = jac.lie.exp_se3(S[:, i] * theta[i]) @ T
+        return J
+
+    assert grading.check("ch02_ex4", forgot_adjoint).mistake == "home_axes"
+    fb = grading.check("ch02_ex4", reversed_product, seed=1)
+    assert fb.mistake in ("product_order", "wrong_entries") and not fb.correct
+
+
+# ------------------------------------------------------------------ predicates
+
+def test_gimbal_lock_exercise():
+    for seed in range(6):
+        ex = grading.load("ch06_ex4", seed=seed)
+        rep = ex.given["representation"]
+        right = np.pi / 2 if rep == "zyx" else np.pi
+        assert ex.check(right).correct and ex.check(right + 2 * np.pi).correct
+        assert ex.check(np.degrees(right)).mistake == "degrees_for_radians"
+        other = np.pi if rep == "zyx" else np.pi / 2
+        assert ex.check(other).mistake == "other_representation"
+        assert ex.check(0.3).mistake == "not_singular"
+        assert ex.check([1.0, 2.0]).mistake == "wrong_shape"
+
+
+def test_singular_configuration_exercise():
+    ex = grading.load("ch09_ex6", seed=2)
+    assert ex.check(np.pi).correct and ex.check(-np.pi).correct
+    assert ex.check(0.0).mistake == "excluded_zero"
+    assert ex.check(180).mistake == "degrees_for_radians"
+    assert ex.check(1.0).mistake == "not_singular"
+
+
+# ------------------------------------------------------------------ references vs the library
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_references_agree_with_the_library(seed):
+    def g(eid):
+        return grading.load(eid, seed=seed)
+
+    ex = g("ch02_ex1")
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.space_jacobian(arm, th)[:, ex.given["column"] - 1], atol=1e-12)
+
+    ex = g("ch02_ex2")
+    arm = jac.robots.spatial_rrp(ex.given["h"], ex.given["reach"])
+    th = np.array([np.radians(ex.given["theta1_deg"]), np.radians(ex.given["theta2_deg"]), ex.given["d3"]])
+    np.testing.assert_allclose(ex.solution(), jac.space_jacobian(arm, th), atol=1e-12)
+    # and against finite differences of the forward kinematics: [V_s] = Tdot T^-1
+    T0 = arm.fk(th)
+    for i in range(3):
+        dT = jac.numerical_jacobian(lambda x: arm.fk(x), th)[..., i]
+        V = jac.lie.matrix_to_twist(dT @ np.linalg.inv(T0)) if False else None
+        W = dT @ np.linalg.inv(T0)
+        np.testing.assert_allclose([W[2, 1], W[0, 2], W[1, 0], *W[:3, 3]], ex.solution()[:, i], atol=1e-6)
+
+    ex = g("ch03_ex1")
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.body_jacobian(arm, th)[:, ex.given["column"] - 1], atol=1e-12)
+
+    ex = g("ch03_ex2")
+    chain = jac.SerialChain(ex.given["S"], ex.given["M"])
+    np.testing.assert_allclose(ex.solution(), chain.body_axes, atol=1e-12)
+
+    ex = g("ch04_ex4")
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.body_jacobian(arm, th) @ ex.given["theta_dot"], atol=1e-12)
+
+    ex = g("ch05_ex1")
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.geometric_jacobian(arm, th), atol=1e-12)
+    pdot = jac.numerical_jacobian(lambda x: arm.fk(x)[:3, 3], th)
+    np.testing.assert_allclose(ex.solution()[3:], pdot, atol=1e-6)
+
+    ex = g("ch06_ex2")
+    phi = np.radians(ex.given["phi_deg"])
+    np.testing.assert_allclose(
+        ex.solution(), jac.representations.rate_to_angular_velocity(phi, ex.given["representation"]), atol=1e-12)
+
+    ex = g("ch06_ex5")
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.analytic_jacobian(jac.robots.zyx_wrist(0.2), th)[:3], atol=1e-9)
+
+    for eid, frame in (("ch08_ex1", "space"), ("ch08_ex2", "geometric")):
+        ex = g(eid)
+        arm = jac.robots.planar(ex.given["lengths"])
+        th = np.radians(ex.given["theta_deg"])
+        np.testing.assert_allclose(ex.solution(), jac.link_jacobians(arm, th, frame=frame)[1], atol=1e-12)
+
+    ex = g("ch08_ex3")
+    L, m = ex.given["lengths"], ex.given["masses"]
+    th2 = np.radians(ex.given["theta_deg"][1])
+    # kinetic energy of two rods, by finite differences of the centre velocities (an independent route)
+    arm = jac.robots.planar(L)
+    th = np.radians(ex.given["theta_deg"])
+    M_fd = np.zeros((2, 2))
+    for i in range(2):
+        Jc = jac.numerical_jacobian(lambda x: arm.link_poses(x)[i][:2, 3], th)
+        Jw = np.array([[1.0, 1.0 if i == 1 else 0.0]])
+        M_fd += m[i] * Jc.T @ Jc + m[i] * L[i] ** 2 / 12 * Jw.T @ Jw
+    np.testing.assert_allclose(ex.solution(), M_fd, atol=1e-6)
+    assert np.isclose(ex.solution()[1, 1], m[1] * L[1] ** 2 / 3)
+    assert np.isclose(ex.solution()[0, 1], m[1] * L[1] ** 2 / 3 + m[1] * L[0] * L[1] / 2 * np.cos(th2))
+
+    ex = g("ch09_ex3")
+    L = ex.given["lengths"]
+    assert np.isclose(ex.solution(), L[0] * L[1] * abs(np.sin(np.radians(ex.given["theta_deg"][1]))))
+
+    ex = g("ch09_ex2")
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    Jv = jac.geometric_jacobian(arm, th)[3:5]
+    np.testing.assert_allclose(Jv @ ex.solution(), ex.given["p_dot"], atol=1e-9)
+
+
+def test_conversion_references_agree_with_the_library():
+    for seed in range(3):
+        ex = grading.load("ch04_ex1", seed=seed)
+        T = ex.given["T_sb"].copy()
+        U, _, Vt = np.linalg.svd(T[:3, :3])  # the library wants an exact rotation; the statement shows 4 digits
+        T[:3, :3] = U @ Vt
+        np.testing.assert_allclose(ex.solution(), jac.space_to_body(ex.given["J_s"], T), atol=2e-3)
+        ex = grading.load("ch05_ex2", seed=seed)
+        T = ex.given["T_sb"].copy()
+        U, _, Vt = np.linalg.svd(T[:3, :3])
+        T[:3, :3] = U @ Vt
+        np.testing.assert_allclose(ex.solution(), jac.body_to_geometric(ex.given["J_b"], T), atol=2e-3)
+        ex = grading.load("ch07_ex2", seed=seed)
+        T = ex.given["T_sb"].copy()
+        U, _, Vt = np.linalg.svd(T[:3, :3])
+        T[:3, :3] = U @ Vt
+        J0 = ex.given["J0"]
+        np.testing.assert_allclose(ex.solution(), jac.geometric_to_space(np.vstack([J0[3:], J0[:3]]), T), atol=2e-3)
+
+
+def test_symbolic_references_agree_with_the_library_numerically():
+    rng = np.random.default_rng(0)
+    for eid, fn in (("ch02_ex3", jac.space_jacobian), ("ch03_ex3", jac.body_jacobian)):
+        ex = grading.load(eid)
+        syms = ex.symbols
+        for _ in range(3):
+            l1, l2 = rng.uniform(0.5, 2, size=2)
+            th = rng.uniform(-3, 3, size=2)
+            val = np.array(ex.reference.subs({syms["theta1"]: th[0], syms["theta2"]: th[1], syms["l1"]: l1,
+                                              syms["l2"]: l2}).evalf().tolist(), dtype=float)
+            np.testing.assert_allclose(val, fn(jac.robots.planar_2r(l1, l2), th), atol=1e-12)
+    ex = grading.load("ch06_ex1")
+    s = ex.symbols
+    arm = jac.robots.planar_2r(0.7, 1.3)
+    th = np.array([0.4, -1.1])
+    val = np.array(ex.reference.subs({s["theta1"]: th[0], s["theta2"]: th[1], s["l1"]: 0.7, s["l2"]: 1.3})
+                   .evalf().tolist(), dtype=float)
+    np.testing.assert_allclose(val, jac.numerical_jacobian(lambda x: arm.fk(x)[:2, 3], th), atol=1e-6)
+
+
+def test_symbolic_answers_in_other_forms():
+    th1, th2, l1, l2 = sp.symbols("theta1 theta2 l1 l2")  # no assumptions: matched by name
+    ex = grading.load("ch06_ex1", seed=3)
+    x = l1 * sp.cos(th1) + l2 * sp.cos(th1 + th2)
+    y = l1 * sp.sin(th1) + l2 * sp.sin(th1 + th2)
+    J = sp.Matrix([x, y]).jacobian([th1, th2])
+    assert ex.check(J).correct
+    assert ex.check(J.tolist()).correct
+    assert ex.check(sp.expand_trig(J)).correct
+    assert ex.check(J.T).mistake == "transposed"
+    other = J.subs(l2, sp.Symbol("L2"))
+    fb = ex.check(other)
+    assert fb.kind == "invalid" and "L2" in fb.message
+    wrong = J.copy()
+    wrong[1, 1] = l2 * sp.sin(th1 + th2)
+    fb = ex.check(wrong)
+    assert fb.mistake == "wrong_entry" and "row 2, column 2" in fb.message
+
+
+# ------------------------------------------------------------------ every exercise, garbage
+
+GARBAGE = [None, "answer", [[1, 2], [3]], np.full((6, 3), np.nan), np.inf, np.ones(10 ** 6), object(),
+           lambda *a: (_ for _ in ()).throw(ValueError("student bug")), lambda *a: np.zeros((2, 2, 2)),
+           lambda *a: None, [["a"]], {"x": 1}]
+
+
+@pytest.mark.parametrize("eid", IDS)
+def test_every_exercise_answers_garbage_with_feedback(eid):
+    for answer in GARBAGE:
+        fb = grading.check(eid, answer, seed=1)
+        assert isinstance(fb, Feedback) and not fb.correct and fb.message, (eid, answer)
+
+
+# ------------------------------------------------------------------ student notebooks
+
+def _load_tool():
+    spec = importlib.util.spec_from_file_location("make_exercises", ROOT / "tools" / "make_exercises.py")
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["make_exercises"] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@pytest.fixture(scope="module")
+def student_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("student")
+    assert _load_tool().main(out) == 0
+    return out
+
+
+def test_student_versions_have_no_solutions_and_no_outputs(student_dir):
+    sources = sorted((ROOT / "exercises").glob("[0-9][0-9]_*.md"))
+    written = sorted(student_dir.glob("*.ipynb"))
+    assert [p.stem for p in written] == [p.stem for p in sources] and len(written) == 9
+    for path in written:
+        nb = nbformat.read(path, as_version=4)
+        nbformat.validate(nb)
+        text = "\n".join(c.source for c in nb.cells)
+        for cell in nb.cells:
+            assert "solution" not in cell.metadata.get("tags", [])
+            if cell.cell_type == "code":
+                assert cell.outputs == [] and cell.execution_count is None
+        assert "solution-start" not in text and "solution-end" not in text and "{exercise}" not in text
+        assert "assert _fb.correct" not in text
+        # no reference computation leaks: every answer cell leaves answer = None
+        assert not re.search(r"^answer = (?!None)", text, re.M), path.name
+        assert text.count("answer = None") >= 4
+        assert text.count("grading.check(") == text.count("grading.load(") >= 4
+
+
+def test_student_versions_keep_every_non_solution_cell(student_dir):
+    import jupytext
+    for src in sorted((ROOT / "exercises").glob("[0-9][0-9]_*.md")):
+        nb_src = jupytext.read(src)
+        kept = [c for c in nb_src.cells if "solution" not in c.metadata.get("tags", [])]
+        nb = nbformat.read(student_dir / f"{src.stem}.ipynb", as_version=4)
+        assert len(nb.cells) == len(kept) + 1  # + the banner
+        code_src = [c.source for c in kept if c.cell_type == "code"]
+        assert code_src == [c.source for c in nb.cells if c.cell_type == "code"]
+
+
+def test_source_solutions_are_tagged():
+    import jupytext
+    for src in sorted((ROOT / "exercises").glob("[0-9][0-9]_*.md")):
+        nb = jupytext.read(src)
+        for cell in nb.cells:
+            tags = cell.metadata.get("tags", [])
+            if "solution-start" in cell.source or "solution-end" in cell.source:
+                assert "solution" in tags, src.name
+            if cell.cell_type == "code" and re.search(r"^answer = (?!None)", cell.source, re.M):
+                assert "solution" in tags, (src.name, cell.source[:60])
+
+
+def test_student_notebook_executes_and_shows_no_answer_yet(student_dir):
+    from nbclient import NotebookClient
+    nb = nbformat.read(student_dir / "02_space_jacobian.ipynb", as_version=4)
+    NotebookClient(nb, timeout=120, kernel_name="python3", resources={"metadata": {"path": str(ROOT)}}).execute()
+    boxes = [o for c in nb.cells if c.cell_type == "code" and "grading.check(" in c.source for o in c.outputs]
+    assert len(boxes) == 4
+    for out in boxes:
+        html = out["data"]["text/html"]
+        assert "No answer yet" in html and "Traceback" not in html
