@@ -21,6 +21,8 @@ from pathlib import Path
 from docutils import nodes
 
 LINK_TEXT = "Lecture slides for this chapter"
+#: only pages in these folders are lectures (same as tools/build_slides.py)
+DECK_FOLDERS = ("chapters",)
 SLIDES_DIR = "slides"
 
 
@@ -42,7 +44,7 @@ def slides_href(docname: str) -> str:
 def add_link(app, doctree) -> None:
     env = app.env
     docname = env.docname
-    if docname == app.config.root_doc:
+    if docname == app.config.root_doc or docname.split("/", 1)[0] not in DECK_FOLDERS:
         return
     source = Path(env.doc2path(docname))
     if not is_notebook(source):

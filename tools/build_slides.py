@@ -3,8 +3,9 @@
 Usage: python tools/build_slides.py DEST [--only NAME ...] [--jobs N]
                                          [--cache DIR] [--no-book-cache]
 
-For every page listed in ``_toc.yml`` that is a MyST Markdown notebook (it has
-a jupytext header; the plain-Markdown root page has no deck):
+For every page of ``chapters/`` listed in ``_toc.yml`` that is a MyST
+Markdown notebook (it has a jupytext header; the plain-Markdown root page and
+the exercise notebooks in ``exercises/`` have no deck):
 
 1. read it with jupytext;
 2. take its executed outputs from a cache when the code and the library are
@@ -89,9 +90,14 @@ def is_notebook(path: Path) -> bool:
     return head.startswith("---") and "jupytext:" in head and "kernelspec:" in head
 
 
+#: only pages in these folders are lectures (exercises/ holds student notebooks)
+DECK_FOLDERS = ("chapters",)
+
+
 def deck_sources(root: Path = ROOT) -> list[Path]:
     """The chapter sources that get a deck (same rule as _ext/slides_link.py)."""
-    return [p for p in toc_files(root) if is_notebook(p)]
+    return [p for p in toc_files(root)
+            if is_notebook(p) and p.relative_to(root).parts[0] in DECK_FOLDERS]
 
 
 def deck_name(source: Path) -> str:
@@ -345,7 +351,8 @@ def main(argv=None) -> int:
     all_reports = [r for r in reports if "error" not in r]
     write_index(dest, all_reports)
     (dest / "decks.json").write_text(json.dumps(
-        [{k: r[k] for k in ("name", "title", "file", "origin", "seconds", "bytes")} for r in all_reports], indent=1))
+        [{k: r[k] for k in ("name", "title", "file", "origin", "seconds", "bytes")} for r in all_reports]
+        + [{"name": r["name"], "error": r["error"]} for r in reports if "error" in r], indent=1))
     print(f"build_slides: {len(all_reports)} decks in {dest} ({time.perf_counter() - t0:.1f} s), {failed} failed")
     return 1 if failed else 0
 

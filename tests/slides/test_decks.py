@@ -11,6 +11,7 @@ _build/test-artifacts/slides/ (not committed).
 from __future__ import annotations
 
 import functools
+import json
 import http.server
 import re
 import shutil
@@ -53,7 +54,7 @@ def decks():
         for old in DECKS.glob("*.slides.html"):
             old.unlink()
     status = build_slides.main([str(DECKS), "--jobs", "2"])
-    reports = {d["name"]: d for d in __import__("json").loads((DECKS / "decks.json").read_text())}
+    reports = {d["name"]: d for d in json.loads((DECKS / "decks.json").read_text())}
     return status, reports
 
 
@@ -61,6 +62,7 @@ def decks():
 def test_deck_builds(decks, source):
     status, reports = decks
     assert source.stem in reports, f"no deck for {source.name} (build_slides exit status {status})"
+    assert "error" not in reports[source.stem], reports[source.stem].get("error")
     html = (DECKS / build_slides.deck_name(source)).read_text(encoding="utf-8")
     assert html.count("<section") >= 2, "a deck has a title slide and at least one more"
     # nothing is fetched from another host by the markup itself
