@@ -108,7 +108,8 @@ class _Blitter:
     def invalidate(self):
         self._bg = None
 
-    def render(self) -> bytes:
+    def render_rgba(self) -> np.ndarray:
+        """Kept background + moving artists; the canvas's RGBA buffer (h, w, 4)."""
         c = self.canvas
         if self._bg is None:
             c.draw()
@@ -118,7 +119,10 @@ class _Blitter:
         for a in self.dynamic:
             if a.get_visible():
                 (a.axes or self.fig).draw_artist(a)
-        return _png(np.asarray(c.buffer_rgba()))
+        return np.asarray(c.buffer_rgba())
+
+    def render(self) -> bytes:
+        return _png(self.render_rgba())
 
     def render_from_scratch(self) -> bytes:
         """Full redraw without the kept bitmap (for comparisons)."""
@@ -140,7 +144,9 @@ class _Explorer(W.VBox):
     def _setup(self, fig: Figure, static: bool):
         self.static = bool(static)
         self.fig = fig
-        self.blitter = _Blitter(fig, live=not self.static)
+        # static (book) figures blit too: animation_html grabs frames through fig._jac_render_rgba
+        self.blitter = _Blitter(fig, live=True)
+        fig._jac_render_rgba = self.blitter.render_rgba
         self.image = W.Image(format="png", layout=W.Layout(width=f"{int(fig.get_figwidth() * fig.dpi)}px"))
         self.render_count = 0
         self._hold = 0
@@ -320,7 +326,7 @@ class PlanarArmExplorer(_Explorer):
                                            label=r"force ellipse, $\|\tau\|=1$")
         self.indicator = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=FONT, va="bottom",
                                  bbox=dict(boxstyle="round", fc="white", ec="0.6", alpha=0.9), zorder=7)
-        ax.legend(loc="upper left", fontsize=8.5, framealpha=0.85)
+        self._legend_kind = None
         self.matrix_artist = None
         if axm is not None:
             self.matrix_artist = MatrixArtist(axm, np.zeros((6, n)), digits=2, row_labels=ROW_LABELS,
@@ -400,6 +406,12 @@ class PlanarArmExplorer(_Explorer):
         V_s = J_s @ rates
         self.vs_arrow.update([0.0, 0.0], V_s[3:5] if kind == "space" else [0.0, 0.0])
         self.vs_arrow.quiver.set_visible(kind == "space")
+        if kind != self._legend_kind:  # the v_s arrow is listed only when it is drawn
+            handles = [self.arm.link_line, self.pdot_arrow.quiver] + ([self.vs_arrow.quiver] if kind == "space" else [])
+            handles += [self.vel_ellipse.line, self.force_ellipse.line]
+            self.ax.legend(handles=handles, loc="upper left", fontsize=8.5, framealpha=0.85)
+            self._legend_kind = kind
+            self.blitter.invalidate()
         sigma, U = velocity_force_ellipses(J_g[3:5])
         self.sigma = sigma
         self.sigma_min = float(sigma[-1])
@@ -495,6 +507,7 @@ def planar_arm_explorer_animation(chain=None, theta=None, rates=None, kind="spac
     anim = _animation.FuncAnimation(w.fig, frame, frames=len(angles), interval=interval, blit=False)
     anim._fig = w.fig
     anim._explorer = w
+    anim._jac_frames = (frame, len(angles))
     return anim
 
 
@@ -539,7 +552,7 @@ class ColumnsExplorer(_Explorer):
         else:
             ax = fig.add_subplot(projection="3d")
             fig.subplots_adjust(left=0.0, right=0.95, bottom=0.05, top=0.92)
-            setup_3d_axes(ax, chain, title=title, margin=0.0)
+            setup_3d_axes(ax, chain, title=title, margin=-0.2)
             ax.view_init(elev=25, azim=-60)
             self.arm = SpatialChainArtist(ax, chain, theta, axis_length=0.18 * arm_reach(chain))
             self.role_points = []
@@ -554,7 +567,7 @@ class ColumnsExplorer(_Explorer):
         handles = [Line2D([], [], color=PALETTE["space"], lw=4, label="joints before i: change column i of $J_s$"),
                    Line2D([], [], color=PALETTE["body"], lw=4, label="joints after i: change column i of $J_b$"),
                    Line2D([], [], color="black", lw=4, label="joint i")]
-        ax.legend(handles=handles, loc="lower left", fontsize=8.5, framealpha=0.85)
+        ax.legend(handles=handles, loc="upper left", fontsize=8.5, framealpha=0.85)
         self.blitter.add(moving, self.title_text)
         self._last_J = None
         self.changed_space_columns: list = []
@@ -616,8 +629,8 @@ class ColumnsExplorer(_Explorer):
         if self._last_J is not None:
             dS = np.abs(J_s - self._last_J[0]).max(axis=0) > 1e-12
             dB = np.abs(J_b - self._last_J[1]).max(axis=0) > 1e-12
-            self.changed_space_columns = [c + 1 for c in np.flatnonzero(dS)]
-            self.changed_body_columns = [c + 1 for c in np.flatnonzero(dB)]
+            self.changed_space_columns = [int(c) + 1 for c in np.flatnonzero(dS)]
+            self.changed_body_columns = [int(c) + 1 for c in np.flatnonzero(dB)]
         self._last_J = (J_s, J_b)
         self.J_s, self.J_b = J_s, J_b
         before, after = self.roles(i)
@@ -693,6 +706,7 @@ def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval
     mat = MatrixArtist(axm, np.column_stack([w.J_s[:, i - 1], w.J_b[:, i - 1]]), digits=2, row_labels=ROW_LABELS,
                        col_labels=[f"$J_s$ col {i}", f"$J_b$ col {i}"], fontsize=11)
     note = axm.text(0.5, -0.12, "", transform=axm.transAxes, ha="center", va="top", fontsize=11)
+    w.blitter.add([t for row in mat.texts for t in row], note)
     th0 = w.theta
     per = max(int(frames) // n, 4)
     seq = []
@@ -717,6 +731,7 @@ def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval
     anim = _animation.FuncAnimation(fig, frame, frames=len(seq), interval=interval, blit=False)
     anim._fig = fig
     anim._explorer = w
+    anim._jac_frames = (frame, len(seq))
     return anim
 
 
@@ -826,7 +841,9 @@ class GimbalLockExplorer(_Explorer):
         self.phi = phi
         B = rate_to_angular_velocity(phi, "zyx")
         self.B = B
-        self.det_B = float(np.linalg.det(B))
+        self.det_B = float(np.linalg.det(B)) + 0.0
+        if abs(self.det_B) < 5e-13:
+            self.det_B = 0.0  # shown as 0.0000, not -0.0000
         self.margin = float(representation_singularity_margin(phi, "zyx"))
         self.J = _jac.geometric_jacobian(chain, th)
         self.J_a = _jac.analytic_jacobian(chain, th, "zyx", on_singularity="nan")
@@ -913,6 +930,7 @@ def gimbal_lock_animation(frames=36, dpi=72, interval=150, wrist="zyz", theta1_d
     anim = _animation.FuncAnimation(w.fig, frame, frames=len(angles), interval=interval, blit=False)
     anim._fig = w.fig
     anim._explorer = w
+    anim._jac_frames = (frame, len(angles))
     return anim
 
 
@@ -966,16 +984,17 @@ def resolved_rate(chain, theta0, x_des, v_des, dt, method="pinv", damping=0.05, 
     xs = np.empty((N, 2))
     smin = np.empty(N)
     lam2 = float(damping) ** 2
+    I2 = np.eye(2)
     for k in range(N):
-        J = _jac.geometric_jacobian(chain, th)
-        Jv = J[3:5]
+        Jv = _jac.geometric_jacobian(chain, th)[3:5]
         x = chain.fk(th)[:2, 3]
         xdot = v_des[k] + gain * (x_des[k] - x)
-        s = np.linalg.svd(Jv, compute_uv=False)
+        U, s, Vt = np.linalg.svd(Jv, full_matrices=False)
         if method == "pinv":
-            qd = np.linalg.pinv(Jv, rcond=1e-10) @ xdot
+            inv = np.where(s > 1e-10 * max(s[0], 1e-300), 1.0 / np.where(s > 0, s, 1.0), 0.0)
+            qd = Vt.T @ (inv * (U.T @ xdot))
         else:
-            qd = Jv.T @ np.linalg.solve(Jv @ Jv.T + lam2 * np.eye(2), xdot)
+            qd = Jv.T @ np.linalg.solve(Jv @ Jv.T + lam2 * I2, xdot)
         thetas[k], rates[k], xs[k], smin[k] = th, qd, x, s[-1] if s.size >= 2 else 0.0
         th = th + qd * dt
     return thetas, rates, xs, smin
@@ -985,6 +1004,7 @@ class ResolvedRateExplorer(_Explorer):
     """Resolved-rate motion; see :func:`resolved_rate_explorer`."""
 
     PATHS = ("circle", "to full reach", "past the base")
+    RATE_LIMIT = 8.0  # rad/s shown on the rate plot; larger peaks leave the plot and are printed
 
     def __init__(self, chain=None, path="to full reach", method="pinv", damping=0.1, *, static=False, n_steps=160,
                  figsize=(9.6, 4.8), dpi=80):
@@ -1002,7 +1022,7 @@ class ResolvedRateExplorer(_Explorer):
         self.method_dropdown = W.Dropdown(options=[("pseudo-inverse", "pinv"), ("damped least squares", "dls")],
                                           value=method, description="method", layout=W.Layout(width="250px"))
         self.damping_slider = W.FloatLogSlider(value=float(damping), base=10, min=-3, max=0, step=0.1,
-                                               description="λ (m)", readout_format=".3f",
+                                               description="λ (m)", readout_format=".3f", continuous_update=False,
                                                layout=W.Layout(width="330px"), style={"description_width": "70px"})
         self.time_slider = W.IntSlider(value=0, min=0, max=self.n_steps - 1, description="step",
                                        layout=W.Layout(width="330px"), style={"description_width": "70px"})
@@ -1020,6 +1040,7 @@ class ResolvedRateExplorer(_Explorer):
         self.arm = PlanarArmArtist(ax, self.chain, np.zeros(self.chain.dof), show_frames=False, label="arm")
         (self.target,) = ax.plot([], [], "x", color=PALETTE["path"], ms=12, mew=3, zorder=6)
         ax.legend(loc="upper left", fontsize=8.5, framealpha=0.85)
+        axr.set_ylim(-self.RATE_LIMIT, self.RATE_LIMIT)  # fixed, so methods compare at a glance
         axr.set_xlabel("time t (s)")
         axr.set_ylabel("joint rate (rad/s)")
         axr.set_title("joint rates from $J_v^{\\#}\\dot x$", fontsize=FONT)
@@ -1054,6 +1075,7 @@ class ResolvedRateExplorer(_Explorer):
                 self.damping_slider.value = float(damping)
             if step is not None:
                 self.time_slider.value = int(np.clip(step, 0, self.n_steps - 1))
+                self.play.value = self.time_slider.value  # keep the linked Play in step
         return self
 
     def _simulate(self):
@@ -1087,12 +1109,10 @@ class ResolvedRateExplorer(_Explorer):
             self.des_line.set_data(self.x_des[:, 0], self.x_des[:, 1])
             for i, ln in enumerate(self.rate_lines):
                 ln.set_data(self.t, self.rates_hist[:, i])
-            peak = float(np.abs(self.rates_hist).max())
             self.ax_rates.set_xlim(0, self.t[-1])
-            lim = min(max(1.0, 1.15 * peak), 60.0)
-            self.ax_rates.set_ylim(-lim, lim)
-            self.blitter.invalidate()  # the axis limits changed: redraw the fixed part once
         k = self.time_slider.value
+        if self.play.value != k:
+            self.play.value = k  # the browser links them; mirror it here so both agree when shown
         self.step = k
         self.arm.update(self.thetas[k])
         self.act_line.set_data(self.x_act[: k + 1, 0], self.x_act[: k + 1, 1])
@@ -1143,4 +1163,5 @@ def resolved_rate_animation(chain=None, path="to full reach", method="pinv", dam
     anim = _animation.FuncAnimation(w.fig, frame, frames=len(steps), interval=interval, blit=False)
     anim._fig = w.fig
     anim._explorer = w
+    anim._jac_frames = (frame, len(steps))
     return anim
