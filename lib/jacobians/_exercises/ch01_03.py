@@ -73,7 +73,7 @@ def _adj_mistakes(T):
 def _ch01_ex2(rng):
     T = random_transform(rng)
     ref = adj(T)
-    st = (f"Give the $6\\times 6$ adjoint matrix $[\\mathrm{{Ad}}_T]$ of $T = {bmatrix(T, 4)}$, "
+    st = (f"Give the $6\\times 6$ adjoint matrix $[\\mathrm{{Ad}}_T]$ of \n\n$$T = {bmatrix(T, 4)},$$\n\n"
           "for twists ordered $(\\omega, v)$.")
     return Exercise("", "The adjoint of a transform", st, {"T": T}, "numeric", ref, _adj_mistakes(T),
                     what="adjoint matrix", hint="Compare block by block with [[R, 0], [[p]R, R]].")
@@ -98,7 +98,7 @@ def _ch01_ex3(rng):
                 "You read the given twist as (v, \u03c9). It is given angular part first."),
     ]
     st = (f"A body has the twist $\\mathcal V_b = {vec(V_b)}$ expressed in frame {{b}}, and "
-          f"$T_{{ab}} = {bmatrix(T_ab, 4)}$. Give the same twist expressed in {{a}}, $\\mathcal V_a$.")
+          f"\n\n$$T_{{ab}} = {bmatrix(T_ab, 4)}.$$\n\nGive the same twist expressed in {{a}}, $\\mathcal V_a$.")
     return Exercise("", "Changing the frame of a twist", st, {"T_ab": T_ab, "V_b": V_b}, "numeric", ref,
                     mistakes, what="twist")
 
@@ -374,7 +374,7 @@ def _ch03_ex2(rng):
     ] + sign_mistakes(ref)
     st = (f"The spatial 5R arm has $h = {num(vals[0])}$, $l_1 = {num(vals[1])}$, $l_2 = {num(vals[2])}$, "
           f"$l_3 = {num(vals[3])}$, $l_4 = {num(vals[4])}$; its space screw axes and home pose are "
-          f"$S = {bmatrix(S)}$, $M = {bmatrix(M)}$. Give its body screw axes $B$ ($6\\times5$, one column per joint).")
+          f"\n\n$$S = {bmatrix(S)},$$\n\n\n\n$$M = {bmatrix(M)}.$$\n\nGive its body screw axes $B$ ($6\\times5$, one column per joint).")
     return Exercise("", "Body screw axes from space screw axes", st, {"S": S, "M": M}, "numeric", ref, mistakes,
                     what="matrix of body screw axes")
 

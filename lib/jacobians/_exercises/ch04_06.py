@@ -43,7 +43,7 @@ def _ch04_ex1(rng):
                 "the linear part."),
         swap_mistake(ref),
     ]
-    st = (f"At some configuration an arm has $J_s = {bmatrix(J_s, 4)}$ and $T_{{sb}} = {bmatrix(T, 4)}$. "
+    st = (f"At some configuration an arm has \n\n$$J_s = {bmatrix(J_s, 4)}$$\n\nand \n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\n"
           "Give its body Jacobian $J_b$.")
     return Exercise("", "From the space to the body Jacobian", st, {"J_s": J_s, "T_sb": T}, "numeric", ref,
                     mistakes, what="body Jacobian")
@@ -63,7 +63,7 @@ def _ch04_ex2(rng):
                 "not the space Jacobian (velocity of the body point at the origin of {s})."),
         swap_mistake(ref),
     ]
-    st = (f"At some configuration an arm has $J_b = {bmatrix(J_b, 4)}$ and $T_{{sb}} = {bmatrix(T, 4)}$. "
+    st = (f"At some configuration an arm has \n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nand \n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\n"
           "Give its space Jacobian $J_s$.")
     return Exercise("", "From the body to the space Jacobian", st, {"J_b": J_b, "T_sb": T}, "numeric", ref,
                     mistakes, what="space Jacobian")
@@ -184,8 +184,8 @@ def _ch05_ex2(rng):
     R = T[:3, :3]
     ref = blockdiag(R, R) @ J_b
     mistakes = _geo_catalogue(ref, J_b, R, adj(T) @ J_b)
-    st = (f"A 5-joint arm has body Jacobian $J_b = {bmatrix(J_b, 4)}$ at a pose with "
-          f"$T_{{sb}} = {bmatrix(T, 4)}$. Give its geometric Jacobian $J$ (rows $(\\omega_s, \\dot p)$).")
+    st = (f"A 5-joint arm has body Jacobian \n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nat a pose with "
+          f"\n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\nGive its geometric Jacobian $J$ (rows $(\\omega_s, \\dot p)$).")
     return Exercise("", "From the body to the geometric Jacobian", st, {"J_b": J_b, "T_sb": T}, "numeric", ref,
                     mistakes, what="geometric Jacobian")
 
@@ -330,7 +330,7 @@ def _ch06_ex3(rng):
     ]
     st = (f"A ZYX wrist (joints about $z$, $y$, $x$ through the origin, tool at distance "
           f"{num(arm.home[0, 3])} along $x$) is at $\\theta = {degs(th_deg)}$, so the ZYX angles of its tool are "
-          f"$\\phi = \\theta$. Its geometric Jacobian is $J = {bmatrix(J, 4)}$. Give the analytic Jacobian "
+          f"$\\phi = \\theta$. Its geometric Jacobian is \n\n$$J = {bmatrix(J, 4)}.$$\n\nGive the analytic Jacobian "
           "$J_a$ for $x = (\\phi, p)$ (rows: the three ZYX angle rates, then $\\dot p$).")
     return Exercise("", "The analytic Jacobian of a ZYX wrist", st, {"J": J, "phi_deg": phi_deg}, "numeric", ref,
                     mistakes, what="analytic Jacobian")

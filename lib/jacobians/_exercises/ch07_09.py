@@ -47,7 +47,7 @@ def _ch07_ex1(rng):
                 "asks for the geometric Jacobian, which keeps \u1e57 of the tool point."),
     ]
     st = (f"Siciliano's book writes the geometric Jacobian with rows $(\\dot p, \\omega)$. For a 5-joint arm it "
-          f"is $J_{{Sic}} = {bmatrix(J_sic, 4)}$. Give the same Jacobian in this course's convention, rows "
+          f"is \n\n$$J_{{Sic}} = {bmatrix(J_sic, 4)}.$$\n\nGive the same Jacobian in this course's convention, rows "
           "$(\\omega_s, \\dot p)$.")
     return Exercise("", "Siciliano's geometric Jacobian", st, {"J_sic": J_sic}, "numeric", ref, mistakes,
                     what="geometric Jacobian")
@@ -71,7 +71,7 @@ def _ch07_ex2(rng):
                 "The point shift is right but the rows are (v, \u03c9). " + V_FIRST),
     ]
     st = (f"Robotics Toolbox's `jacob0` returns, for a 5-joint arm, the world-frame Jacobian of the tool point "
-          f"with rows $(v, \\omega)$: $J_0 = {bmatrix(J0, 4)}$. The tool pose is $T_{{sb}} = {bmatrix(T, 4)}$. "
+          f"with rows $(v, \\omega)$: \n\n$$J_0 = {bmatrix(J0, 4)}.$$\n\nThe tool pose is \n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\n"
           "Give the space Jacobian $J_s$ of Modern Robotics.")
     return Exercise("", "From Corke's jacob0 to the space Jacobian", st, {"J0": J0, "T_sb": T}, "numeric", ref,
                     mistakes, what="space Jacobian")
@@ -96,8 +96,8 @@ def _ch07_ex3(rng):
                 + V_FIRST),
     ]
     st = (f"Pinocchio's `getFrameJacobian(..., LOCAL_WORLD_ALIGNED)` gives, for the tool frame of a 5-joint arm, "
-          f"rows $(v, \\omega)$ of the frame's origin in world axes: $J_{{LWA}} = {bmatrix(J_lwa, 4)}$, at "
-          f"$T_{{sb}} = {bmatrix(T, 4)}$. Give the body Jacobian $J_b$ of Modern Robotics.")
+          f"rows $(v, \\omega)$ of the frame's origin in world axes: \n\n$$J_{{LWA}} = {bmatrix(J_lwa, 4)},$$\n\nat "
+          f"\n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\nGive the body Jacobian $J_b$ of Modern Robotics.")
     return Exercise("", "From Pinocchio's LOCAL_WORLD_ALIGNED to the body Jacobian", st,
                     {"J_lwa": J_lwa, "T_sb": T}, "numeric", ref, mistakes, what="body Jacobian")
 
@@ -300,7 +300,7 @@ def _ch09_ex1(rng):
                 "apply the wrench F."),
     ]
     st = (f"The first three joints of an arm have, at the current pose, the body Jacobian "
-          f"$J_b = {bmatrix(J_b, 4)}$ and the space Jacobian $J_s = {bmatrix(J_s, 4)}$. The tool must apply the "
+          f"\n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nand the space Jacobian \n\n$$J_s = {bmatrix(J_s, 4)}.$$\n\nThe tool must apply the "
           f"wrench $\\mathcal F_b = {vec(F_b)}$ (moment first, in the tool frame {{b}}). Give the joint torques "
           "$\\tau$ (3-vector).")
     return Exercise("", "Joint torques for a wrench", st, {"J_b": J_b, "J_s": J_s, "F_b": F_b}, "numeric", ref,
