@@ -387,3 +387,41 @@ def test_importing_jacobians_does_not_import_sympy():
 def test_bad_input_is_refused_clearly(call, exc, match):
     with pytest.raises(exc, match=match):
         call()
+
+
+# ------------------------------------------------------------------ smaller paths
+
+def test_input_forms_are_accepted():
+    t = sp.Symbol("t", real=True)
+    S1 = sp.Matrix([0, 0, 1, 0, 0, 0])
+    M = sp.eye(4)
+    # one joint: a bare symbol, a list, a numpy array of numbers
+    assert sym.fk(S1, M, t) == sym.fk(S1, M, [t])
+    assert np.allclose(np.array(sym.fk(S1, M, np.array([0.5])), dtype=float), lie.exp_se3([0, 0, 0.5, 0, 0, 0]))
+    # screw axes as a numpy array, transforms as nested lists, rows for vectors
+    assert sym.space_jacobian(np.array([[0, 0, 1, 0, 0, 0]]).T, [t]) == sp.Matrix(S1)
+    assert sym.adjoint(np.eye(4, dtype=int).tolist()) == sp.eye(6)
+    assert sym.exp_se3(sp.Matrix([[0, 0, 1, 0, 0, 0]]), t) == sym.exp_se3([0, 0, 1, 0, 0, 0], t)
+    # a prismatic joint with a symbolic direction is taken as unit
+    a = sp.Symbol("a", real=True)
+    T = sym.exp_se3([0, 0, 0, sp.cos(a), sp.sin(a), 0], t)
+    assert T[:3, 3] == sp.Matrix([t * sp.cos(a), t * sp.sin(a), 0])
+    # lambdify with nested symbols, a Matrix of symbols and a single symbol
+    arm, th, ls = sym.planar_chain(2)
+    f = sym.lambdify_matrix(arm.fk(), [th, sp.Matrix(ls)])
+    assert f.symbols == th + ls
+    g = sym.lambdify_matrix(sp.Matrix([[t**2]]), t)
+    assert np.allclose(g(np.array([1.0, 3.0])), [[[1.0]], [[9.0]]])
+    with pytest.raises(TypeError, match="sympy symbols"):
+        sym.lambdify_matrix(sp.Matrix([[t]]), [t, 2])
+    with pytest.raises(TypeError, match="sequence of sympy symbols"):
+        sym.lambdify_matrix(sp.Matrix([[t]]), {t})
+
+
+def test_symbolic_chain_repr_and_custom_symbols():
+    q = sp.symbols("q1 q2", real=True)
+    arm = sym.SymbolicChain(sp.Matrix([[0, 0, 1, 0, 0, 0], [0, 0, 0, 1, 0, 0]]).T, sp.eye(4), thetas=q)
+    assert "2 joints" in repr(arm)
+    assert arm.thetas == q
+    assert arm.space_jacobian()[:, 1].T == sp.Matrix([[0, 0, 0, sp.cos(q[0]), sp.sin(q[0]), 0]])
+    assert arm.body_axes == arm.screw_axes  # home = identity

@@ -863,7 +863,8 @@ def lambdify_matrix(A, symbols):
     f : callable
         ``f(x)`` with x of shape (..., k) returns an ndarray of shape
         (..., r, c); ``f(x1, ..., xk)`` with k scalars or broadcastable
-        arrays also works.
+        arrays also works. With a single symbol (k = 1), ``f(x)`` takes the
+        values of that symbol, any shape (...).
 
     >>> import numpy as np, sympy as sp
     >>> arm, th, ls = planar_chain(2)
