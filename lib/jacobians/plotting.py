@@ -603,13 +603,13 @@ def planar_arm_animation(chain, thetas, *, jacobian=None, show_columns=True, sho
 
 _ICONS = {
     "fa-minus": "&#8722;",  # minus
-    "fa-fast-backward": "&#9198;",  # ⏮
+    "fa-fast-backward": "&#10074;&#9664;&#9664;",  # ❚◀◀ (⏮ is missing from common fonts)
     "fa-step-backward": "&#10074;&#9664;",  # ❚◀
     "fa-play fa-flip-horizontal": "&#9664;",  # ◀
     "fa-pause": "&#10074;&#10074;",  # ❚❚
     "fa-play": "&#9654;",  # ▶
     "fa-step-forward": "&#9654;&#10074;",  # ▶❚
-    "fa-fast-forward": "&#9197;",  # ⏭
+    "fa-fast-forward": "&#9654;&#9654;&#10074;",  # ▶▶❚
     "fa-plus": "+",
 }
 

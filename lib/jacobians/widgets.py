@@ -949,12 +949,12 @@ def _planar_path(kind, reach, n_steps):
         a, b = np.array([0.3 * reach, 0.5 * reach]), np.array([reach, 0.0])
         x = a + np.outer(t / T, b - a)
         v = np.tile((b - a) / T, (n_steps, 1))
-    elif kind == "past the base":
-        a, b = np.array([0.6 * reach, 0.25 * reach]), np.array([-0.6 * reach, -0.25 * reach])
+    elif kind == "close past the base":
+        a, b = np.array([0.6 * reach, 0.03 * reach]), np.array([-0.6 * reach, 0.03 * reach])
         x = a + np.outer(t / T, b - a)
         v = np.tile((b - a) / T, (n_steps, 1))
     else:
-        raise ValueError(f"Expected path 'circle', 'to full reach' or 'past the base', got {kind!r}")
+        raise ValueError(f"Expected path 'circle', 'to full reach' or 'close past the base', got {kind!r}")
     return t, x, v
 
 
@@ -1003,10 +1003,10 @@ def resolved_rate(chain, theta0, x_des, v_des, dt, method="pinv", damping=0.05, 
 class ResolvedRateExplorer(_Explorer):
     """Resolved-rate motion; see :func:`resolved_rate_explorer`."""
 
-    PATHS = ("circle", "to full reach", "past the base")
+    PATHS = ("circle", "to full reach", "close past the base")
     RATE_LIMIT = 8.0  # rad/s shown on the rate plot; larger peaks leave the plot and are printed
 
-    def __init__(self, chain=None, path="to full reach", method="pinv", damping=0.1, *, static=False, n_steps=160,
+    def __init__(self, chain=None, path="close past the base", method="pinv", damping=0.1, *, static=False, n_steps=160,
                  figsize=(9.6, 4.8), dpi=80):
         super().__init__()
         chain = robots.planar_2r() if chain is None else chain
@@ -1135,12 +1135,13 @@ class ResolvedRateExplorer(_Explorer):
             level)
 
 
-def resolved_rate_explorer(chain=None, path="to full reach", method="pinv", damping=0.1, **kw) -> ResolvedRateExplorer:
+def resolved_rate_explorer(chain=None, path="close past the base", method="pinv", damping=0.1, **kw) -> ResolvedRateExplorer:
     r"""Resolved-rate motion of a planar arm along a path (chapter 9).
 
     Paths: ``"circle"`` (well inside the workspace), ``"to full reach"`` (ends
-    on the boundary, where the arm is stretched and singular) and ``"past the
-    base"`` (crosses the folded singularity of an arm with equal links). Methods:
+    on the boundary, where the arm is stretched and singular) and ``"close past
+    the base"`` (a straight line passing 3 % of the reach from the base: the arm
+    must swing joint 1 through about half a turn in a moment). Methods:
     pseudo-inverse, whose joint rates blow up approaching a singularity, or
     damped least squares, whose rates stay bounded at the cost of a tracking
     error. ``.set(path=, method=, damping=, step=)`` drives it; ``.rates_hist``,
@@ -1149,7 +1150,7 @@ def resolved_rate_explorer(chain=None, path="to full reach", method="pinv", damp
     return ResolvedRateExplorer(chain, path, method, damping, **kw)
 
 
-def resolved_rate_animation(chain=None, path="to full reach", method="pinv", damping=0.1, frames=36, dpi=72,
+def resolved_rate_animation(chain=None, path="close past the base", method="pinv", damping=0.1, frames=36, dpi=72,
                             interval=120):
     """The resolved-rate view as a FuncAnimation over the run."""
     w = ResolvedRateExplorer(chain, path, method, damping, static=True, dpi=dpi)
