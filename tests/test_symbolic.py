@@ -425,3 +425,18 @@ def test_symbolic_chain_repr_and_custom_symbols():
     assert arm.thetas == q
     assert arm.space_jacobian()[:, 1].T == sp.Matrix([[0, 0, 0, sp.cos(q[0]), sp.sin(q[0]), 0]])
     assert arm.body_axes == arm.screw_axes  # home = identity
+
+
+def test_float_axes_are_checked_with_a_tolerance():
+    t = sp.Symbol("t", real=True)
+    w = np.array([1.0, 2.0, 2.0]) / 3  # unit only up to round-off
+    R = sym.exp_so3(list(w), t)
+    assert np.allclose(np.array(R.subs(t, 0.7), dtype=float), lie.exp_so3(w * 0.7))
+    chain = jac.SerialChain(np.array([[0.6, 0, 0.8, 0, 0, 0], [1e-17, 0, 0, 0.6, 0.8, 0]]).T, np.eye(4))
+    arm = sym.SymbolicChain.from_numeric(chain, exact=False)
+    assert arm.screw_axes[0, 1] == 0
+    theta = np.array([0.4, -0.3])
+    f = sym.lambdify_matrix(arm.space_jacobian(), arm.thetas)
+    assert np.allclose(f(theta), jac.space_jacobian(chain, theta))
+    with pytest.raises(ValueError, match="unit"):
+        sym.exp_so3([0.6, 0.0, 0.8 + 1e-6], t)

@@ -130,10 +130,15 @@ def _thetas(thetas, n: int, name: str = "thetas") -> list:
     return [_scalar(t, f"{name}[{i}]") for i, t in enumerate(items)]
 
 
-def _is_zero(expr) -> bool | None:
-    """True / False when decidable, None when sympy cannot tell."""
-    z = sp.simplify(expr).is_zero if not expr.is_number else expr.is_zero
-    return z
+def _not_one(expr) -> bool:
+    """True when a squared norm is a number that is not 1 (to 1e-9); symbolic ones are taken as 1."""
+    if expr.free_symbols:
+        return False
+    try:
+        value = complex(expr.evalf())
+    except (TypeError, ValueError):  # pragma: no cover - not a number after all
+        return False
+    return abs(value - 1) > 1e-9
 
 
 def _check_unit_or_zero_omega(w: sp.Matrix, v: sp.Matrix, name: str) -> bool:
@@ -143,14 +148,12 @@ def _check_unit_or_zero_omega(w: sp.Matrix, v: sp.Matrix, name: str) -> bool:
     caller's responsibility, stated in the docstrings).
     """
     if all(e.is_zero for e in w):
-        if v.free_symbols:
-            return False
         nv = sum(e**2 for e in v)
-        if _is_zero(nv - 1) is False:
+        if _not_one(nv):
             raise ValueError(f"Expected {name} with omega = 0 to have a unit linear part, got |v|^2 = {nv}")
         return False
     nw = sum(e**2 for e in w)
-    if not nw.free_symbols and _is_zero(nw - 1) is False:
+    if _not_one(nw):
         raise ValueError(
             f"Expected {name} to have a unit angular part (|omega| = 1) or omega = 0, got |omega|^2 = {nw}; "
             "normalise the axis and scale theta instead"
@@ -224,7 +227,7 @@ def exp_so3(w_hat, theta) -> sp.Matrix:
     theta = _scalar(theta, "theta")
     w = _unskew(W)
     nw = sum(e**2 for e in w)
-    if not nw.free_symbols and _is_zero(nw - 1) is False:
+    if _not_one(nw):
         raise ValueError(f"Expected a unit rotation axis, got |w|^2 = {nw}; normalise it and scale theta instead")
     return sp.eye(3) + sp.sin(theta) * W + (1 - sp.cos(theta)) * W * W
 
@@ -677,7 +680,7 @@ class SymbolicChain:
         exact : bool
             If True, each float is replaced by the shortest rational that
             prints like it (0.425 -> 17/40), so sympy can simplify exactly;
-            if False the floats are kept.
+            if False the floats are kept. Entries below 1e-12 in size become 0.
 
         >>> import jacobians as jac
         >>> SymbolicChain.from_numeric(jac.robots.planar_2r(0.5, 0.25)).screw_axes[4, 1]
@@ -690,7 +693,7 @@ class SymbolicChain:
 
         def conv(x):
             x = float(x)
-            if x == 0:
+            if abs(x) < 1e-12:  # round-off left by numeric constructors
                 return sp.Integer(0)
             return sp.nsimplify(repr(x), rational=True) if exact else sp.Float(x)
 
