@@ -36,6 +36,9 @@ browser tests in ``tests/browser`` check that a built page shows none of them.
    figure caption, the titles the cell's code sets on the figure
    (``set_title``/``suptitle``/``plt.title``), else the section the output
    sits in. Authors who want better alt text set ``mystnb: image: alt:``.
+7. Page weight: the theme's ``fontawesome.js`` (1.4 MB, only needed for
+   custom icons, which the book has none of) is not loaded; see
+   :func:`_drop_fontawesome_js`.
 """
 
 from __future__ import annotations
@@ -58,6 +61,7 @@ _MATHJAX2_SHIM = r"""
      the book runs MathJax 3. Forward to typesetPromise once MathJax is up. */
   function queue(cmd) {
     var el = Array.isArray(cmd) ? cmd[2] : undefined;
+    dollarsToParens(el);
     var tries = 0;
     (function go() {
       var MJ = window.MathJax;
@@ -69,6 +73,17 @@ _MATHJAX2_SHIM = r"""
         setTimeout(go, 100);
       }
     })();
+  }
+  function dollarsToParens(el) {
+    /* widget descriptions use $...$; the book's MathJax 3 knows only \(...\) */
+    if (!el || !document.createTreeWalker) { return; }
+    var walker = document.createTreeWalker(el, NodeFilter.SHOW_TEXT), node, nodes = [];
+    while ((node = walker.nextNode())) { nodes.push(node); }
+    nodes.forEach(function (t) {
+      if (t.nodeValue.indexOf("$") >= 0) {
+        t.nodeValue = t.nodeValue.replace(/\$([^$]+)\$/g, "\\($1\\)");
+      }
+    });
   }
   function install() {
     var MJ = window.MathJax;
@@ -82,7 +97,16 @@ _MATHJAX2_SHIM = r"""
 
 
 def _require_paths_config(html_manager_url: str) -> str:
-    paths = {"@jupyter-widgets/html-manager/dist": html_manager_url.rstrip("/")}
+    # The bundle defines these AMD modules by name; each computes webpack's
+    # public path (where its fonts and chunks are) from its own module URI.
+    base = html_manager_url.rstrip("/")
+    paths = {
+        "@jupyter-widgets/html-manager/dist": base,
+        "@jupyter-widgets/html-manager": base + "/html-manager",
+        "@jupyter-widgets/base": base + "/base",
+        "@jupyter-widgets/controls": base + "/controls",
+        "@jupyter-widgets/output": base + "/output",
+    }
     return (
         "/* offline_fixes: serve the widget manager (and its fonts) from _static */\n"
         f"require.config({{paths: {json.dumps(paths)}}});"
@@ -141,7 +165,35 @@ def _fix_page_assets(app, pagename, templatename, context, doctree) -> None:
 
 
 # ---------------------------------------------------------------- config
+def _drop_fontawesome_js(app, config) -> None:
+    """Override pydata-sphinx-theme's ``static/webpack-macros.html`` without its fontawesome.js.
+
+    The theme loads ``_static/scripts/fontawesome.js`` (1.4 MB, every Font
+    Awesome icon as JavaScript) on every page "so that users can add custom
+    icons". The book adds none; the theme's own icons come from its CSS and
+    the woff2 webfont, so the script only adds weight. The override is made
+    from the installed theme's file at build time (one line removed), so it
+    follows the pinned theme version.
+    """
+    try:
+        import pydata_sphinx_theme
+    except ImportError:
+        return
+    src = Path(pydata_sphinx_theme.__file__).parent / "theme" / "pydata_sphinx_theme" / "static" / "webpack-macros.html"
+    if not src.exists():
+        return
+    text = src.read_text(encoding="utf-8")
+    fixed = re.sub(r"[ \t]*<script[^>]*scripts/fontawesome\.js[^>]*></script>\n?", "", text)
+    if fixed == text:
+        return
+    dest = Path(app.doctreedir) / "offline_fixes_templates"
+    (dest / "static").mkdir(parents=True, exist_ok=True)
+    (dest / "static" / "webpack-macros.html").write_text(fixed, encoding="utf-8")
+    config.templates_path = [str(dest)] + list(config.templates_path or [])
+
+
 def _config_inited(app, config) -> None:
+    _drop_fontawesome_js(app, config)
     if not config.html_favicon:
         config.html_favicon = str(HERE / "favicon.svg")
     if config.html_context is None:

@@ -35,7 +35,8 @@ DESKTOP = {"width": 1280, "height": 900}
 PHONE = {"width": 390, "height": 844}
 MAX_PAGE_BYTES = 3 * 1024 * 1024
 
-ASPECTS = ("load", "console", "offline", "math", "images", "animations", "solutions", "links", "errors", "weight")
+ASPECTS = ("load", "console", "offline", "math", "images", "animations", "widgets", "solutions", "links", "errors",
+           "weight")
 
 # Console messages that are not errors of the book. Each entry: (console type,
 # exact text, why it is harmless). Only types "error" and page errors fail a
@@ -140,7 +141,7 @@ class PageReport:
             f"{self.path:40s} {self.total_bytes / 1024:8.0f} KiB total "
             f"({self.own_bytes / 1024:6.0f} KiB page+images, {self.requests:3d} requests) "
             f"math {c.get('math_rendered', 0)}/{c.get('math_source', 0)}  img {c.get('images', 0)}  "
-            f"anim {c.get('animations', 0)}  dropdowns {c.get('dropdowns', 0)}  "
+            f"anim {c.get('animations', 0)}  sliders {c.get('sliders', 0)}  dropdowns {c.get('dropdowns', 0)}  "
             f"links {c.get('links', 0)}  {self.seconds:4.1f} s"
         )
 
@@ -296,6 +297,12 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         report.notes.append("network did not go idle within 10 s")
     page.wait_for_timeout(settle_ms)
 
+    # ---- desktop screenshot as the reader first sees the page (before any clicks)
+    if shots is not None:
+        shots.mkdir(parents=True, exist_ok=True)
+        stem = path.replace("/", "__").removesuffix(".html")
+        page.screenshot(path=str(shots / f"{stem}__desktop.png"), full_page=True)
+
     # ---- errors shown to the reader: tracebacks, error outputs
     err = page.evaluate(
         """() => {
@@ -366,12 +373,17 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
             continue
         try:
             a.scroll_into_view_if_needed(timeout=5_000)
-            before = img.evaluate("i => i.src")
+        except Exception:  # noqa: BLE001 - a hidden animation is still played below
+            pass
+        before = img.evaluate("i => i.src")
+        if not before.startswith("data:image"):
+            report.add("animations", f"animation {k + 1}: shows no frame before play")
+        try:
             slider = a.locator("input[type=range]").first
             v0 = slider.input_value() if slider.count() else None
             play.click(timeout=5_000)
             changed = page.wait_for_function(
-                "([i, s]) => i.src !== s", arg=[img.element_handle(), before], timeout=5_000
+                "([i, s]) => i.src !== s", arg=[img.element_handle(), before], timeout=4_000
             )
             changed.dispose()
             if pause.count():
@@ -380,8 +392,43 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
                 report.add("animations", f"animation {k + 1}: the frame changed but the slider did not move")
         except Exception as exc:  # noqa: BLE001
             report.add("animations", f"animation {k + 1}: pressing play did not change the frame ({exc.__class__.__name__})")
-        if not before or not before.startswith("data:image"):
-            report.add("animations", f"animation {k + 1}: shows no frame before play")
+
+    # ---- widget sliders: moving one must change something else on the page.
+    # An executed `interact` keeps its first output in a static page: the slider
+    # moves, nothing redraws. That is a dead control for the reader.
+    sliders = page.locator(".jupyter-widgets.widget-slider, .widget-slider.widget-hslider")
+    report.counts["sliders"] = sliders.count()
+    for k in range(sliders.count()):
+        sl = sliders.nth(k)
+        handle = sl.locator(".noUi-handle, input[type=range]").first
+        if handle.count() == 0:
+            report.add("widgets", f"slider {k + 1}: not rendered (no handle): is the widget manager loaded?")
+            continue
+        snap = """([s]) => {
+            const root = s.closest('.cell_output, .output_area, .cell') || document.body;
+            const clone = root.cloneNode(true);
+            const mark = s.getAttribute('data-bookcheck-slider');
+            clone.querySelectorAll(`[data-bookcheck-slider="${mark}"]`).forEach(e => e.remove());
+            const imgs = Array.from(root.querySelectorAll('img, canvas')).map(i => i.src || i.toDataURL()).join('|');
+            return [clone.innerHTML.replace(/\\s+/g, ' '), imgs, s.textContent];
+        }"""
+        try:
+            sl.evaluate(f"s => s.setAttribute('data-bookcheck-slider', 's{k}')")
+            sl.scroll_into_view_if_needed(timeout=5_000)
+            before = page.evaluate(snap, [sl.element_handle()])
+            handle.focus()
+            for _ in range(3):
+                page.keyboard.press("ArrowRight")
+            page.wait_for_timeout(600)
+            after = page.evaluate(snap, [sl.element_handle()])
+        except Exception as exc:  # noqa: BLE001
+            report.add("widgets", f"slider {k + 1}: could not be moved ({exc.__class__.__name__})")
+            continue
+        if before[2] == after[2]:
+            report.add("widgets", f"slider {k + 1}: does not move with the keyboard (its readout stays {before[2]!r})")
+        elif before[:2] == after[:2]:
+            report.add("widgets", f"slider {k + 1} ({after[2].strip()[:40]!r}): moving it changes nothing else on the "
+                       "page: a dead control without a kernel (show an animation instead)")
 
     # ---- dropdowns (exercise solutions, togglebutton admonitions, sphinx-design)
     drops = page.evaluate(
@@ -450,12 +497,10 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     if total > MAX_PAGE_BYTES:
         report.add("weight", f"page weighs {total / 2**20:.2f} MiB (> 3 MiB) over {len(responses)} requests")
 
-    # ---- screenshots, desktop then phone
+    # ---- phone screenshot (after the checks: solutions shown open, animations paused)
     if shots is not None:
-        shots.mkdir(parents=True, exist_ok=True)
         stem = path.replace("/", "__").removesuffix(".html")
         page.evaluate("() => window.scrollTo(0, 0)")
-        page.screenshot(path=str(shots / f"{stem}__desktop.png"), full_page=True)
         if phone:
             page.set_viewport_size(PHONE)
             page.wait_for_timeout(200)

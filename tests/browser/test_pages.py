@@ -58,6 +58,12 @@ def test_animations_play(page_reports, path):
 
 
 @pytest.mark.parametrize("path", PAGES)
+def test_widget_sliders_are_live(page_reports, path):
+    """A slider that redraws nothing without a kernel is a dead control for the reader."""
+    _assert_clean(page_reports(path), "widgets")
+
+
+@pytest.mark.parametrize("path", PAGES)
 def test_solutions_open(page_reports, path):
     _assert_clean(page_reports(path), "solutions")
 
