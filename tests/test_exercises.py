@@ -198,7 +198,6 @@ def test_references_agree_with_the_library(seed):
     T0 = arm.fk(th)
     for i in range(3):
         dT = jac.numerical_jacobian(lambda x: arm.fk(x), th)[..., i]
-        V = jac.lie.matrix_to_twist(dT @ np.linalg.inv(T0)) if False else None
         W = dT @ np.linalg.inv(T0)
         np.testing.assert_allclose([W[2, 1], W[0, 2], W[1, 0], *W[:3, 3]], ex.solution()[:, i], atol=1e-6)
 

@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import copy
 import html
-import math
 import numbers
 import signal
 import threading

@@ -8,7 +8,7 @@ import sympy as sp
 from .. import lie, robots
 from ..grading import Exercise, Feedback, Mistake, register
 from ._common import (DEG, adj, angles_deg, blockdiag, bmatrix, body_jac, degrees_mistake, degs, fk, inv_T,
-                      lengths, num, planar_chain, random_chain, sign_mistakes, space_jac, swap, swap_mistake, vec)
+                      lengths, num, planar_chain, random_chain, sign_mistakes, space_jac, swap_mistake, vec)
 
 
 def _rrp_state(rng, digits=4):
@@ -289,7 +289,7 @@ def _ch06_ex2(rng):
         Mistake("inverse", np.linalg.inv(ref), "This is B(\u03c6)\u207b\u00b9 (it maps \u03c9_s to \u03c6\u0307). The "
                 "exercise asks for B, which maps \u03c6\u0307 to \u03c9_s."),
         degrees_mistake(_B(phi_deg, rep)),
-        Mistake("body_frame", lie.exp_so3(np.zeros(3)) @ _rot(phi, rep).T @ ref,
+        Mistake("body_frame", _rot(phi, rep).T @ ref,
                 "This is the map to the angular velocity in the body frame, R\u1d40 B. The exercise wants \u03c9 in {s}."),
     ]
     name = {"zyx": "ZYX (yaw-pitch-roll)", "zyz": "ZYZ"}[rep]

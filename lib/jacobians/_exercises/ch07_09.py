@@ -7,7 +7,7 @@ import numpy as np
 from .. import robots
 from ..grading import Exercise, Feedback, Mistake, register
 from ._common import (DEG, adj, angles_deg, blockdiag, bmatrix, body_jac, degrees_mistake, degs, expS, fk,
-                      inv_T, lengths, num, planar_chain, random_chain, space_jac, swap, swap_mistake, vec)
+                      inv_T, lengths, planar_chain, random_chain, space_jac, swap, swap_mistake, vec)
 
 V_FIRST = ("Rows 1-3 of your answer should be the angular part and rows 4-6 the linear part: Modern Robotics "
            "puts \u03c9 first, unlike Siciliano, Corke and Pinocchio.")
