@@ -915,7 +915,7 @@ def gimbal_lock_explorer(angles_deg=(30.0, 60.0, 0.0), wrist="zyz", tool=0.3, **
     return GimbalLockExplorer(angles_deg, wrist, tool, **kw)
 
 
-def gimbal_lock_animation(frames=36, dpi=72, interval=150, wrist="zyz", theta1_deg=30.0, theta3_deg=0.0):
+def gimbal_lock_animation(frames=28, dpi=72, interval=150, wrist="zyz", theta1_deg=30.0, theta3_deg=0.0):
     """The gimbal-lock view as a FuncAnimation: θ2 goes from -90° to 90° (both included) and back."""
     w = GimbalLockExplorer((theta1_deg, 0.0, theta3_deg), wrist, static=True, dpi=dpi)
     half = max(int(frames) // 2, 2)
