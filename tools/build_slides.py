@@ -105,10 +105,18 @@ def deck_name(source: Path) -> str:
 
 
 def all_labels(root: Path = ROOT) -> dict:
+    """Label -> shown text over the whole book; a page is also known by its path.
+
+    Chapters are indexed last so that a chapter's stem names the chapter even
+    when an exercise notebook has the same file name.
+    """
     labels: dict = {}
-    for p in toc_files(root):
-        if p.suffix == ".md":
-            labels.update(myst.index_labels(p))
+    decks = set(deck_sources(root))
+    for p in sorted((p for p in toc_files(root) if p.suffix == ".md"), key=lambda p: p in decks):
+        found = myst.index_labels(p)
+        if p.stem in found:
+            found[p.relative_to(root).with_suffix("").as_posix()] = found[p.stem]
+        labels.update(found)
     return labels
 
 
@@ -246,7 +254,7 @@ def build_deck(source: Path, dest: Path, labels: dict, macros: dict, cache_dir: 
         "metadata": {"name": source.stem, "path": str(source.parent)},
         "course": {"vendor": VENDOR, "macros": macros},
     }
-    title = labels.get(source.stem, source.stem)
+    title = myst.index_labels(source).get(source.stem, source.stem)
     nb.metadata["title"] = title
     body, resources = ex.from_notebook_node(nb, resources=resources)
     out = dest / deck_name(source)

@@ -119,6 +119,8 @@ def walk(browser, source):
     if source.stem in _WALKS:
         return _WALKS[source.stem]
     context, port = browser
+    if not (DECKS / build_slides.deck_name(source)).exists():
+        pytest.fail(f"the deck of {source.name} was not built (see test_deck_builds)")
     page = context.new_page()
     host = f"http://127.0.0.1:{port}/"
     external, console_errors = [], []

@@ -211,6 +211,7 @@ def test_skipped_prose_keeps_its_definition_results_and_warnings():
     assert len(pieces) == 6
     types = [piece_slide_type(p, k, "skip") for k, p in enumerate(pieces)]
     assert types == ["skip", "-", "skip", "fragment", "skip", "slide"]
+    assert piece_slide_type(pieces[1], 1, "skip", boxes_before=1) == "subslide"
     assert [piece_slide_type(p, k, None) for k, p in enumerate(pieces)] == ["-", "-", "-", "-", "-", "slide"]
     assert [piece_slide_type(p, k, "notes") for k, p in enumerate(pieces)][-1] == "slide"
     # the re-serialised directive converts exactly like the original
@@ -224,3 +225,13 @@ def test_colon_directive_survives_splitting():
     assert len(pieces) == 2
     out = myst.convert_markdown(pieces[0], myst.Context())
     assert 'class="box box-important"' in out and "Key **fact**." in out and ":class:" not in out
+
+
+def test_inline_math_over_lines_is_joined_so_plus_is_not_a_list():
+    from nbconvert.filters.markdown_mistune import markdown2html_mistune
+
+    out = conv("Then $\\|J\\| = a\n+ b$, and $c$\n- a real item")
+    assert "$\\|J\\| = a + b$" in out
+    html = markdown2html_mistune(out)
+    assert "<li>" not in html.split("a real item")[0].split("$c$")[0]
+    assert "\\|J\\|" in html

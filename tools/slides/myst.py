@@ -206,7 +206,9 @@ def _readable(label: str) -> str:
 def resolve(target: str, ctx: Context) -> str:
     """The text a reference to ``target`` shows: its title if known."""
     target = target.strip()
-    for key in (target, target.lstrip("#"), target.rsplit("/", 1)[-1], Path(target).stem):
+    normal = re.sub(r"^(\.\./|\./|/)+", "", target)
+    normal = re.sub(r"\.(md|ipynb)$", "", normal)
+    for key in (target, target.lstrip("#"), normal, target.rsplit("/", 1)[-1], Path(target).stem):
         if key in ctx.labels:
             return ctx.labels[key]
     return _readable(target.lstrip("#"))
@@ -239,13 +241,14 @@ def convert_role(name: str, text: str, ctx: Context) -> str:
     return text
 
 
-_PROTECT = re.compile(r"(`+)(?:.|\n)*?\1|\$\$(?:.|\n)*?\$\$|\$[^$\n]+\$|\\\[(?:.|\n)*?\\\]|\\\((?:.|\n)*?\\\)")
+_PROTECT = re.compile(r"(`+)(?:.|\n)*?\1|\$\$(?:.|\n)*?\$\$|\$(?!\$)(?:[^$\n]|\n(?!\s*\n))+?\$|\\\[(?:.|\n)*?\\\]|\\\((?:.|\n)*?\\\)")
 
 
 def convert_inline(text: str, ctx: Context) -> str:
     """Roles, cross-reference links, equation labels and local images in ``text``.
 
-    Links and images are not looked for inside code spans or math.
+    Links and images are not looked for inside code spans or math; inline math
+    spread over several lines is joined into one line.
     """
     out = _ROLE.sub(lambda m: convert_role(m.group("name"), m.group("text"), ctx), text)
     out = "\n".join(_EQ_LABEL.sub(r"\1", line) for line in out.split("\n"))
@@ -264,7 +267,12 @@ def convert_inline(text: str, ctx: Context) -> str:
     last = 0
     for m in _PROTECT.finditer(out):
         pieces.append(plain(out[last:m.start()]))
-        pieces.append(m.group(0))
+        token = m.group(0)
+        if token.startswith("$") and not token.startswith("$$"):
+            # inline math over several lines: one line, so that a line starting
+            # with "+" or "-" inside it is not read as a Markdown list
+            token = re.sub(r"\s*\n\s*", " ", token)
+        pieces.append(token)
         last = m.end()
     pieces.append(plain(out[last:]))
     return "".join(pieces)

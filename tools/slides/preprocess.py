@@ -78,14 +78,17 @@ def auto_slide_type(markdown: str) -> str:
     return "-"
 
 
-def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool = False) -> str:
+def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool = False,
+                     boxes_before: int = 0) -> str:
     """Slide type of the ``k``-th piece of a Markdown cell whose metadata says ``explicit``.
 
     * no metadata: the first piece by :func:`auto_slide_type`, later pieces
       continue the slide unless they start with a heading;
     * ``skip``: the prose stays off the slides, but a definition, result,
-      exercise or warning in the cell is shown (on the current slide; a proof
-      as a fragment), and a later ``#``/``##`` heading starts a slide;
+      exercise or warning in the cell is shown: the first on the current
+      slide, each further one on a subslide of its own (``boxes_before``
+      counts those already shown from this cell), a proof as a fragment below
+      its result; a later ``#``/``##`` heading starts a slide;
     * ``notes``: stays notes, except a later ``#``/``##`` heading;
     * anything else: the first piece has it, later pieces as with no metadata.
     """
@@ -98,7 +101,9 @@ def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool
         if k > 0 and level in (1, 2):
             return "slide"
         if kind in SHOWN_EVEN_IF_SKIPPED:
-            return "fragment" if kind == "proof" else "-"
+            if kind == "proof":
+                return "fragment"
+            return "subslide" if boxes_before else "-"
         return "skip"
     if explicit == "notes":
         return "slide" if (k > 0 and level in (1, 2)) else "notes"
@@ -143,6 +148,7 @@ class MystSlidesPreprocessor(Preprocessor):
     def _markdown(self, cell, ctx):
         explicit = _explicit_type(cell)
         out = []
+        boxes = 0
         for k, piece in enumerate(myst.split_cell(cell.source)):
             was_in_solution = ctx.in_solution
             text = myst.convert_markdown(piece, ctx)
@@ -150,7 +156,12 @@ class MystSlidesPreprocessor(Preprocessor):
                 continue
             new = nbformat.v4.new_markdown_cell(text)
             new.metadata = copy.deepcopy(dict(cell.metadata)) if k == 0 else {}
-            _set_type(new, piece_slide_type(piece, k, explicit, was_in_solution))
+            slide_type = piece_slide_type(piece, k, explicit, was_in_solution, boxes)
+            if slide_type == "slide":
+                boxes = 0
+            elif explicit == "skip" and slide_type in ("-", "subslide"):
+                boxes += 1
+            _set_type(new, slide_type)
             out.append(new)
         return out
 
