@@ -47,7 +47,6 @@ from .plotting import (
     COLUMN_COLORS,
     PALETTE,
     EllipseArtist,
-    FrameArtist,
     PlanarArmArtist,
     TwistArtist,
     MatrixArtist,
