@@ -274,3 +274,9 @@ def test_properties_over_random_chains_and_batches(seed, batch):
 def test_bad_input(call, exc, match):
     with pytest.raises(exc, match=match):
         call()
+
+
+def test_reexports_are_the_same_functions():
+    assert an.pinv_rates is jac.velocity.pinv_rates
+    assert an.dls_rates is jac.velocity.dls_rates
+    assert an.joint_torques is jac.statics.joint_torques

@@ -21,6 +21,11 @@ For the velocity of the hand, take the linear rows of the *geometric* or
 >>> J_v = linear_rows(jac.geometric_jacobian(arm, [0.0, np.pi / 2]))[:2]
 >>> round(float(manipulability(J_v)), 12)   # l1 l2 |sin theta2|
 1.0
+
+For convenience the inverse-velocity and statics helpers are re-exported
+here: :func:`~jacobians.velocity.pinv_rates`,
+:func:`~jacobians.velocity.dls_rates` and
+:func:`~jacobians.statics.joint_torques`.
 """
 
 from __future__ import annotations
@@ -28,6 +33,8 @@ from __future__ import annotations
 import numpy as np
 
 from ._validation import as_float_array, check_finite, positive_float
+from .statics import joint_torques
+from .velocity import dls_rates, pinv_rates
 
 __all__ = [
     "singular_values",
@@ -42,6 +49,9 @@ __all__ = [
     "singularity_measure",
     "nullspace",
     "nullspace_projector",
+    "pinv_rates",
+    "dls_rates",
+    "joint_torques",
 ]
 
 
