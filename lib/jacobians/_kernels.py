@@ -183,7 +183,8 @@ def _rotate_const(R, vec):
     return acc
 
 
-def sweep_batch(C: ChainConstants, thT: np.ndarray, want_columns: bool, want_prefixes: bool = False):
+def sweep_batch(C: ChainConstants, thT: np.ndarray, want_columns: bool, want_prefixes: bool = False,
+                want_final: bool = True):
     """Run along the chain for one chunk.
 
     Parameters
@@ -194,6 +195,8 @@ def sweep_batch(C: ChainConstants, thT: np.ndarray, want_columns: bool, want_pre
     -------
     J : (6, n, m) space Jacobian columns, or None
     R, p : (3, 3, m), (3, m) the full product e^{[S_1]θ_1}...e^{[S_n]θ_n}
+        (when ``want_final`` is false and no prefixes are asked for, the
+        product stops before the last joint and R, p are not meaningful)
     prefixes : list of (R, p) for i = 1..n (only when asked)
     """
     n, m = thT.shape
@@ -217,6 +220,8 @@ def sweep_batch(C: ChainConstants, thT: np.ndarray, want_columns: bool, want_pre
                 J[3, i] = vs[0] + p[1] * ws[2] - p[2] * ws[1]
                 J[4, i] = vs[1] + p[2] * ws[0] - p[0] * ws[2]
                 J[5, i] = vs[2] + p[0] * ws[1] - p[1] * ws[0]
+        if i == n - 1 and not (want_final or want_prefixes):
+            break  # the columns need only the products before the last joint
         R, p = _compose(R, p, C, i, thT[i], s[i], omc[i], tms[i])
         if want_prefixes:
             pref.append((R, p))

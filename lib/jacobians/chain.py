@@ -101,6 +101,9 @@ class SerialChain:
             raise TypeError(f"Expected a str for name, got {type(name).__name__}")
         self.name = name
         self._C = K.ChainConstants(self._S)
+        # The body Jacobian is the space Jacobian of the reversed chain with axes -B_n, ..., -B_1:
+        # J_bi = Ad_{e^{-[B_n]θ_n}...e^{-[B_{i+1}]θ_{i+1}}} B_i (columns reversed, sign flipped).
+        self._C_rev = K.ChainConstants(-self._B[:, ::-1])
 
     # ------------------------------------------------------------ properties
     @property

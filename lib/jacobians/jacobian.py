@@ -131,9 +131,16 @@ def _evaluate(chain: SerialChain, theta, kind: str, with_pose: bool = False):
         T[:, 3, 3] = 1.0
     for a in range(0, N, K.CHUNK):
         b = min(a + K.CHUNK, N)
+        if kind == "body" and not with_pose:
+            # reversed sweep over -B_n..-B_1: no conversion needed
+            thT = np.ascontiguousarray(flat[a:b, ::-1].T)
+            J, _, _, _ = K.sweep_batch(chain._C_rev, thT, want_columns=True, want_final=False)
+            np.negative(J[:, ::-1].transpose(2, 0, 1), out=out[a:b])
+            continue
         thT = np.ascontiguousarray(flat[a:b].T)
-        J, R, p, _ = K.sweep_batch(C, thT, want_columns=True)
-        if kind != "space" or with_pose:
+        need_pose = kind != "space" or with_pose
+        J, R, p, _ = K.sweep_batch(C, thT, want_columns=True, want_final=need_pose)
+        if need_pose:
             R, p = K.times_home(R, p, M)
         out[a:b] = _core_convert(kind, J, R, p).transpose(2, 0, 1)
         if with_pose:
