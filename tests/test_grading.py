@@ -233,6 +233,19 @@ def test_function_that_raises_is_reported_politely():
     assert not fb.correct and fb.mistake == "raised" and "ValueError" in fb.message
 
 
+def test_function_that_exits_or_recurses():
+    import sys
+
+    def leaves(S, theta):
+        sys.exit(1)
+
+    def deep(S, theta):
+        return deep(S, theta)
+
+    assert "exit()" in grading.check("ch02_ex4", leaves).message
+    assert "RecursionError" in grading.check("ch02_ex4", deep).message
+
+
 def test_function_returning_none_wrong_shape_or_text():
     assert grading.check("ch02_ex4", lambda S, th: None).mistake == "returned_none"
     assert grading.check("ch02_ex4", lambda S, th: np.zeros((3, 3))).mistake == "wrong_shape"

@@ -401,6 +401,8 @@ def _run_guarded(fn: Callable, args: tuple, limit: float = TIME_LIMIT):
         return False, f"your function did not finish within {limit:g} s (an endless loop?)"
     except RecursionError:
         return False, "your function recursed too deeply (RecursionError)"
+    except SystemExit:
+        return False, "your function called exit()"
     except Exception as exc:  # anything the student's code raises
         text = str(exc).splitlines()[0][:200] if str(exc) else ""
         return False, f"your function raised {type(exc).__name__}" + (f": {text}" if text else "")
