@@ -10,22 +10,29 @@ Every function takes sympy matrices (or anything :class:`sympy.Matrix`
 accepts: nested lists, numpy arrays) and returns a ``sympy.Matrix``. Strings
 are refused: nothing here parses text.
 
+The kinematics functions (:func:`fk`, :func:`space_jacobian`,
+:func:`body_jacobian`, :func:`geometric_jacobian`, :func:`link_jacobian`)
+simplify as they multiply (``simplify=True``, the default), which is both
+faster and more readable than simplifying the expanded product at the end;
+``simplify=False`` gives the raw expanded products.
+
 This module imports sympy; ``import jacobians`` does not import it.
 
 >>> import sympy as sp
 >>> from jacobians import symbolic as sym
 >>> arm, (t1, t2), (l1, l2) = sym.planar_chain(2)
->>> J_s = sym.simplify_matrix(sym.space_jacobian(arm.screw_axes, [t1, t2]))
+>>> J_s = sym.space_jacobian(arm.screw_axes, [t1, t2])
 >>> J_s[3:5, :]
 Matrix([
 [0,  l1*sin(theta1)],
 [0, -l1*cos(theta1)]])
+>>> sym.space_jacobian(arm.screw_axes, [t1, t2], simplify=False) == J_s   # already in simplest form here
+True
 """
 
 from __future__ import annotations
 
 import numbers
-from typing import Sequence
 
 import numpy as np
 import sympy as sp
