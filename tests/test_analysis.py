@@ -237,7 +237,6 @@ def test_properties_over_random_chains_and_batches(seed, batch):
     flat = J.reshape((-1, 6, chain.dof))
     assert np.allclose(s.reshape(-1, r), [np.linalg.svd(j, compute_uv=False) for j in flat])
     # frame changes by a rotation do not change singular values of one kind of rows
-    T = chain.fk(theta)
     J_b = jac.body_jacobian(chain, theta)
     assert np.allclose(an.singular_values(an.linear_rows(J_b)), an.singular_values(an.linear_rows(J)), atol=1e-9)
     assert np.allclose(an.manipulability(an.angular_rows(J_b)), an.manipulability(an.angular_rows(J)), atol=1e-9)
@@ -252,7 +251,6 @@ def test_properties_over_random_chains_and_batches(seed, batch):
     fin = np.isfinite(k)
     assert np.allclose((k * iso)[fin], 1.0)
     assert an.is_singular(J).shape == batch
-    del T
 
 
 # ------------------------------------------------------------------ bad input
