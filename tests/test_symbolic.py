@@ -440,3 +440,28 @@ def test_float_axes_are_checked_with_a_tolerance():
     assert np.allclose(f(theta), jac.space_jacobian(chain, theta))
     with pytest.raises(ValueError, match="unit"):
         sym.exp_so3([0.6, 0.0, 0.8 + 1e-6], t)
+
+
+def test_link_homes_of_planar_chain_and_round_trip():
+    arm, th, ls = sym.planar_chain(3)
+    lengths = [0.8, 1.1, 0.5]
+    num = jac.robots.planar(lengths)
+    subs = dict(zip(ls, lengths))
+    assert np.allclose([np.array(H.subs(subs), dtype=float) for H in arm.link_homes], num.link_homes)
+    back = sym.to_numeric_chain(arm, subs)
+    assert np.allclose(back.link_homes, num.link_homes)
+    thetas = _random_thetas(3, 3)
+    ref = jac.link_jacobians(num, thetas, frame="geometric")
+    for i in (1, 2, 3):
+        J_i = arm.link_jacobian(i, frame="geometric").subs(subs)
+        assert np.allclose(sym.lambdify_matrix(J_i, th)(thetas), ref[:, i - 1], atol=1e-12)
+    # from_numeric keeps the numeric chain's link frames
+    ur5 = jac.robots.ur5()
+    assert np.allclose([np.array(H, dtype=float) for H in sym.SymbolicChain.from_numeric(ur5).link_homes],
+                       ur5.link_homes)
+    with pytest.raises(ValueError, match="3 link home poses"):
+        sym.SymbolicChain(arm.screw_axes, arm.home, link_homes=[sp.eye(4)])
+    with pytest.raises(TypeError, match="link_homes"):
+        sym.SymbolicChain(arm.screw_axes, arm.home, link_homes=sp.eye(4))
+    with pytest.raises(ValueError, match="link_home"):
+        sym.SymbolicChain(arm.screw_axes, arm.home).link_jacobian(2, frame="body")

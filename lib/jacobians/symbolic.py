@@ -624,10 +624,13 @@ class SymbolicChain:
     params : sequence of sympy symbols, optional
         Other symbols (link lengths) the chain depends on, kept for
         :func:`lambdify_matrix` and :func:`to_numeric_chain`.
+    link_homes : sequence of n sympy 4 x 4 matrices, optional
+        Home poses :math:`M_i` of frames fixed to the links (for
+        :meth:`link_jacobian`); ``None`` if not given.
 
-    The methods ``fk``, ``space_jacobian``, ``body_jacobian`` and
-    ``geometric_jacobian`` take optional ``thetas`` (default: the chain's
-    symbols) and ``simplify`` (default True).
+    The methods ``fk``, ``space_jacobian``, ``body_jacobian``,
+    ``geometric_jacobian`` and ``link_jacobian`` take optional ``thetas``
+    (default: the chain's symbols) and ``simplify`` (default True).
 
     >>> import sympy as sp
     >>> S = sp.Matrix([[0, 0, 1, 0, 0, 0]]).T
@@ -636,10 +639,17 @@ class SymbolicChain:
     Matrix([[0, 0, 1, -2*sin(theta1), 2*cos(theta1), 0]])
     """
 
-    def __init__(self, screw_axes, home, thetas=None, params=()):
+    def __init__(self, screw_axes, home, thetas=None, params=(), link_homes=None):
         self.screw_axes = _screw_axes(screw_axes, "screw_axes")
         self.home = _transform(home, "home")
         n = self.screw_axes.cols
+        if link_homes is not None:
+            if isinstance(link_homes, (str, bytes, sp.MatrixBase)) or not hasattr(link_homes, "__len__"):
+                raise TypeError(f"Expected a sequence of {n} 4 x 4 matrices for link_homes, got {_describe(link_homes)}")
+            if len(link_homes) != n:
+                raise ValueError(f"Expected {n} link home poses (one per joint), got {len(link_homes)}")
+            link_homes = tuple(_transform(M_i, f"link_homes[{i}]") for i, M_i in enumerate(link_homes))
+        self.link_homes = link_homes
         if thetas is None:
             thetas = sp.symbols(f"theta1:{n + 1}", real=True)
         self.thetas = tuple(_thetas(thetas, n))
@@ -677,6 +687,13 @@ class SymbolicChain:
         """:func:`geometric_jacobian` of this chain."""
         return geometric_jacobian(self.screw_axes, self.home, self._th(thetas), simplify)
 
+    def link_jacobian(self, i: int, frame: str = "space", thetas=None, simplify: bool = True) -> sp.Matrix:
+        """:func:`link_jacobian` of link i (1-based) of this chain, with its ``link_homes``."""
+        M_i = None
+        if self.link_homes is not None and isinstance(i, numbers.Integral) and 1 <= i <= self.dof:
+            M_i = self.link_homes[i - 1]
+        return link_jacobian(self.screw_axes, self._th(thetas), i, link_home=M_i, frame=frame, simplify=simplify)
+
     @classmethod
     def from_numeric(cls, chain, exact: bool = True, thetas=None) -> "SymbolicChain":
         """The symbolic twin of a :class:`jacobians.SerialChain`.
@@ -706,7 +723,8 @@ class SymbolicChain:
 
         S = sp.Matrix(6, chain.dof, lambda i, j: conv(chain.screw_axes[i, j]))
         M = sp.Matrix(4, 4, lambda i, j: conv(chain.home[i, j]))
-        return cls(S, M, thetas=thetas)
+        homes = [sp.Matrix(4, 4, lambda i, j: conv(H[i, j])) for H in chain.link_homes]
+        return cls(S, M, thetas=thetas, link_homes=homes)
 
 
 def planar_chain(n: int, lengths=None):
@@ -725,7 +743,9 @@ def planar_chain(n: int, lengths=None):
     Returns
     -------
     chain : SymbolicChain
-        ``chain.thetas`` are the joint symbols, ``chain.params`` the length symbols.
+        ``chain.thetas`` are the joint symbols, ``chain.params`` the length
+        symbols, ``chain.link_homes`` frames at the middle of each link (as
+        :func:`jacobians.robots.planar`).
     thetas : tuple of n real symbols ``theta1 .. thetan``
     lengths : tuple of n link lengths (the symbols, or the values given)
 
@@ -763,7 +783,13 @@ def planar_chain(n: int, lengths=None):
         S[4, i] = -x[i]
     M = sp.eye(4)
     M[0, 3] = x[n]
-    return SymbolicChain(S, M, thetas=thetas, params=params), tuple(thetas), tuple(ls)
+    homes = []
+    for i in range(n):  # link frames at mid-link, as in jacobians.robots.planar
+        M_i = sp.eye(4)
+        M_i[0, 3] = x[i] + ls[i] / 2
+        homes.append(M_i)
+    chain = SymbolicChain(S, M, thetas=thetas, params=params, link_homes=homes)
+    return chain, tuple(thetas), tuple(ls)
 
 
 # ---------------------------------------------------------------- simplification and numbers
@@ -936,7 +962,12 @@ def to_numeric_chain(chain: SymbolicChain, values=None, name: str | None = None)
     subs = {k: _scalar(v, f"values[{k}]") for k, v in values.items()}
     S = chain.screw_axes.subs(subs)
     M = chain.home.subs(subs)
-    free = (S.free_symbols | M.free_symbols)
+    homes = None if chain.link_homes is None else [H.subs(subs) for H in chain.link_homes]
+    free = S.free_symbols | M.free_symbols
+    if homes is not None:
+        free = free.union(*[H.free_symbols for H in homes])
     if free:
         raise ValueError(f"Expected a value for every parameter, missing {sorted(map(str, free))}")
-    return SerialChain(np.array(S.evalf(), dtype=float), np.array(M.evalf(), dtype=float), name=name)
+    link_homes = None if homes is None else np.array([np.array(H.evalf(), dtype=float) for H in homes])
+    return SerialChain(np.array(S.evalf(), dtype=float), np.array(M.evalf(), dtype=float),
+                       link_homes=link_homes, name=name)
