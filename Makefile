@@ -50,6 +50,7 @@ browser:
 # ------------------------------------------------------------------ the book
 book: vendor
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
+	$(PY) tools/make_exercises.py _build/html/exercises/student
 	@echo "The book is in _build/html/index.html"
 
 # ------------------------------------------------------------------ tests

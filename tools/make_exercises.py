@@ -26,6 +26,7 @@ import nbformat
 ROOT = Path(__file__).resolve().parent.parent
 SOURCES = ROOT / "exercises"
 SOLUTION_TAG = "solution"
+BOOK_ONLY_TAG = "book-only"  # cells for the web page only (the link to this very notebook)
 
 _EXERCISE = re.compile(r"```\{exercise\}[^\n]*\n((?::[^\n]*\n)*)(.*?)\n```", re.S)
 _ROLE = re.compile(r"\{(?:doc|ref|numref|prf:ref)\}`([^`<]*?)(?:\s*<([^>]*)>)?`")
@@ -53,7 +54,7 @@ def student_notebook(path: Path) -> nbformat.NotebookNode:
     cells = []
     for cell in nb.cells:
         tags = cell.get("metadata", {}).get("tags", [])
-        if SOLUTION_TAG in tags:
+        if SOLUTION_TAG in tags or BOOK_ONLY_TAG in tags:
             continue
         if cell.cell_type == "code":
             cell.outputs = []

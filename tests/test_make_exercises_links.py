@@ -1,0 +1,28 @@
+"""The exercise pages link to their student notebooks; the link itself never reaches the student version."""
+
+import importlib.util
+from pathlib import Path
+
+import jupytext
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _tool():
+    spec = importlib.util.spec_from_file_location("make_exercises", ROOT / "tools" / "make_exercises.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_every_exercise_page_links_its_student_notebook_and_the_link_is_book_only():
+    tool = _tool()
+    sources = sorted((ROOT / "exercises").glob("[0-9][0-9]_*.md"))
+    assert len(sources) == 9
+    for path in sources:
+        nb = jupytext.read(path)
+        link_cells = [c for c in nb.cells if f'href="student/{path.stem}.ipynb"' in c.source]
+        assert len(link_cells) == 1, path.name
+        assert "book-only" in link_cells[0].metadata.get("tags", [])
+        student = tool.student_notebook(path)
+        assert not any("student/" + path.stem in c.source for c in student.cells)
