@@ -174,7 +174,7 @@ def linear_rows(J) -> np.ndarray:
       momentarily at the origin of {s}. This is **not** the hand's velocity;
       an ellipsoid built from it is wrong for the hand.
 
-    MR: :math:`J_v` of Section 5.4 ("the bottom three rows of :math:`J_b`").
+    MR: :math:`J_v` of Section 5.4, the linear block of :math:`J_b`.
 
     Parameters
     ----------
@@ -297,7 +297,7 @@ def force_ellipsoid(A, rtol=None) -> tuple:
 def singularity_measure(J) -> np.ndarray:
     r"""The smallest singular value :math:`\sigma_{\min}` (of the min(m, n)); zero at a singularity.
 
-    MR: the distance to a singularity used in Section 5.3 ("the rank of J drops").
+    MR: no function; Section 5.3 defines a singularity as a drop in the rank of J.
 
     >>> round(float(singularity_measure([[1.0, 1.0], [1.0, 1.0]])), 12)
     0.0

@@ -116,7 +116,7 @@ def wrench_space_to_body(F_s, T_sb) -> np.ndarray:
     r""":math:`\mathcal F_b = [\mathrm{Ad}_{T_{sb}}]^T\mathcal F_s` (the same wrench, seen in {b}).
 
     Wrenches change frame with the transposed adjoint, so that
-    :math:`\mathcal F_b^T\mathcal V_b = \mathcal F_s^T\mathcal V_s`. MR: Eq. (3.95).
+    :math:`\mathcal F_b^T\mathcal V_b = \mathcal F_s^T\mathcal V_s`. MR: Section 3.3 (wrenches).
 
     Parameters
     ----------

@@ -68,7 +68,7 @@ def pinv_rates(J, V, rcond: float = 1e-10) -> np.ndarray:
 
     Computed from the SVD :math:`J = U\Sigma V^T`: singular values below
     ``rcond * sigma_max`` are treated as zero (their direction gets no rate,
-    as in ``numpy.linalg.pinv``). MR: the :math:`J^\dagger` of Section 6.3,
+    as in ``numpy.linalg.pinv``). MR: the :math:`J^\dagger` of Sections 6.2-6.3,
     used in ``IKinSpace`` / ``IKinBody`` (``np.linalg.pinv``).
 
     Parameters
@@ -106,8 +106,8 @@ def dls_rates(J, V, damping: float) -> np.ndarray:
     \lambda^2} v_i u_i^T V` (no normal equations are formed, so nothing is
     squared and inverted). Each gain is at most :math:`1/(2\lambda)`, so
     :math:`\|\dot\theta\|\le\|V\|/(2\lambda)` even at a singularity; as
-    :math:`\lambda\to 0` it tends to :func:`pinv_rates`. MR: not in MR's code
-    (the book mentions damped least squares as the remedy near singularities).
+    :math:`\lambda\to 0` it tends to :func:`pinv_rates`. MR: no counterpart in
+    MR's code.
 
     Parameters
     ----------
@@ -168,8 +168,8 @@ def resolved_rate(chain, theta0, target_path, dt: float, method: str = "pinv", d
     squares (``"dls"``). The feed-forward :math:`\dot p_{d,k}` comes from
     ``target_velocities`` or, if omitted, from forward differences of the
     path; the feedback gain K removes the drift of the Euler steps. MR:
-    Section 6.3's Newton-Raphson update is the same step with :math:`\dot p_d = 0`
-    and :math:`K\Delta t = 1`.
+    the Newton-Raphson step of Section 6.2 (``IKinSpace`` / ``IKinBody``) is
+    the same update with :math:`\dot p_d = 0` and :math:`K\Delta t = 1`.
 
     Parameters
     ----------
