@@ -61,4 +61,7 @@ __all__ = [
     "representations",
     "robots",
     "analysis",
+    "interop",
+    "statics",
+    "velocity",
 ]
