@@ -61,18 +61,66 @@ def test_displayed_formulas_hold(chain):
     np.testing.assert_allclose(J_a, num, atol=1e-6)
 
 
-def test_ellipse_semi_axes_are_singular_values():
-    J_v = jac.geometric_jacobian(jac.robots.planar_2r(), [0.3, 0.8])[3:5]
-    s, U = Wd.velocity_force_ellipses(J_v)
-    # points U diag(s) u with |u| = 1 are exactly the images J_v qdot with |qdot| = 1 (extremes)
-    for k in range(2):
-        qdot = np.linalg.svd(J_v)[2][k]
-        np.testing.assert_allclose(np.abs(U[:, k] @ (J_v @ qdot)), s[k], atol=1e-12)
-    # force ellipse: f = u_k / s_k gives |J_v^T f| = 1
-    for k in range(2):
-        np.testing.assert_allclose(np.linalg.norm(J_v.T @ (U[:, k] / s[k])), 1.0, atol=1e-12)
-    with pytest.raises(ValueError, match=r"\(2, n\)"):
-        Wd.velocity_force_ellipses(np.zeros((3, 2)))
+def test_drawn_ellipses_are_the_library_ellipses():
+    """The outlines drawn are the images of |qdot| = 1 and the forces with |J_v^T f| = 1 (library axes)."""
+    w = Wd.planar_arm_explorer(jac.robots.planar_3r(1.0, 0.8, 0.5), theta=[0.3, 0.8, -0.6])
+    J_v = jac.geometric_jacobian(w.chain, w.theta)[3:5]
+    tip = w.chain.fk(w.theta)[:2, 3]
+    axes_v, U = jac.analysis.velocity_ellipsoid(J_v)
+    axes_f, _ = jac.analysis.force_ellipsoid(J_v)
+    np.testing.assert_allclose(w.sigma, axes_v, atol=1e-12)
+    np.testing.assert_allclose(w.force_semi_axes, 1.0 / np.linalg.svd(J_v, compute_uv=False), rtol=1e-12)
+    np.testing.assert_allclose(w.force_semi_axes, axes_f, rtol=1e-12)
+    assert w.force_state is None and not w.force_clipped.any()
+    # velocity outline: points U diag(s) u with |u| = 1 are images J_v qdot with |qdot| = 1
+    pts = (w.vel_ellipse.line.get_xydata() - tip) / w.vel_scale
+    qdot = np.linalg.pinv(J_v) @ pts.T
+    np.testing.assert_allclose(np.linalg.norm(qdot, axis=0), 1.0, atol=1e-9)
+    # force outline: every drawn point f has |J_v^T f| = 1 (unit joint torque)
+    f = (w.force_ellipse.line.get_xydata() - tip) / w.force_scale
+    np.testing.assert_allclose(np.linalg.norm(J_v.T @ f.T, axis=0), 1.0, atol=1e-9)
+    assert w.force_ellipse.line.get_linestyle() == "--" and not w.force_clip_line.get_visible()
+
+
+def test_force_ellipse_clipped_and_marked_near_and_at_a_singularity():
+    w = Wd.planar_arm_explorer(jac.robots.planar_2r(1.0, 1.0))
+    legend = lambda: [t.get_text() for t in w.legend.get_texts()]  # noqa: E731
+    # at the singularity the library reports an infinite semi-axis along the arm
+    w.set(theta=[0.3, 0.0])
+    J_v = jac.geometric_jacobian(w.chain, w.theta)[3:5]
+    axes_f, U = jac.analysis.force_ellipsoid(J_v)
+    assert np.isinf(axes_f[1]) and np.isinf(w.force_semi_axes[1]) and np.isfinite(w.force_semi_axes[0])
+    np.testing.assert_allclose(np.abs(U[:, 1]), [np.cos(0.3), np.sin(0.3)], atol=1e-12)  # along the links
+    assert w.force_state == "inf" and list(w.force_clipped) == [False, True]
+    np.testing.assert_allclose(w.force_drawn_semi_axes, [w.force_scale * axes_f[0], w.force_clip], rtol=1e-12)
+    assert w.force_clip == pytest.approx(1.25 * w.reach)
+    xy = w.force_ellipse.line.get_xydata()
+    assert np.all(np.isfinite(xy))
+    tip = w.chain.fk(w.theta)[:2, 3]
+    along = (xy - tip) @ U[:, 1]
+    assert along.max() == pytest.approx(w.force_clip, rel=1e-3)  # drawn to the clip length, no further
+    assert w.force_ellipse.line.get_linestyle() == ":"
+    line = w.force_clip_line.get_xydata()
+    assert w.force_clip_line.get_visible()
+    np.testing.assert_allclose(line[:2], [tip - w.force_clip * U[:, 1], tip + w.force_clip * U[:, 1]], atol=1e-12)
+    assert any(r"\infty" in t and "clipped" in t for t in legend())
+    assert any("force ellipse" in t and "clipped" in t for t in legend())
+    # near it: finite, but longer than the view: clipped, marked, not called infinite
+    w.set(theta=[0.3, 0.05])
+    assert w.force_state == "clipped" and np.all(np.isfinite(w.force_semi_axes))
+    assert w.force_semi_axes[1] * w.force_scale > w.force_clip
+    assert w.force_drawn_semi_axes[1] == w.force_clip and w.force_clip_line.get_visible()
+    assert not any(r"\infty" in t for t in legend()) and any("longer than drawn" in t for t in legend())
+    # away from it: the plain dashed ellipse and legend again
+    w.set(theta=[0.3, 1.5])
+    assert w.force_state is None and not w.force_clip_line.get_visible()
+    assert w.force_ellipse.line.get_linestyle() == "--"
+    assert not any("clipped" in t for t in legend())
+    np.testing.assert_allclose(w.force_drawn_semi_axes, w.force_scale * w.force_semi_axes, rtol=1e-12)
+    # ellipses hidden: no clip mark drawn or listed
+    w.set(theta=[0.3, 0.0])
+    w.ellipse_checkbox.value = False
+    assert not w.force_clip_line.get_visible() and not any(r"\infty" in t for t in legend())
 
 
 # ---------------------------------------------------------------- 1. explorer
@@ -245,8 +293,42 @@ def test_resolved_rate_tracks_a_circle_and_rates_match_pinv():
     np.testing.assert_allclose(w.thetas[k + 1], th + dt * w.rates_hist[k], atol=1e-12)
     xdot = np.linalg.lstsq(J_v, J_v @ w.rates_hist[k], rcond=None)[0]
     np.testing.assert_allclose(w.rates_hist[k], xdot, atol=1e-9)  # minimum-norm solution
+    # the commanded tool velocity: the path's velocity plus feedback K (x_d - x), K = 2/s
+    cmd = w.v_des[k] + 2.0 * (w.x_des[k] - w.chain.fk(th)[:2, 3])
+    np.testing.assert_allclose(w.rates_hist[k], jac.velocity.pinv_rates(J_v, cmd), atol=1e-12)
+    np.testing.assert_allclose(J_v @ w.rates_hist[k], cmd, atol=1e-9)  # away from singularities: exact
     xs, ys = w.rate_lines[0].get_data()
     np.testing.assert_allclose(ys, w.rates_hist[:, 0])
+    assert w.tracking_error == pytest.approx(np.linalg.norm(w.x_des[k] - w.x_act[k]), abs=1e-15)
+
+
+@pytest.mark.parametrize("method", ["pinv", "dls"])
+def test_resolved_rate_run_is_the_library_run(method):
+    w = Wd.resolved_rate_explorer(path="close past the base", method=method, damping=0.1)
+    assert isinstance(w.result, jac.velocity.ResolvedRateResult)
+    dt = w.t[1] - w.t[0]
+    ref = jac.velocity.resolved_rate(w.chain, w.thetas[0], w.x_des, dt, method=method, damping=0.1, gain=2.0,
+                                     target_velocities=w.v_des)
+    for got, want in zip(w.result, ref):
+        np.testing.assert_allclose(got, want, atol=1e-12)
+    np.testing.assert_allclose(w.errors, np.linalg.norm(w.x_des - w.x_act, axis=1), atol=1e-15)
+    np.testing.assert_allclose(w.sigma_hist, np.linalg.svd(
+        jac.geometric_jacobian(w.chain, w.thetas)[:, 3:5], compute_uv=False)[:, -1], atol=1e-12)
+    # the start is on the path (solved with damped steps), elbow up
+    np.testing.assert_allclose(w.x_act[0], w.x_des[0], atol=1e-9)
+    assert w.thetas[0, 1] > 0
+    # a step of DLS: the library's dls_rates of the commanded velocity
+    k = 70
+    J_v = jac.geometric_jacobian(w.chain, w.thetas[k])[3:5]
+    cmd = w.v_des[k] + 2.0 * (w.x_des[k] - w.x_act[k])
+    want = (jac.velocity.dls_rates(J_v, cmd, 0.1) if method == "dls" else jac.velocity.pinv_rates(J_v, cmd))
+    np.testing.assert_allclose(w.rates_hist[k], want, atol=1e-12)
+    if method == "dls":
+        assert np.linalg.norm(w.rates_hist[k]) <= np.linalg.norm(cmd) / (2 * 0.1) + 1e-12
+    # the path: a straight line 3 % of the reach from the base, from +0.6 to -0.6 reach, in 4 s
+    np.testing.assert_allclose(w.x_des[[0, -1]], [[0.6 * w.reach, 0.03 * w.reach], [-0.6 * w.reach, 0.03 * w.reach]])
+    assert w.t[-1] == pytest.approx(4.0)
+    assert not hasattr(Wd, "resolved_rate") and not hasattr(Wd, "velocity_force_ellipses")
 
 
 def test_resolved_rate_singularity_pinv_blows_up_dls_stays_bounded():

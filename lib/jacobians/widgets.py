@@ -26,6 +26,12 @@ method and exposes what it drew.
 
 Static book: each widget has a ``*_animation`` function returning a
 ``FuncAnimation`` of the same view, for :func:`jacobians.plotting.animation_html`.
+
+The numbers come from the library: the ellipses from
+:func:`jacobians.analysis.velocity_ellipsoid` and
+:func:`jacobians.analysis.force_ellipsoid` (a force semi-axis that is infinite
+at a singularity, or too long for the view, is drawn clipped and marked), the
+resolved-rate runs from :func:`jacobians.velocity.resolved_rate`.
 """
 
 from __future__ import annotations
@@ -42,6 +48,8 @@ from matplotlib.figure import Figure
 
 from . import jacobian as _jac
 from . import robots
+from . import velocity as _velocity
+from .analysis import force_ellipsoid, velocity_ellipsoid
 from .chain import _as_chain
 from .plotting import (
     COLUMN_COLORS,
@@ -73,7 +81,6 @@ __all__ = [
     "ResolvedRateExplorer",
     "resolved_rate_explorer",
     "resolved_rate_animation",
-    "resolved_rate",
 ]
 
 ROW_LABELS = ["ωx", "ωy", "ωz", "vx", "vy", "vz"]
@@ -222,6 +229,14 @@ JACOBIAN_FORMULAS = {
                  r"\begin{bmatrix}\dot\phi \\ \dot p\end{bmatrix} = J_a(\theta)\dot\theta,"
                  r"\ \phi = \text{ZYX angles of } R_{sb}"),
 }
+# legend entries of the force ellipse and of the mark along a clipped semi-axis, by state
+FORCE_LABELS = {
+    None: (r"force ellipse, $\|\tau\|=1$", None),
+    "clipped": (r"force ellipse, $\|\tau\|=1$ (dotted: clipped)",
+                r"force semi-axis longer than drawn (clipped at %.2f m)"),
+    "inf": (r"force ellipse, $\|\tau\|=1$ (dotted: clipped)",
+            r"force semi-axis $\infty$ (singular direction), clipped at %.2f m"),
+}
 JACOBIAN_SYMBOLS = {"space": "J_s", "body": "J_b", "geometric": "J", "analytic": "J_a"}
 TWIST_SYMBOLS = {"space": r"\mathcal V_s", "body": r"\mathcal V_b", "geometric": r"(\omega_s, \dot p)",
                  "analytic": r"(\dot\phi, \dot p)"}
@@ -238,24 +253,6 @@ def jacobian_of_kind(chain, theta, kind):
     if kind == "analytic":
         return _jac.analytic_jacobian(chain, theta, "zyx", on_singularity="nan")
     raise ValueError(f"Expected kind 'space', 'body', 'geometric' or 'analytic', got {kind!r}")
-
-
-def velocity_force_ellipses(J_v):
-    r"""Semi-axes and directions of the velocity and force ellipses of a 2 x n linear Jacobian.
-
-    Velocity: :math:`\{J_v\dot\theta : \|\dot\theta\| \le 1\}`, semi-axes
-    :math:`\sigma_i` along :math:`u_i` (the SVD :math:`J_v = U\Sigma V^T`).
-    Force: :math:`\{f : \|J_v^T f\| \le 1\}`, semi-axes :math:`1/\sigma_i` along the
-    same :math:`u_i` (infinite at a singularity).
-    Returns (sigma (2,), U (2, 2)). (Computed here with numpy's SVD; the same
-    numbers as ``jacobians.analysis`` once that module lands.)
-    """
-    J_v = as_float_array(J_v, "J_v")
-    if J_v.ndim != 2 or J_v.shape[0] != 2:
-        raise ValueError(f"Expected J_v with shape (2, n), got shape {J_v.shape}")
-    U, s, _ = np.linalg.svd(J_v)
-    s = np.concatenate([s, np.zeros(2 - s.size)])
-    return s, U
 
 
 class PlanarArmExplorer(_Explorer):
@@ -277,6 +274,9 @@ class PlanarArmExplorer(_Explorer):
         self.vel_scale = 0.35  # drawn metres per m/s
         self.force_scale = 0.1 * self.reach ** 2  # drawn metres per (N per N m)
         self.sing_tol = 0.08 * self.reach
+        # a force semi-axis longer than this (infinite at a singularity) is drawn at this length and
+        # marked; force_scale / force_clip = sing_tol, so clipping starts where "near a singularity" does
+        self.force_clip = 1.25 * self.reach
 
         # controls
         self.angle_sliders = [_slider(f"θ{i + 1} (rad)", theta[i], -np.pi, np.pi, 0.01, COLUMN_COLORS[i % 7])
@@ -322,7 +322,11 @@ class PlanarArmExplorer(_Explorer):
         self.vel_ellipse = EllipseArtist(ax, pts[-1], [0, 0], eye2, color=PALETTE["velocity"], lw=1.8,
                                          label=r"velocity ellipse, $\|\dot\theta\|=1$")
         self.force_ellipse = EllipseArtist(ax, pts[-1], [0, 0], eye2, color=PALETTE["force"], lw=1.8, ls="--",
-                                           label=r"force ellipse, $\|\tau\|=1$")
+                                           label=FORCE_LABELS[None][0])
+        # along a clipped force semi-axis: a line through the tool, both ways, to the clip length
+        (self.force_clip_line,) = ax.plot([], [], color=PALETTE["force"], lw=1.4, ls="-.", visible=False,
+                                          zorder=2)
+        self.force_clipped = np.zeros(2, dtype=bool)
         self.indicator = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=FONT, va="bottom",
                                  bbox=dict(boxstyle="round", fc="white", ec="0.6", alpha=0.9), zorder=7)
         self._legend_kind = None
@@ -333,7 +337,8 @@ class PlanarArmExplorer(_Explorer):
                                               title=JACOBIAN_SYMBOLS[kind], fontsize=11)
             self.matrix_title = axm.title
         self.blitter.add(self.arm.artists, self.axis_dots, self.joint_labels, self.pdot_arrow.artists,
-                         self.vs_arrow.artists, self.vel_ellipse.artists, self.force_ellipse.artists, self.indicator)
+                         self.vs_arrow.artists, self.vel_ellipse.artists, self.force_ellipse.artists,
+                         self.force_clip_line, self.indicator)
         if self.matrix_artist is not None:
             self.blitter.add([t for row in self.matrix_artist.texts for t in row], self.matrix_title)
 
@@ -405,24 +410,31 @@ class PlanarArmExplorer(_Explorer):
         V_s = J_s @ rates
         self.vs_arrow.update([0.0, 0.0], V_s[3:5] if kind == "space" else [0.0, 0.0])
         self.vs_arrow.quiver.set_visible(kind == "space")
-        if kind != self._legend_kind:  # the v_s arrow is listed only when it is drawn
-            handles = [self.arm.link_line, self.pdot_arrow.quiver] + ([self.vs_arrow.quiver] if kind == "space" else [])
-            handles += [self.vel_ellipse.line, self.force_ellipse.line]
-            self.ax.legend(handles=handles, loc="upper left", fontsize=8.5, framealpha=0.85)
-            self._legend_kind = kind
-            self.blitter.invalidate()
-        sigma, U = velocity_force_ellipses(J_g[3:5])
+        show = self.ellipse_checkbox.value
+        J_v = J_g[3:5]
+        sigma, U = velocity_ellipsoid(J_v)
         self.sigma = sigma
         self.sigma_min = float(sigma[-1])
-        show = self.ellipse_checkbox.value
         self.vel_ellipse.update(tip, sigma * self.vel_scale, U)
-        with np.errstate(divide="ignore"):
-            f_axes = np.minimum(np.where(sigma > 1e-12, 1.0 / np.maximum(sigma, 1e-300), np.inf) * self.force_scale,
-                                3.0 * self.reach)
-        self.force_semi_axes = f_axes
-        self.force_ellipse.update(tip, f_axes, U)
+        # force: 1/sigma_i along the same U[:, i]; inf along a singular direction
+        f_axes, U_f = force_ellipsoid(J_v)
+        self.force_semi_axes = f_axes  # the library's values (N per N m), inf where singular
+        drawn = f_axes * self.force_scale
+        clipped = drawn > self.force_clip
+        drawn = np.where(clipped, self.force_clip, drawn)
+        self.force_clipped, self.force_drawn_semi_axes = clipped, drawn
+        self.force_ellipse.update(tip, drawn, U_f)
+        force_state = ("inf" if np.isinf(f_axes[clipped]).any() else "clipped") if clipped.any() else None
+        if clipped.any():
+            seg = [np.array([tip - self.force_clip * U_f[:, i], tip + self.force_clip * U_f[:, i], [np.nan] * 2])
+                   for i in np.flatnonzero(clipped)]
+            seg = np.concatenate(seg)
+            self.force_clip_line.set_data(seg[:, 0], seg[:, 1])
+        self.force_ellipse.line.set_linestyle(":" if force_state else "--")
         self.vel_ellipse.line.set_visible(show)
         self.force_ellipse.line.set_visible(show)
+        self.force_clip_line.set_visible(show and force_state is not None)
+        self.force_state = force_state
         # singularity indicator
         s = self.sigma_min
         if s < 1e-9:
@@ -437,6 +449,20 @@ class PlanarArmExplorer(_Explorer):
         self.indicator.get_bbox_patch().set_edgecolor(colour)
         self.indicator.get_bbox_patch().set_linewidth(3)
         self.arm.link_line.set_color(PALETTE["link"] if level == "ok" else colour)
+        # legend entries are copies made when the legend is built (arm colour, force line style):
+        # rebuild it when what they show changes
+        legend_key = (kind, show, force_state, level)
+        if legend_key != self._legend_kind:  # the v_s arrow and the clip mark are listed only when drawn
+            handles = [self.arm.link_line, self.pdot_arrow.quiver] + ([self.vs_arrow.quiver] if kind == "space" else [])
+            handles += [self.vel_ellipse.line, self.force_ellipse.line]
+            ell_label, clip_label = FORCE_LABELS[force_state]
+            self.force_ellipse.line.set_label(ell_label)
+            if show and force_state:
+                self.force_clip_line.set_label(clip_label % self.force_clip)
+                handles.append(self.force_clip_line)
+            self.legend = self.ax.legend(handles=handles, loc="upper left", fontsize=8.5, framealpha=0.85)
+            self._legend_kind = legend_key
+            self.blitter.invalidate()
         self.status.value = _status_html(
             f"σ<sub>min</sub>(J<sub>v</sub>) = {s:.4f} m (J<sub>v</sub>: the x, y rows of ṗ) — <b>{word}</b>; "
             f"manipulability √det(J<sub>v</sub>J<sub>v</sub><sup>T</sup>) = {np.prod(sigma):.4f} m²", level)
@@ -476,6 +502,14 @@ def planar_arm_explorer(chain=None, theta=None, rates=None, kind="space", **kw) 
         An ``ipywidgets.VBox``. ``.set(theta=, rates=, kind=)`` drives it;
         ``.jacobian``, ``.twist``, ``.pdot``, ``.sigma_min``, ``.matrix_latex``,
         ``.arm`` (the drawn artists) and ``.png`` hold what it shows.
+
+    The ellipses are :func:`jacobians.analysis.velocity_ellipsoid` and
+    :func:`jacobians.analysis.force_ellipsoid` of :math:`J_v` (the x, y rows of
+    the geometric Jacobian), kept as ``.sigma`` and ``.force_semi_axes``
+    (``inf`` along a singular direction). A force semi-axis drawn longer than
+    ``.force_clip`` (1.25 x the reach) is drawn at that length: the outline turns
+    dotted, a dash-dot line marks the clipped direction, and the legend says so
+    (``.force_clipped``, ``.force_state``: None, ``"clipped"`` or ``"inf"``).
     """
     return PlanarArmExplorer(chain, theta, rates, kind, **kw)
 
@@ -957,53 +991,12 @@ def _planar_path(kind, reach, n_steps):
     return t, x, v
 
 
-def resolved_rate(chain, theta0, x_des, v_des, dt, method="pinv", damping=0.05, gain=2.0):
-    r"""Resolved-rate control of the tool position of a planar arm.
-
-    Each step: :math:`\dot\theta = J_v^{\#}(\dot x_d + K(x_d - x))`, then Euler
-    :math:`\theta \leftarrow \theta + \dot\theta\,\Delta t`, with
-    :math:`J_v` the x, y rows of the geometric Jacobian and :math:`J_v^{\#}` either the
-    pseudo-inverse (``"pinv"``) or damped least squares (``"dls"``,
-    :math:`J_v^T(J_vJ_v^T + \lambda^2 I)^{-1}`).
-
-    (Implemented here in a few lines; ``jacobians.velocity`` offers the general
-    versions.)
-
-    Returns
-    -------
-    theta (N, n), rates (N, n), x (N, 2) actual tool positions, sigma_min (N,)
-    """
-    if method not in ("pinv", "dls"):
-        raise ValueError(f"Expected method 'pinv' or 'dls', got {method!r}")
-    N = x_des.shape[0]
-    n = chain.dof
-    th = theta_array(theta0, n).copy()
-    thetas = np.empty((N, n))
-    rates = np.empty((N, n))
-    xs = np.empty((N, 2))
-    smin = np.empty(N)
-    lam2 = float(damping) ** 2
-    I2 = np.eye(2)
-    for k in range(N):
-        Jv = _jac.geometric_jacobian(chain, th)[3:5]
-        x = chain.fk(th)[:2, 3]
-        xdot = v_des[k] + gain * (x_des[k] - x)
-        U, s, Vt = np.linalg.svd(Jv, full_matrices=False)
-        if method == "pinv":
-            inv = np.where(s > 1e-10 * max(s[0], 1e-300), 1.0 / np.where(s > 0, s, 1.0), 0.0)
-            qd = Vt.T @ (inv * (U.T @ xdot))
-        else:
-            qd = Jv.T @ np.linalg.solve(Jv @ Jv.T + lam2 * I2, xdot)
-        thetas[k], rates[k], xs[k], smin[k] = th, qd, x, s[-1] if s.size >= 2 else 0.0
-        th = th + qd * dt
-    return thetas, rates, xs, smin
-
-
 class ResolvedRateExplorer(_Explorer):
     """Resolved-rate motion; see :func:`resolved_rate_explorer`."""
 
     PATHS = ("circle", "to full reach", "close past the base")
     RATE_LIMIT = 8.0  # rad/s shown on the rate plot; larger peaks leave the plot and are printed
+    GAIN = 2.0  # feedback gain K (1/s) of the controller
 
     def __init__(self, chain=None, path="close past the base", method="pinv", damping=0.1, *, static=False, n_steps=160,
                  figsize=(9.6, 4.8), dpi=80):
@@ -1086,21 +1079,25 @@ class ResolvedRateExplorer(_Explorer):
         # start on the path, elbow up: solve for the start by resolved rate from a bent pose
         th0 = self._start_configuration(x_des[0])
         dt = t[1] - t[0]
-        self.t, self.x_des = t, x_des
-        self.thetas, self.rates_hist, self.x_act, self.sigma_hist = resolved_rate(
-            self.chain, th0, x_des, v_des, dt, method=method, damping=lam)
+        self.t, self.x_des, self.v_des = t, x_des, v_des
+        # the feed-forward is the path's exact velocity (not the library's default forward differences)
+        self.result = _velocity.resolved_rate(self.chain, th0, x_des, dt, method=method, damping=lam,
+                                              gain=self.GAIN, target_velocities=v_des)
+        r = self.result
+        self.thetas, self.rates_hist, self.x_act, self.sigma_hist, self.errors = (
+            r.thetas, r.rates, r.positions, r.sigma_min, r.errors)
         self._sim_key = key
         return True
 
     def _start_configuration(self, x0):
         n = self.chain.dof
         th = np.array([0.3] + [0.9] * (n - 1))[:n]
-        for _ in range(200):
+        for _ in range(200):  # Newton steps with a little damping (1 mm)
             J = _jac.geometric_jacobian(self.chain, th)[3:5]
             e = x0 - self.chain.fk(th)[:2, 3]
             if np.linalg.norm(e) < 1e-12:
                 break
-            th = th + J.T @ np.linalg.solve(J @ J.T + 1e-6 * np.eye(2), e)
+            th = th + _velocity.dls_rates(J, e, 1e-3)
         return th
 
     def _compute_and_update(self):
@@ -1117,7 +1114,7 @@ class ResolvedRateExplorer(_Explorer):
         self.act_line.set_data(self.x_act[: k + 1, 0], self.x_act[: k + 1, 1])
         self.target.set_data([self.x_des[k, 0]], [self.x_des[k, 1]])
         self.cursor.set_xdata([self.t[k], self.t[k]])
-        err = float(np.linalg.norm(self.x_des[k] - self.x_act[k]))
+        err = float(self.errors[k])
         s = float(self.sigma_hist[k])
         peak = float(np.abs(self.rates_hist).max())
         self.tracking_error, self.current_sigma_min, self.peak_rate = err, s, peak
@@ -1130,7 +1127,7 @@ class ResolvedRateExplorer(_Explorer):
             f"damped least squares, λ = {self.damping_slider.value:.3f} m"
         self.status.value = _status_html(
             f"{meth}: smallest singular value of J<sub>v</sub> {s:.3f} m; peak joint rate over the run "
-            f"{peak:.1f} rad/s; largest tracking error {1000 * float(np.linalg.norm(self.x_des - self.x_act, axis=1).max()):.1f} mm",
+            f"{peak:.1f} rad/s; largest tracking error {1000 * float(self.errors.max()):.1f} mm",
             level)
 
 
@@ -1143,8 +1140,11 @@ def resolved_rate_explorer(chain=None, path="close past the base", method="pinv"
     must swing joint 1 through about half a turn in a moment). Methods:
     pseudo-inverse, whose joint rates blow up approaching a singularity, or
     damped least squares, whose rates stay bounded at the cost of a tracking
-    error. ``.set(path=, method=, damping=, step=)`` drives it; ``.rates_hist``,
-    ``.thetas``, ``.x_act``, ``.peak_rate``, ``.tracking_error`` hold the run.
+    error. ``.set(path=, method=, damping=, step=)`` drives it. The run is
+    :func:`jacobians.velocity.resolved_rate` (gain K = 2/s, the path's own
+    velocity as feed-forward), kept as ``.result``; ``.thetas``,
+    ``.rates_hist``, ``.x_act``, ``.sigma_hist``, ``.errors`` are its fields, and
+    ``.peak_rate``, ``.tracking_error`` what the view reports.
     """
     return ResolvedRateExplorer(chain, path, method, damping, **kw)
 
