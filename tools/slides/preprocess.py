@@ -12,7 +12,7 @@ Runs before nbconvert's own reveal metadata preprocessor. For each cell:
   definition / theorem / proposition / lemma / corollary / exercise starts a
   subslide, anything else continues the current slide. A cell marked
   ``skip`` keeps its prose off the slides but still shows the definitions,
-  results, exercises and warnings in it (proofs as fragments): the authoring
+  results, exercises and warnings in it (proofs on a subslide): the authoring
   guide uses ``skip`` for long prose, and a definition must reach the slides.
 * Code is hidden unless the cell has the tag ``slide-show-code``. Cells tagged
   ``remove-cell`` and cells inside a solution are dropped; ``remove-output`` /
@@ -87,7 +87,7 @@ def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool
     * ``skip``: the prose stays off the slides, but a definition, result,
       exercise or warning in the cell is shown: the first on the current
       slide, each further one on a subslide of its own (``boxes_before``
-      counts those already shown from this cell), a proof as a fragment below
+      counts those already shown from this cell), a proof on a subslide after
       its result; a later ``#``/``##`` heading starts a slide;
     * ``notes``: stays notes, except a later ``#``/``##`` heading;
     * anything else: the first piece has it, later pieces as with no metadata.
@@ -102,7 +102,7 @@ def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool
             return "slide"
         if kind in SHOWN_EVEN_IF_SKIPPED:
             if kind == "proof":
-                return "fragment"
+                return "subslide"
             return "subslide" if boxes_before else "-"
         return "skip"
     if explicit == "notes":
