@@ -55,7 +55,7 @@ def add_link(app, doctree) -> None:
     ref = nodes.reference("", "", internal=False, refuri=slides_href(docname))
     ref += nodes.Text(LINK_TEXT)
     para = nodes.paragraph("", "", classes=["slides-link"])
-    para += nodes.Text("\N{FILM FRAMES} ")
+    para += nodes.Text("\N{BLACK RIGHT-POINTING TRIANGLE} ")
     para += ref
     index = 1 if section.children and isinstance(section.children[0], nodes.title) else 0
     section.insert(index, para)
