@@ -177,3 +177,27 @@ def test_bad_types():
         jac.SerialChain.from_dh([1], [0, 0], [0])
     with pytest.raises(ValueError, match="theta"):
         jac.robots.planar_2r().fk([1.0])
+
+
+def test_joint_points_say_where_joints_are_drawn():
+    arm = jac.robots.spatial_5r(h=0.5, l1=1.0, l2=1.0, l3=0.5, l4=0.3)
+    # joint 4 turns about x through (l1 + l2, 0, h): the point closest to the origin would be (0, 0, h)
+    assert np.allclose(arm.axis_points()[3], [2.0, 0, 0.5])
+    assert np.allclose(arm.joint_positions(np.zeros(5))[:, :], [[0, 0, 0], [0, 0, 0.5], [1, 0, 0.5], [2, 0, 0.5], [2.5, 0, 0.5], [2.8, 0, 0.5]])
+    # the joint points move with the joints before them
+    th = np.array([0.3, -0.4, 0.5, 0.2, -0.1])
+    P = arm.prefix_transforms(th)
+    pts = arm.joint_positions(th)
+    for i in range(5):
+        assert np.allclose(pts[i], P[i, :3, :3] @ arm.axis_points()[i] + P[i, :3, 3])
+    with pytest.raises(ValueError, match="not on the axis"):
+        jac.SerialChain(arm.screw_axes, arm.home, joint_points=[[0, 0, 0], [0, 0, 0.5], [1, 0, 0.5], [2, 1, 0.5], [2.5, 0, 0.5]])
+    with pytest.raises(ValueError, match="joint_points"):
+        jac.SerialChain(arm.screw_axes, arm.home, joint_points=np.zeros((4, 3)))
+
+
+def test_ur5_joint_points_lie_on_their_axes():
+    ur = jac.robots.ur5()
+    for i, q in enumerate(ur.axis_points()):
+        w, v = ur.screw_axes[:3, i], ur.screw_axes[3:, i]
+        assert np.allclose(-np.cross(w, q), v)

@@ -55,6 +55,11 @@ class SerialChain:
         axis i, at the point closest to the origin of {s} (for a prismatic
         joint, at the origin of the previous frame), with the orientation of {s};
         the frame of the last link is then replaced by {b}.
+    joint_points : array_like, shape (n, 3), optional
+        A point of each joint's axis at home, where the joint is drawn (the
+        screw axis fixes the line, not where on it the joint sits). Default:
+        the point of the axis closest to the origin of {s} (for a prismatic
+        joint, its link frame's origin). A point off its revolute axis raises.
     name : str, optional
         Shown in ``repr`` and in figures.
 
@@ -72,7 +77,7 @@ class SerialChain:
     array([0., 0., 1., 0., 2., 0.])
     """
 
-    def __init__(self, screw_axes, home, link_homes=None, name: str | None = None):
+    def __init__(self, screw_axes, home, link_homes=None, name: str | None = None, joint_points=None):
         S = screw_axes_array(screw_axes, "screw_axes")
         M = transform_array(home, "home", batch_allowed=False)
         # Re-orthonormalise tiny typing errors away so products stay in SE(3).
@@ -97,6 +102,8 @@ class SerialChain:
                 raise ValueError(f"Expected link_homes with shape ({n}, 4, 4), got shape {link_homes.shape}")
         self._link_homes = np.array(link_homes, dtype=float)
         self._link_homes.setflags(write=False)
+        self._joint_points = self._check_joint_points(joint_points)
+        self._joint_points.setflags(write=False)
         if name is not None and not isinstance(name, str):
             raise TypeError(f"Expected a str for name, got {type(name).__name__}")
         self.name = name
@@ -156,13 +163,30 @@ class SerialChain:
         homes[-1] = self._M
         return homes
 
+    def _check_joint_points(self, joint_points) -> np.ndarray:
+        n = self.dof
+        if joint_points is None:
+            out = np.empty((n, 3))
+            for i in range(n):
+                w, v = self._S[:3, i], self._S[3:, i]
+                out[i] = np.cross(w, v) if self._types[i] == "R" else self._link_homes[i, :3, 3]
+            return out
+        pts = real_array(joint_points, "joint_points", (n, 3), batch_allowed=False)
+        for i in range(n):
+            if self._types[i] == "R":
+                w, v = self._S[:3, i], self._S[3:, i]
+                q = pts[i]
+                off = (q - w * np.dot(w, q)) - np.cross(w, v)  # perpendicular offset from the axis line
+                if np.linalg.norm(off) > 1e-6 * max(1.0, np.linalg.norm(q)):
+                    raise ValueError(
+                        f"joint_points[{i}] = {q} is not on the axis of revolute joint {i} "
+                        f"(it is {np.linalg.norm(off):.3g} away from the line)"
+                    )
+        return pts.copy()
+
     def axis_points(self) -> np.ndarray:
-        """(n, 3) a point on each joint axis at home (for a prismatic joint, the link frame's origin)."""
-        out = np.empty((self.dof, 3))
-        for i in range(self.dof):
-            w, v = self._S[:3, i], self._S[3:, i]
-            out[i] = np.cross(w, v) if self._types[i] == "R" else self._link_homes[i, :3, 3]
-        return out
+        """(n, 3) the point of each joint axis where the joint sits at home (``joint_points``)."""
+        return self._joint_points.copy()
 
     # ------------------------------------------------------------ kinematics
     def fk(self, theta) -> np.ndarray:
@@ -297,6 +321,7 @@ class SerialChain:
 
         S = np.zeros((6, n))
         frames = []
+        points = []
         T = np.eye(4)
         for i in range(n):
             th_i = offset[i] if joint_types[i] == "R" else 0.0
@@ -308,6 +333,7 @@ class SerialChain:
                 T = z_frame @ rot("z", th_i) @ trans("z", d[i])
             z = z_frame[:3, 2]
             q = z_frame[:3, 3]
+            points.append(q.copy())
             if joint_types[i] == "R":
                 S[:3, i] = z
                 S[3:, i] = -np.cross(z, q)
@@ -318,7 +344,7 @@ class SerialChain:
         if tool is not None:
             M = M @ transform_array(tool, "tool", batch_allowed=False)
         S[np.abs(S) < 1e-15] = 0.0
-        return cls(S, M, link_homes=np.array(frames), name=name)
+        return cls(S, M, link_homes=np.array(frames), name=name, joint_points=np.array(points))
 
 
 def _as_chain(chain) -> SerialChain:

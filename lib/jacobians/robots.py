@@ -58,7 +58,8 @@ def planar(lengths, name: str | None = None) -> SerialChain:
     x = np.concatenate([[0.0], np.cumsum(ls)])
     S = np.stack([_revolute([0, 0, 1], [x[i], 0, 0]) for i in range(len(ls))], axis=1)
     links = np.stack([_translation([x[i] + ls[i] / 2, 0, 0]) for i in range(len(ls))])
-    return SerialChain(S, _translation([x[-1], 0, 0]), link_homes=links, name=name or f"planar {len(ls)}R")
+    return SerialChain(S, _translation([x[-1], 0, 0]), link_homes=links, name=name or f"planar {len(ls)}R",
+                       joint_points=[[x[i], 0, 0] for i in range(len(ls))])
 
 
 def planar_2r(l1: float = 1.0, l2: float = 1.0) -> SerialChain:
@@ -86,7 +87,8 @@ def ur5() -> SerialChain:
         [0, 1, 0, H2 - H1, 0, L1 + L2],
     ], dtype=float).T
     M = np.array([[-1, 0, 0, L1 + L2], [0, 0, 1, W1 + W2], [0, 1, 0, H1 - H2], [0, 0, 0, 1]], dtype=float)
-    return SerialChain(S, M, name="UR5")
+    points = [[0, 0, 0], [0, 0, H1], [L1, 0, H1], [L1 + L2, 0, H1], [L1 + L2, W1, 0], [L1 + L2, 0, H1 - H2]]
+    return SerialChain(S, M, name="UR5", joint_points=points)
 
 
 def spatial_rrp(h: float = 1.0, reach: float = 1.0) -> SerialChain:
@@ -98,7 +100,8 @@ def spatial_rrp(h: float = 1.0, reach: float = 1.0) -> SerialChain:
     """
     h, reach = positive_float(h, "h"), positive_float(reach, "reach")
     S = np.stack([_revolute([0, 0, 1], [0, 0, 0]), _revolute([0, 1, 0], [0, 0, h]), _prismatic([1, 0, 0])], axis=1)
-    return SerialChain(S, _translation([reach, 0, h]), name="spatial RRP")
+    return SerialChain(S, _translation([reach, 0, h]), name="spatial RRP",
+                       joint_points=[[0, 0, 0], [0, 0, h], [0, 0, h]])
 
 
 def scara(l1: float = 0.5, l2: float = 0.4, h: float = 0.3) -> SerialChain:
@@ -115,7 +118,8 @@ def scara(l1: float = 0.5, l2: float = 0.4, h: float = 0.3) -> SerialChain:
         _prismatic([0, 0, -1]),
         _revolute([0, 0, 1], [l1 + l2, 0, 0]),
     ], axis=1)
-    return SerialChain(S, _translation([l1 + l2, 0, h]), name="SCARA")
+    return SerialChain(S, _translation([l1 + l2, 0, h]), name="SCARA",
+                       joint_points=[[0, 0, 0], [l1, 0, 0], [l1 + l2, 0, h], [l1 + l2, 0, 0]])
 
 
 def spatial_5r(h: float = 0.5, l1: float = 1.0, l2: float = 1.0, l3: float = 0.5, l4: float = 0.3) -> SerialChain:
@@ -133,7 +137,8 @@ def spatial_5r(h: float = 0.5, l1: float = 1.0, l2: float = 1.0, l3: float = 0.5
         _revolute([1, 0, 0], [l1 + l2, 0, h]),
         _revolute([0, 0, 1], [l1 + l2 + l3, 0, h]),
     ], axis=1)
-    return SerialChain(S, _translation([l1 + l2 + l3 + l4, 0, h]), name="spatial 5R")
+    points = [[0, 0, 0], [0, 0, h], [l1, 0, h], [l1 + l2, 0, h], [l1 + l2 + l3, 0, h]]
+    return SerialChain(S, _translation([l1 + l2 + l3 + l4, 0, h]), name="spatial 5R", joint_points=points)
 
 
 def zyx_wrist(tool: float = 0.2) -> SerialChain:
