@@ -131,6 +131,7 @@ class PageReport:
     seconds: float = 0.0
     counts: dict[str, int] = field(default_factory=dict)
     sizes: list[tuple[str, int]] = field(default_factory=list)
+    timings: dict[str, float] = field(default_factory=dict)
 
     def add(self, aspect: str, message: str) -> None:
         self.problems.setdefault(aspect, []).append(message)
@@ -221,6 +222,12 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     t0 = time.monotonic()
     report = PageReport(path)
     root = Path(root)
+    clock = [time.monotonic()]
+
+    def _lap(name: str) -> None:  # where the seconds go (printed by the CLI)
+        now = time.monotonic()
+        report.timings[name] = report.timings.get(name, 0.0) + now - clock[0]
+        clock[0] = now
     page_file = root / path
     if not page_file.exists():
         report.add("load", f"{path} is in the table of contents but not in the build ({page_file})")
@@ -297,12 +304,14 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         report.notes.append("network did not go idle within 10 s")
     page.wait_for_timeout(settle_ms)
 
+    _lap("load+MathJax")
     # ---- desktop screenshot as the reader first sees the page (before any clicks)
     if shots is not None:
         shots.mkdir(parents=True, exist_ok=True)
         stem = path.replace("/", "__").removesuffix(".html")
-        page.screenshot(path=str(shots / f"{stem}__desktop.png"), full_page=True)
+        page.screenshot(path=str(shots / f"{stem}__desktop.jpg"), full_page=True, type="jpeg", quality=75)
 
+    _lap("desktop screenshot")
     # ---- errors shown to the reader: tracebacks, error outputs
     err = page.evaluate(
         """() => {
@@ -318,6 +327,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     for e in err:
         report.add("errors", e)
 
+    _lap("errors")
     # ---- math
     source_html = page_file.read_text(encoding="utf-8", errors="replace")
     n_source = len(re.findall(r"""class=["'][^"']*\bmath\b""", source_html))
@@ -336,6 +346,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     for snippet in raw_tex_in(page.evaluate(_VISIBLE_TEXT_JS)):
         report.add("math", f"raw TeX in the visible text: {snippet}")
 
+    _lap("math")
     # ---- images: loaded, with real alt text
     page.evaluate("() => document.querySelectorAll('img[loading=lazy]').forEach(i => i.loading = 'eager')")
     page.evaluate(
@@ -360,6 +371,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         elif re.search(r"\.(png|jpe?g|svg|gif|webp)$", alt, re.I) or alt.startswith(("../", "_images/")):
             report.add("images", f"alt text is a file name, not a description: {alt!r} ({name})")
 
+    _lap("images")
     # ---- animations (matplotlib jshtml): press play, the frame changes
     anims = page.locator("div.animation")
     report.counts["animations"] = anims.count()
@@ -393,6 +405,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         except Exception as exc:  # noqa: BLE001
             report.add("animations", f"animation {k + 1}: pressing play did not change the frame ({exc.__class__.__name__})")
 
+    _lap("animations")
     # ---- widget sliders: moving one must change something else on the page.
     # An executed `interact` keeps its first output in a static page: the slider
     # moves, nothing redraws. That is a dead control for the reader.
@@ -430,6 +443,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
             report.add("widgets", f"slider {k + 1} ({after[2].strip()[:40]!r}): moving it changes nothing else on the "
                        "page: a dead control without a kernel (show an animation instead)")
 
+    _lap("sliders")
     # ---- dropdowns (exercise solutions, togglebutton admonitions, sphinx-design)
     drops = page.evaluate(
         """() => {
@@ -466,6 +480,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         except Exception as exc:  # noqa: BLE001
             report.add("solutions", f"{label}: does not open when clicked ({exc.__class__.__name__})")
 
+    _lap("dropdowns")
     # ---- internal links resolve to a file and anchor of the build
     hrefs = page.evaluate(
         "() => Array.from(document.querySelectorAll('a[href]')).map(a => a.href)"
@@ -482,6 +497,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         if frag and target.suffix == ".html" and frag not in _ids_in(target):
             report.add("links", f"link to a missing anchor: {h}")
 
+    _lap("links")
     # ---- weight
     total = own = 0
     for resp in responses:
@@ -497,6 +513,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     if total > MAX_PAGE_BYTES:
         report.add("weight", f"page weighs {total / 2**20:.2f} MiB (> 3 MiB) over {len(responses)} requests")
 
+    _lap("weight")
     # ---- phone screenshot (after the checks: solutions shown open, animations paused)
     if shots is not None:
         stem = path.replace("/", "__").removesuffix(".html")
@@ -507,7 +524,8 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
             overflow = page.evaluate("() => document.documentElement.scrollWidth")
             if overflow > PHONE["width"] + 2:
                 report.notes.append(f"at phone width the page scrolls sideways ({overflow} px wide)")
-            page.screenshot(path=str(shots / f"{stem}__phone.png"), full_page=True)
+            page.screenshot(path=str(shots / f"{stem}__phone.jpg"), full_page=True, type="jpeg", quality=75)
+    _lap("phone screenshot")
     page.close()
     report.seconds = time.monotonic() - t0
     return report
@@ -557,6 +575,7 @@ def main(argv: list[str] | None = None) -> int:
                 for m in msgs:
                     bad += 1
                     print(f"   [{aspect}] {m}")
+            print("   time: " + ", ".join(f"{k} {v:.1f}s" for k, v in r.timings.items() if v > 0.2))
             for n in dict.fromkeys(r.notes):
                 print(f"   (note) {n}")
             if args.sizes:
