@@ -36,7 +36,9 @@ browser tests in ``tests/browser`` check that a built page shows none of them.
    figure caption, the titles the cell's code sets on the figure
    (``set_title``/``suptitle``/``plt.title``), else the section the output
    sits in. Authors who want better alt text set ``mystnb: image: alt:``.
-7. Page weight: the theme's ``fontawesome.js`` (1.4 MB, only needed for
+7. Page weight: a page whose notebook saved widget state but shows no
+   widget does not load require.js and the 4.3 MB widget manager.
+8. Page weight: the theme's ``fontawesome.js`` (1.4 MB, only needed for
    custom icons, which the book has none of) is not loaded; see
    :func:`_drop_fontawesome_js`.
 """
@@ -125,6 +127,15 @@ def _is_thebe(js: Any) -> bool:
     return filename.endswith("sphinx-thebe.js") or "THEBE_JS_URL" in body
 
 
+def _is_widget_asset(js: Any) -> bool:
+    filename = str(getattr(js, "filename", js) or "")
+    attrs = getattr(js, "attributes", {}) or {}
+    return (
+        filename.endswith(("require.js", "embed-amd.js"))
+        or attrs.get("type") == "application/vnd.jupyter.widget-state+json"
+    )
+
+
 def _thebe_enabled(app) -> bool:
     opts = app.config.html_theme_options or {}
     launch = opts.get("launch_buttons") or {}
@@ -143,6 +154,11 @@ def _fix_page_assets(app, pagename, templatename, context, doctree) -> None:
                 continue
             seen.add(key)
             kept.append(js)
+        # widgets: a notebook can carry widget state with no widget shown on the
+        # page (a removed cell made one); the 4.3 MB manager then renders nothing.
+        body = str(context.get("body", ""))
+        if "application/vnd.jupyter.widget-view+json" not in body:
+            kept = [js for js in kept if not _is_widget_asset(js)]
         # widgets: shim MathJax 2's API and point require.js at the vendored manager
         names = [str(getattr(js, "filename", "") or "") for js in kept]
         req = next((i for i, n in enumerate(names) if n.endswith("require.js")), None)
