@@ -50,6 +50,8 @@ RAW_PATTERNS = {
 def decks():
     """Build every deck once; returns {stem: report or error}."""
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    for old in ARTIFACTS.glob("*.png"):
+        old.unlink()
     if DECKS.exists():
         for old in DECKS.glob("*.slides.html"):
             old.unlink()
