@@ -303,7 +303,24 @@ def _cell_index(node: nodes.Node) -> int | None:
     return None
 
 
+def plain(text: str) -> str:
+    """Alt text is read aloud: TeX commands as words, no braces or backslashes.
+
+    >>> plain(r"arm at $\\theta = (0.5, 0.6)$, T_{sb}")
+    'arm at theta = (0.5, 0.6), T_sb'
+    """
+    text = text.replace("$", "")
+    text = re.sub(r"\\(mathrm|mathcal|mathbf|operatorname|text)\{([^}]*)\}", r"\2", text)
+    text = re.sub(r"\\([a-zA-Z]+)", r"\1", text)
+    text = text.replace("{", "").replace("}", "").replace("\\", "")
+    return " ".join(text.split())
+
+
 def _describe(app, docname: str, node: nodes.Node, kind: str) -> str:
+    return plain(_describe_raw(app, docname, node, kind))
+
+
+def _describe_raw(app, docname: str, node: nodes.Node, kind: str) -> str:
     # a figure caption says it best
     parent = node.parent
     while parent is not None:

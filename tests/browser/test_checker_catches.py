@@ -171,3 +171,9 @@ def test_alt_added_only_where_missing():
     fixed = offline_fixes.add_alt_to_html(frag, 'Animation: "arm"')
     assert '<img alt="Animation: &quot;arm&quot;" id="a" src="x.png">' in fixed
     assert '<img alt="kept" src="y.png">' in fixed
+
+
+def test_alt_text_reads_as_words():
+    assert offline_fixes.plain(r"The arm at $\theta = (0.5, 0.6)$ rad, $T_{sb}$, $\mathrm{Ad}_T$") == (
+        "The arm at theta = (0.5, 0.6) rad, T_sb, Ad_T"
+    )
