@@ -212,7 +212,7 @@ def test_skipped_prose_keeps_its_definition_results_and_warnings():
     types = [piece_slide_type(p, k, "skip") for k, p in enumerate(pieces)]
     assert types == ["skip", "-", "skip", "subslide", "skip", "slide"]
     assert piece_slide_type(pieces[1], 1, "skip", boxes_before=1) == "subslide"
-    assert [piece_slide_type(p, k, None) for k, p in enumerate(pieces)] == ["-", "-", "-", "-", "-", "slide"]
+    assert [piece_slide_type(p, k, None) for k, p in enumerate(pieces)] == ["-", "-", "-", "subslide", "-", "slide"]
     assert [piece_slide_type(p, k, "notes") for k, p in enumerate(pieces)][-1] == "slide"
     # the re-serialised directive converts exactly like the original
     ctx = myst.Context()

@@ -10,7 +10,8 @@ Runs before nbconvert's own reveal metadata preprocessor. For each cell:
   cell's first piece (see :func:`piece_slide_type` for the rest). Where there
   is none: a ``#`` or ``##`` heading starts a slide, a ``###`` heading or a
   definition / theorem / proposition / lemma / corollary / exercise starts a
-  subslide, anything else continues the current slide. A cell marked
+  subslide, and so does a proof that follows other content in its cell;
+  anything else continues the current slide. A cell marked
   ``skip`` keeps its prose off the slides but still shows the definitions,
   results, exercises and warnings in it (proofs on a subslide): the authoring
   guide uses ``skip`` for long prose, and a definition must reach the slides.
@@ -73,7 +74,7 @@ def auto_slide_type(markdown: str) -> str:
     name = myst.leading_directive(markdown)
     if name is not None:
         kind = name.split(":", 1)[-1]
-        if kind in myst.KEY_KINDS:
+        if kind in myst.KEY_KINDS or kind == "proof":
             return "subslide"
     return "-"
 
@@ -90,7 +91,8 @@ def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool
       counts those already shown from this cell), a proof on a subslide after
       its result; a later ``#``/``##`` heading starts a slide;
     * ``notes``: stays notes, except a later ``#``/``##`` heading;
-    * anything else: the first piece has it, later pieces as with no metadata.
+    * anything else: the first piece has it, later pieces as with no metadata;
+    * a proof that is not the first piece of its cell starts a subslide.
     """
     level = myst.leading_heading_level(piece)
     name = myst.leading_directive(piece)
@@ -111,6 +113,8 @@ def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool
         return explicit if explicit is not None else auto_slide_type(piece)
     if level:
         return auto_slide_type(piece)
+    if kind == "proof":
+        return "subslide"  # a derivation gets its own room below its result
     return "-"
 
 
