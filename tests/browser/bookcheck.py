@@ -134,7 +134,9 @@ class PageReport:
     timings: dict[str, float] = field(default_factory=dict)
 
     def add(self, aspect: str, message: str) -> None:
-        self.problems.setdefault(aspect, []).append(message)
+        msgs = self.problems.setdefault(aspect, [])
+        if message not in msgs:  # e.g. an image requested twice, 404 twice
+            msgs.append(message)
 
     def summary(self) -> str:
         c = self.counts
