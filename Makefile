@@ -13,7 +13,7 @@ JB_FLAGS := -W -n --keep-going
 export MPLBACKEND := Agg
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
-.PHONY: help setup book test test-lib test-notebooks test-browser bench lab slides exercises clean distclean vendor browser
+.PHONY: help setup book test test-lib test-notebooks test-browser test-slides bench lab slides exercises clean distclean vendor browser
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -51,7 +51,8 @@ browser:
 book: vendor
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) tools/make_exercises.py _build/html/exercises/student
-	@echo "The book is in _build/html/index.html"
+	$(PY) tools/build_slides.py _build/html/slides
+	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
 
 # ------------------------------------------------------------------ tests
 test: setup
@@ -59,9 +60,10 @@ test: setup
 	$(MAKE) test-notebooks
 	$(MAKE) book
 	$(MAKE) test-browser
+	$(MAKE) test-slides
 
 test-lib: setup
-	$(BIN)/pytest --ignore=tests/browser --cov=jacobians --cov-report=term:skip-covered -q lib/jacobians tests
+	$(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --cov=jacobians --cov-report=term:skip-covered -q lib/jacobians tests
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
@@ -71,8 +73,12 @@ test-notebooks: setup
 test-browser: setup browser
 	$(BIN)/pytest tests/browser -q
 
+test-slides: setup browser
+	$(BIN)/pytest tests/slides -q
+
 bench: setup
 	$(PY) tools/bench.py
+	$(PY) tools/bench_widgets.py
 
 lab: setup
 	$(BIN)/jupyter lab --notebook-dir=. chapters

@@ -202,3 +202,43 @@ def test_set_style_sets_readable_fonts():
         P.set_style()
         assert matplotlib.rcParams["font.size"] >= 14
         assert matplotlib.rcParams["axes.labelsize"] >= 14
+
+
+def test_blit_frames_gives_the_same_frames_as_a_full_redraw():
+    import matplotlib.pyplot as plt
+    from matplotlib.animation import FuncAnimation
+
+    import jacobians as jac
+    from jacobians import plotting
+
+    arm = jac.robots.planar_2r()
+    thetas = np.linspace([0.0, 0.3], [1.0, 1.5], 5)
+
+    def make():
+        fig, ax = plt.subplots(figsize=(3, 3), dpi=50)
+        plotting.setup_planar_axes(ax, arm, title="blit test")
+        art = plotting.draw_planar_arm(ax, arm, thetas[0], show_frames=False)
+
+        def update(k):
+            art.update(thetas[k])
+            return []
+
+        return fig, art, update, FuncAnimation(fig, update, frames=len(thetas))
+
+    fig, art, update, anim = make()
+    full = []
+    for k in range(len(thetas)):
+        update(k)
+        fig.canvas.draw()
+        full.append(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
+    plt.close(fig)
+    fig, art, update, anim = make()
+    plotting.blit_frames(anim, update, len(thetas), art.artists)
+    for k in range(len(thetas)):
+        update(k)
+        blitted = fig._jac_render_rgba()
+        assert np.mean(np.abs(blitted.astype(int) - full[k].astype(int))) < 1.0
+    html = plotting.animation_html(anim).data
+    assert html.count("frames[") >= len(thetas) and "http" not in html.split("<script")[0]
+    with pytest.raises(ValueError):
+        plotting.blit_frames(anim, update, 0, art.artists)

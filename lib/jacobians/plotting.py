@@ -45,6 +45,7 @@ __all__ = [
     "draw_planar_arm",
     "planar_arm_animation",
     "animation_html",
+    "blit_frames",
     "compact_png",
     "EllipseArtist",
     "draw_ellipse",
@@ -682,6 +683,47 @@ class _CompactHTMLWriter(_animation.HTMLWriter):
             self._hit_limit = True
         else:
             self._saved_frames.append(img64)
+
+
+def blit_frames(anim, update, n_frames: int, artists) -> None:
+    """Make :func:`animation_html` render ``anim`` by blitting only the moving ``artists``.
+
+    The fixed parts of the figure (axes, ticks, labels, legends) are drawn once
+    and kept as a bitmap; each frame calls ``update(k)`` and draws ``artists``
+    over that bitmap. Several times faster than a full redraw per frame, which
+    is what ``FuncAnimation`` does. Every artist that ``update`` changes must be
+    in ``artists``; anything else keeps its first state.
+
+    Parameters
+    ----------
+    anim : matplotlib.animation.FuncAnimation
+        The animation (its ``update`` function should be the same as here).
+    update : callable
+        ``update(k)`` moves the artists to frame ``k``.
+    n_frames : int
+    artists : iterable of matplotlib artists
+    """
+    if not isinstance(anim, _animation.Animation):
+        raise TypeError(f"Expected a matplotlib Animation, got {type(anim).__name__}")
+    if not callable(update):
+        raise TypeError(f"Expected a callable update(k), got {type(update).__name__}")
+    if isinstance(n_frames, bool) or not isinstance(n_frames, (int, np.integer)) or n_frames < 1:
+        raise ValueError(f"Expected a positive number of frames, got {n_frames!r}")
+    fig = anim._fig
+    artists = list(artists)
+    for a in artists:
+        a.set_animated(True)
+    fig.canvas.draw()
+    background = fig.canvas.copy_from_bbox(fig.bbox)
+
+    def render():
+        fig.canvas.restore_region(background)
+        for a in artists:
+            fig.draw_artist(a)
+        return np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+
+    fig._jac_render_rgba = render
+    anim._jac_frames = (update, int(n_frames))
 
 
 def animation_html(anim, *, default_mode: str = "loop", embed_limit_mb: float = 3.0, colors: int = 96):
