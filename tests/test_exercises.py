@@ -377,7 +377,8 @@ def test_student_versions_keep_every_non_solution_cell(student_dir):
     import jupytext
     for src in sorted((ROOT / "exercises").glob("[0-9][0-9]_*.md")):
         nb_src = jupytext.read(src)
-        kept = [c for c in nb_src.cells if "solution" not in c.metadata.get("tags", [])]
+        kept = [c for c in nb_src.cells
+                if not {"solution", "book-only"} & set(c.metadata.get("tags", []))]
         nb = nbformat.read(student_dir / f"{src.stem}.ipynb", as_version=4)
         assert len(nb.cells) == len(kept) + 1  # + the banner
         code_src = [c.source for c in kept if c.cell_type == "code"]
