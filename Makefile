@@ -10,7 +10,8 @@ BIN := $(VENV)/bin
 PY_STAMP := $(VENV)/.installed-stamp
 NPM_STAMP := node_modules/.installed-stamp
 JB_FLAGS := -W -n --keep-going
-export MPLBACKEND := Agg
+# (MPLBACKEND=Agg only for the library tests: the notebooks' kernels need the
+# inline backend, or plt.show() draws nothing into the book and the slides)
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
 .PHONY: help setup book test test-lib test-notebooks test-browser test-slides bench lab slides exercises clean distclean vendor browser
@@ -63,7 +64,7 @@ test: setup
 	$(MAKE) test-slides
 
 test-lib: setup
-	$(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --cov=jacobians --cov-report=term:skip-covered -q lib/jacobians tests
+	MPLBACKEND=Agg $(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --cov=jacobians --cov-report=term:skip-covered -q lib/jacobians tests
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
