@@ -827,6 +827,14 @@ class SpatialChainArtist:
         return self
 
     @property
+    def artists(self):
+        """The artists that :meth:`update` moves (for :func:`blit_frames`)."""
+        out = [self.link_line, self.joint_markers, *self.axis_lines, *self.axis_texts]
+        if self.frames:
+            out += self.frames[1].artists
+        return out
+
+    @property
     def axis_directions(self) -> np.ndarray:
         """(n, 3) current unit directions of the drawn joint axes."""
         out = []
