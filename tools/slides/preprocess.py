@@ -52,7 +52,7 @@ LIVE_DEMO_HTML = (
 
 
 #: boxes shown even when the author marked their cell ``skip`` (meant for its prose)
-SHOWN_EVEN_IF_SKIPPED = {"definition", "theorem", "proposition", "lemma", "corollary", "proof",
+SHOWN_EVEN_IF_SKIPPED = {"definition", "theorem", "proposition", "lemma", "corollary", "proof", "algorithm",
                          "exercise", "warning", "important"}
 
 
