@@ -81,7 +81,11 @@ bench: setup
 	$(PY) tools/bench.py
 	$(PY) tools/bench_widgets.py
 
+# JupyterLab opens the MyST sources as notebooks (jupytext), not as text
+LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json
 lab: setup
+	@mkdir -p $(dir $(LAB_OVERRIDES))
+	@echo '{"@jupyterlab/docmanager-extension:plugin": {"defaultViewers": {"markdown": "Jupytext Notebook", "myst": "Jupytext Notebook"}}}' > $(LAB_OVERRIDES)
 	$(BIN)/jupyter lab --notebook-dir=. chapters
 
 clean:
