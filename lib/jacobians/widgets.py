@@ -783,7 +783,7 @@ class GimbalLockExplorer(_Explorer):
     WRISTS = {"zyz": "ZYZ wrist: only its ZYX coordinates lock", "zyx": "ZYX wrist: both coincide"}
 
     def __init__(self, angles_deg=(30.0, 60.0, 0.0), wrist="zyz", tool=0.3, *, theta2_range=(-180.0, 180.0),
-                 n_grid=241, static=False, figsize=(8.5, 6.0), dpi=80):
+                 n_grid=241, static=False, figsize=(8.4, 6.0), dpi=80):
         super().__init__()
         if wrist not in self.WRISTS:
             raise ValueError(f"Expected wrist 'zyz' or 'zyx', got {wrist!r}")
@@ -1011,7 +1011,7 @@ def gimbal_lock_explorer(angles_deg=(30.0, 60.0, 0.0), wrist="zyz", tool=0.3, **
     return GimbalLockExplorer(angles_deg, wrist, tool, **kw)
 
 
-def gimbal_lock_animation(frames=15, dpi=72, interval=250, wrist="zyz", theta1_deg=30.0, theta3_deg=0.0,
+def gimbal_lock_animation(frames=15, dpi=80, interval=250, wrist="zyz", theta1_deg=30.0, theta3_deg=0.0,
                           theta2_deg=(45.0, 135.0)):
     r"""The gimbal-lock view as a FuncAnimation along a path of the wrist.
 
