@@ -50,6 +50,7 @@ browser:
 
 # ------------------------------------------------------------------ the book
 book: vendor
+	$(PY) tools/cache_guard.py _build/.jupyter_cache
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) tools/make_exercises.py _build/html/exercises/student
 	$(PY) tools/build_slides.py _build/html/slides
@@ -86,7 +87,7 @@ LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json
 lab: setup
 	@mkdir -p $(dir $(LAB_OVERRIDES))
 	@echo '{"@jupyterlab/docmanager-extension:plugin": {"defaultViewers": {"markdown": "Jupytext Notebook", "myst": "Jupytext Notebook"}}}' > $(LAB_OVERRIDES)
-	$(BIN)/jupyter lab --notebook-dir=. chapters
+	$(BIN)/jupyter lab --notebook-dir=. $$( [ "$$(id -u)" = 0 ] && echo --allow-root ) chapters
 
 clean:
 	rm -rf _build _vendor
