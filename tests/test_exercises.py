@@ -406,3 +406,116 @@ def test_student_notebook_executes_and_shows_no_answer_yet(student_dir):
     for out in boxes:
         html = out["data"]["text/html"]
         assert "No answer yet" in html and "Traceback" not in html
+
+
+# ------------------------------------------------------------------ the shape of every exercise: book vs student
+#
+# Book (the source, built by Jupyter Book): statement; a book-only line saying where the answer goes in
+# the notebook; the answer cell and the check cell tagged remove-cell (run, never shown, so no verdict
+# appears under an empty answer); the solution dropdown ending with a solution-tagged cell that shows
+# the checker's verdict on the solution; the instructor-only assert.
+# Student (tools/make_exercises.py): statement, answer cell, check cell; nothing else of the exercise.
+
+def _source_cells(eid):
+    import jupytext
+    (src,) = ROOT.glob(f"exercises/{eid[2:4]}_*.md")
+    cells = jupytext.read(src).cells
+    start = next(i for i, c in enumerate(cells) if c.cell_type == "code"
+                 and f'grading.load("{eid}", seed=SEED)' in c.source)
+    end = next((i for i, c in enumerate(cells) if i > start and c.cell_type == "code"
+                and "grading.load(" in c.source), len(cells))
+    return cells[start:end]
+
+
+def _tags(cell):
+    return set(cell.metadata.get("tags", []))
+
+
+@pytest.mark.parametrize("eid", IDS)
+def test_book_version_of_each_exercise_hides_the_answer_and_shows_the_verdict_in_the_solution(eid):
+    check = f'grading.check("{eid}", answer, seed=SEED)'
+    cells = _source_cells(eid)
+    line, ans, start = cells[1], cells[2], cells[3]
+    # the book-only line, right where the answer cell is
+    assert line.cell_type == "markdown" and _tags(line) == {"book-only"}, line
+    assert "In the student notebook" in line.source and "`answer" in line.source
+    assert "the next cell checks it" in line.source
+    # the answer cell: run, not shown in the book; the student's only assignment to `answer`
+    assert ans.cell_type == "code" and _tags(ans) == {"remove-cell"}, ans
+    assert re.findall(r"^answer\s*=.*$", ans.source, re.M) == [re.search(r"^answer = None\b.*$", ans.source, re.M)[0]]
+    # the solution dropdown, every cell of it tagged solution, its last cell the checker's verdict
+    assert start.cell_type == "markdown" and "solution-start" in start.source and f"ex-{eid}" in start.source
+    end = next(i for i, c in enumerate(cells) if "solution-end" in c.source)
+    inside = cells[3:end + 1]
+    assert all("solution" in _tags(c) for c in inside), [c.source[:40] for c in inside if "solution" not in _tags(c)]
+    verdict = cells[end - 1]
+    assert verdict.cell_type == "code" and _tags(verdict) == {"solution"} and verdict.source.strip() == check
+    assert sum(check in c.source for c in inside) == 1
+    # after the dropdown: the student's check cell (hidden in the book), then the instructor-only assert
+    after = [c for c in cells[end + 1:] if c.cell_type == "code"]
+    assert len(after) == 2, [c.source for c in after]
+    assert _tags(after[0]) == {"remove-cell"} and after[0].source.strip() == check
+    assert _tags(after[1]) == {"solution", "remove-cell"}
+    assert check.replace("grading.check", "_fb = grading.check") in after[1].source
+    assert "assert _fb.correct, _fb" in after[1].source
+    # nothing else of the exercise is shown outside the dropdown but the statement
+    shown = [c for c in cells[:3] + cells[end + 1:] if c.cell_type == "code" and not _tags(c) & {"remove-cell"}]
+    assert [c.source.strip() for c in shown] == [cells[0].source.strip()]
+
+
+def test_student_version_of_each_exercise_is_statement_answer_check(student_dir):
+    tool = _load_tool()
+    found = {}
+    for path in sorted(student_dir.glob("*.ipynb")):
+        nb = nbformat.read(path, as_version=4)
+        for eid, cells in tool.exercise_cells(nb).items():
+            found[eid] = [c.source.strip() for c in cells]
+            assert all(not c.metadata.get("tags") for c in cells), (eid, [c.metadata for c in cells])
+        assert "In the student notebook" not in "\n".join(c.source for c in nb.cells), path.name
+    assert sorted(found) == sorted(IDS) and len(found) == 39
+    for eid, (load, ans, check) in found.items():
+        assert load.startswith(f'ex{eid.split("_ex")[1]} = grading.load("{eid}", seed=SEED)'), (eid, load)
+        assert re.search(r"^answer = None\b", ans, re.M) and len(re.findall(r"^answer\s*=", ans, re.M)) == 1, (eid, ans)
+        assert check == f'grading.check("{eid}", answer, seed=SEED)', (eid, check)
+
+
+def test_check_student_rejects_a_notebook_without_its_check_cell_or_with_a_solution():
+    tool = _load_tool()
+    nb = tool.student_notebook(ROOT / "exercises" / "02_space_jacobian.md")
+    tool.check_student(nb)  # the real one passes
+    no_check = nbformat.from_dict(nb)
+    no_check.cells = [c for c in nb.cells if c.source.strip() != 'grading.check("ch02_ex3", answer, seed=SEED)']
+    with pytest.raises(AssertionError, match="ch02_ex3"):
+        tool.check_student(no_check)
+    no_answer = nbformat.from_dict(nb)
+    no_answer.cells = [c for c in nb.cells if not c.source.startswith("def my_space_jacobian")]
+    with pytest.raises(AssertionError, match="ch02_ex4"):
+        tool.check_student(no_answer)
+    leaked = nbformat.from_dict(nb)
+    leaked.cells = list(nb.cells) + [nbformat.v4.new_code_cell("answer = 1", metadata={"tags": ["solution"]})]
+    with pytest.raises(AssertionError, match="solution"):
+        tool.check_student(leaked)
+
+
+@pytest.mark.parametrize("src", sorted(p.name for p in (ROOT / "exercises").glob("[0-9][0-9]_*.md")))
+def test_book_version_executes_and_shows_only_correct_verdicts_inside_solutions(src):
+    """Run the instructor (book) version: each solution's verdict cell says Correct; no output prints a -0."""
+    import jupytext
+    from nbclient import NotebookClient
+    nb = jupytext.read(ROOT / "exercises" / src)
+    NotebookClient(nb, timeout=180, kernel_name="python3", resources={"metadata": {"path": str(ROOT)}}).execute()
+    verdicts = {}
+    for cell in nb.cells:
+        if cell.cell_type != "code":
+            continue
+        m = re.fullmatch(r'grading\.check\("(\w+)", answer, seed=SEED\)', cell.source.strip())
+        if m and _tags(cell) == {"solution"}:
+            (out,) = [o for o in cell.outputs if o.get("output_type") == "execute_result"]
+            verdicts[m.group(1)] = out["data"]["text/html"]
+        for out in cell.get("outputs", []):
+            text = out.get("text", "") + out.get("data", {}).get("text/plain", "")
+            assert not re.search(r"(?<![\w.])-0\.(?!0*[1-9])", text), (src, cell.source[-80:], text[:300])
+    ids = [e for e in IDS if e[2:4] == src[:2]]
+    assert sorted(verdicts) == ids
+    for eid, html in verdicts.items():
+        assert "jacobians-feedback-correct" in html and "Correct" in html, (eid, html[:200])

@@ -1,11 +1,27 @@
 """Write the student exercise notebooks: no solutions, no outputs.
 
 The sources exercises/NN_name.md are the instructor versions (MyST Markdown
-notebooks whose solution cells carry the tag ``solution``). For each of them
-this script writes DEST/NN_name.ipynb with
+notebooks whose solution cells carry the tag ``solution``). Each exercise is,
+in order::
+
+    grading.load("chNN_exK", seed=SEED)      statement, shown in book and notebook
+    (book-only Markdown line)                 "in the notebook, your answer goes here"
+    answer = None  # your answer here         tag remove-cell: hidden in the book
+    (solution-start ... solution cells ...)   tag solution
+    grading.check("chNN_exK", answer, ...)    tag solution: the verdict on the
+                                              solution, last cell of the dropdown
+    (solution-end)                            tag solution
+    grading.check("chNN_exK", answer, ...)    tag remove-cell: the student's check
+    assert _fb.correct                        tags solution, remove-cell: CI only
+
+For each source this script writes DEST/NN_name.ipynb with
 
 * every cell tagged ``solution`` removed (the dropdown's opening and closing
-  Markdown cells, the solution code, the instructor-only asserts);
+  Markdown cells, the solution code, the verdict on the solution, the
+  instructor-only asserts), and every ``book-only`` cell;
+* the answer cell and the check cell kept (their ``remove-cell`` tag only
+  hides them in the book, and is dropped here), so each exercise reads:
+  statement, answer, check;
 * no outputs and no execution counts;
 * the MyST-only markup a plain Jupyter front end shows as raw text turned into
   plain Markdown: the ``{exercise}`` block becomes a quoted task, ``{doc}`` and
@@ -27,6 +43,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SOURCES = ROOT / "exercises"
 SOLUTION_TAG = "solution"
 BOOK_ONLY_TAG = "book-only"  # cells for the web page only (the link to this very notebook)
+BOOK_HIDDEN_TAG = "remove-cell"  # the answer and check cells: run but not shown in the book
 
 _EXERCISE = re.compile(r"```\{exercise\}[^\n]*\n((?::[^\n]*\n)*)(.*?)\n```", re.S)
 _ROLE = re.compile(r"\{(?:doc|ref|numref|prf:ref)\}`([^`<]*?)(?:\s*<([^>]*)>)?`")
@@ -56,6 +73,12 @@ def student_notebook(path: Path) -> nbformat.NotebookNode:
         tags = cell.get("metadata", {}).get("tags", [])
         if SOLUTION_TAG in tags or BOOK_ONLY_TAG in tags:
             continue
+        if BOOK_HIDDEN_TAG in tags:  # hidden in the book only; a plain tag-free cell for the student
+            tags = [t for t in tags if t != BOOK_HIDDEN_TAG]
+            if tags:
+                cell.metadata["tags"] = tags
+            else:
+                cell.metadata.pop("tags")
         if cell.cell_type == "code":
             cell.outputs = []
             cell.execution_count = None
@@ -79,14 +102,43 @@ def student_notebook(path: Path) -> nbformat.NotebookNode:
     return nb
 
 
+_LOAD = re.compile(r'grading\.load\("(\w+)", seed=SEED\)')
+_ANSWER = re.compile(r"^answer = None\b", re.M)
+
+
+def exercise_cells(nb: nbformat.NotebookNode) -> dict[str, list[nbformat.NotebookNode]]:
+    """The code cells of each exercise, by id: from its ``grading.load`` cell to the next one."""
+    out: dict[str, list] = {}
+    current = None
+    for cell in nb.cells:
+        if cell.cell_type != "code":
+            continue
+        m = _LOAD.search(cell.source)
+        if m:
+            current = m.group(1)
+            assert current not in out, f"exercise {current} is loaded twice"
+            out[current] = []
+        if current is not None:
+            out[current].append(cell)
+    return out
+
+
 def check_student(nb: nbformat.NotebookNode) -> None:
-    """Raise AssertionError if a solution or an output slipped through."""
+    """Raise AssertionError if a solution or an output slipped through, or an exercise lost its
+    answer cell or its check cell (each exercise: load, answer = None, check, in that order)."""
     for cell in nb.cells:
         assert SOLUTION_TAG not in cell.get("metadata", {}).get("tags", []), "a solution cell remains"
         if cell.cell_type == "code":
             assert not cell.get("outputs"), "a code cell has outputs"
             assert cell.get("execution_count") is None, "a code cell has an execution count"
         assert "solution-start" not in cell.source and "solution-end" not in cell.source, "solution markup remains"
+    exercises = exercise_cells(nb)
+    assert exercises, "no exercise (no grading.load cell)"
+    for eid, cells in exercises.items():
+        sources = [c.source.strip() for c in cells]
+        assert len(cells) == 3, f"{eid}: expected 3 code cells (load, answer, check), got {len(cells)}: {sources}"
+        assert len(re.findall(r"^answer\s*=", sources[1], re.M)) == 1 and _ANSWER.search(sources[1]), f"{eid}: no answer cell: {sources[1]!r}"
+        assert sources[2] == f'grading.check("{eid}", answer, seed=SEED)', f"{eid}: no check cell: {sources[2]!r}"
 
 
 def main(dest: Path) -> int:
