@@ -33,7 +33,14 @@ def _copy(src: Path, dst: Path, skip_maps: bool = True) -> None:
 
 def book(dest: Path) -> None:
     """MathJax 3, require.js and the widget manager, for the HTML book."""
-    _copy(NM / "mathjax" / "es5", dest / "mathjax" / "es5")
+    # MathJax 3: only what the pages load (the combined TeX/CHTML component and
+    # its woff-v2 fonts), plus what it may fetch later (TeX extensions that
+    # autoload, the context menu and its accessibility parts): about 3 MB of the
+    # package's 20 MB.
+    mj = NM / "mathjax" / "es5"
+    shutil.rmtree(dest / "mathjax", ignore_errors=True)  # drop files of an older, fuller copy
+    for part in ("tex-mml-chtml.js", "output/chtml/fonts/woff-v2", "input/tex/extensions", "ui", "a11y"):
+        _copy(mj / part, dest / "mathjax" / "es5" / part)
     _copy(NM / "requirejs" / "require.js", dest / "require.js")
     _copy(NM / "@jupyter-widgets" / "html-manager" / "dist", dest / "html-manager")
 
