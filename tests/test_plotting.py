@@ -242,3 +242,82 @@ def test_blit_frames_gives_the_same_frames_as_a_full_redraw():
     assert html.count("frames[") >= len(thetas) and "http" not in html.split("<script")[0]
     with pytest.raises(ValueError):
         plotting.blit_frames(anim, update, 0, art.artists)
+
+
+def _old_ur5_figure():
+    """The UR5 figure of chapter 1 before issue 11: one view, numbers at the segment tips."""
+    fig = plt.figure(figsize=(6.4, 5.4), dpi=80)
+    ax = fig.add_subplot(projection="3d")
+    art = P.draw_spatial_chain(ax, jac.robots.ur5(), np.zeros(6), setup_axes=True, title="UR5 at home")
+    ax.set_xlim(-0.2, 1.0)
+    ax.set_ylim(-0.5, 0.7)
+    ax.set_zlim(-0.4, 0.8)
+    ax.view_init(elev=25, azim=-55)
+    return art
+
+
+def test_old_ur5_labels_are_reported_and_place_labels_clears_them():
+    art = _old_ur5_figure()
+    problems = art.label_problems()
+    # the defects of the old figure: the wrist's vertical axis 5 runs through numbers 4 and 6
+    assert "axis 5 crosses number 4" in problems and "axis 5 crosses number 6" in problems
+    art.place_labels()
+    assert art.label_problems() == []
+    assert np.all(np.abs(art.label_at) > 1.0)  # every number moved beyond its segment, on a leader
+
+
+@pytest.mark.parametrize("k, elev, azim", [(0, 22, -60), (1, 30, 30)])
+def test_place_labels_keeps_each_number_on_its_own_axis(k, elev, azim):
+    # the two views of the UR5 figure of chapter 1 (ch01-fig-ur5), as the chapter draws them
+    ur5 = jac.robots.ur5()
+    fig = plt.figure(figsize=(5.6, 7.4), dpi=80)
+    ax = fig.add_axes([0.0, 0.53 - 0.53 * k, 1.0, 0.45], projection="3d")
+    ax.set(xlim=(-0.2, 1.0), ylim=(-0.3, 0.4), zlim=(-0.25, 0.35))
+    ax.set_box_aspect((1.2, 0.7, 0.6), zoom=(1.45, 1.3)[k])
+    ax.view_init(elev=elev, azim=azim)
+    art = P.draw_spatial_chain(ax, ur5, np.zeros(6), fontsize=13, label_box=True, axis_length=0.12,
+                               frame_length=0.16, place_labels=True)
+    assert art.label_problems() == []
+    assert all(t.get_fontsize() == 13 for t in art.axis_texts)
+    assert art.frames[0].name_text.get_fontsize() == 13
+    for theta in (np.zeros(6), np.array([0.3, -0.5, 0.8, 0.2, 0.4, 0.1])):
+        art.update(theta)
+        pts, d = ur5.joint_positions(theta)[:6], art.axis_directions
+        offset = art.label_points - pts
+        # the number lies on its own axis line, label_at axis lengths from the joint point
+        np.testing.assert_allclose(offset, art.label_at[:, None] * 0.12 * d, atol=1e-12)
+        for i, ld in enumerate(art.leader_lines):
+            x, y, z = ld.get_data_3d()
+            assert len(x) == 2  # every number sits beyond its tip here, so each has a leader
+            np.testing.assert_allclose([x[0], y[0], z[0]], pts[i] + np.sign(art.label_at[i]) * 0.12 * d[i])
+            np.testing.assert_allclose([x[1], y[1], z[1]], art.label_points[i])
+
+
+def test_label_problems_finds_overlaps_and_aligned_axes():
+    wrist = jac.robots.zyz_wrist()
+    fig = plt.figure(figsize=(5, 4), dpi=80)
+    ax = fig.add_subplot(projection="3d")
+    # all three numbers at the wrist centre: they overlap
+    art = P.draw_spatial_chain(ax, wrist, [0.3, 0.9, 0.2], setup_axes=True, axis_length=0.15, label_at=0.0)
+    assert "number 1 overlaps number 2" in art.label_problems()
+    # at theta_2 = 0 axes 1 and 3 coincide (the wrist's singularity): one hides the other
+    fig2 = plt.figure(figsize=(5, 4), dpi=80)
+    ax2 = fig2.add_subplot(projection="3d")
+    art2 = P.draw_spatial_chain(ax2, wrist, [0.3, 0.0, 0.2], setup_axes=True, axis_length=0.15, show_frames=False)
+    assert "axis 3 is hidden under axis 1" in art2.label_problems()
+    art2.update([0.3, 0.9, 0.2])
+    assert not any("hidden" in p for p in art2.label_problems())
+
+
+def test_label_positions_default_and_validation():
+    ur5 = jac.robots.ur5()
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    art = P.draw_spatial_chain(ax, ur5, np.zeros(6), axis_length=0.1)
+    # default: each number at the + tip of its segment, as before, with no leader
+    np.testing.assert_allclose(art.label_points, ur5.joint_positions(np.zeros(6))[:6] + 0.1 * art.axis_directions)
+    assert all(len(ld.get_data_3d()[0]) == 0 for ld in art.leader_lines)
+    with pytest.raises(ValueError, match="one per joint"):
+        P.draw_spatial_chain(ax, ur5, np.zeros(6), label_at=[1.0, 2.0])
+    with pytest.raises(ValueError, match="candidates"):
+        art.place_labels(candidates=[])
