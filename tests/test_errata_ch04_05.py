@@ -222,7 +222,10 @@ def test_no_check_printouts_and_one_verified_box_per_section(path):
     for title, body in _sections(text):
         needs_box = "$$" in body or re.search(r"```\{prf:(theorem|proposition|lemma|corollary)\}", body)
         cells = _code_cells(body)
-        has_box = bool(cells) and cells[-1].rstrip().endswith("verified.box()")
+        tail = body[body.rfind("verified.box()"):].split("```", 1)[-1] if "verified.box()" in body else ""
+        ends_with_box = all(not ln.strip() or ln.startswith("+++") or re.fullmatch(r"\(\S+\)=", ln.strip())
+                            for ln in tail.splitlines())   # blank, cell metadata, or the next section's label
+        has_box = bool(cells) and cells[-1].rstrip().endswith("verified.box()") and ends_with_box
         if needs_box:
             assert has_box, f"section {title!r} of {path.name} must end with a verified.box() cell"
         if "verified(" in body:
