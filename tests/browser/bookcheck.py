@@ -36,7 +36,7 @@ PHONE = {"width": 390, "height": 844}
 MAX_PAGE_BYTES = 3 * 1024 * 1024
 
 ASPECTS = ("load", "console", "offline", "math", "images", "animations", "widgets", "solutions", "links", "errors",
-           "weight")
+           "weight", "overflow", "figures", "verdicts", "phone_math", "negative_zero", "check_lines")
 
 # Console messages that are not errors of the book. Each entry: (console type,
 # exact text, why it is harmless). Only types "error" and page errors fail a
@@ -194,6 +194,300 @@ def raw_tex_in(text: str) -> list[str]:
     return found
 
 
+# ---------------------------------------------------------------- page-quality probes (issue #11)
+# Shared JS: the main content, and a short "where" (the heading of the section an element is in).
+_JS_COMMON = """
+  const ROOT = document.querySelector('article.bd-article') || document.querySelector('main') || document.body;
+  const where = e => {
+    for (let s = e.closest('section'); s; s = s.parentElement && s.parentElement.closest('section')) {
+      const h = s.querySelector(':scope > h1, :scope > h2, :scope > h3, :scope > h4, :scope > h5');
+      if (h) return h.textContent.replace(/#\\s*$/, '').trim().slice(0, 70);
+    }
+    return '(top of the page)';
+  };
+"""
+
+# Verdicts of the exercise checker (jacobians.grading.Feedback) and `answer = None` cells, and where they are.
+_VERDICTS_JS = "() => {" + _JS_COMMON + """
+  const verdicts = Array.from(ROOT.querySelectorAll('.jacobians-feedback')).map(e => {
+    const m = /jacobians-feedback-(\\w+)/.exec(e.className);
+    return {kind: m ? m[1] : '?', head: (e.querySelector('strong') || e).textContent.trim().slice(0, 40),
+            solution: !!e.closest('.solution'), where: where(e)};
+  });
+  const empty = Array.from(ROOT.querySelectorAll('.cell_input, div[class*="highlight-"]'))
+    .filter(e => !e.closest('.cell_output') && !e.closest('.solution') && !(e.parentElement && e.parentElement.closest('.cell_input, div[class*="highlight-"]')))
+    .filter(e => /^\\s*answer\\s*=\\s*None\\b/m.test(e.textContent)).map(e => where(e));
+  const exercisePage = !!ROOT.querySelector('.exercise, .solution') || /\\/exercises\\//.test(location.pathname);
+  return {verdicts, empty, exercisePage};
+}"""
+
+# Images and animations in the main content that are not in a figure with a numbered caption.
+_FIGURES_JS = "() => {" + _JS_COMMON + """
+  const exempt = e => !!e.closest('.navbar-brand, .bd-header, .bd-footer, .bd-sidebar-primary, .bd-sidebar-secondary, '
+                                  + 'header, footer, .jacobians-feedback') || /(^|\\s)(logo|theme-image)/.test(e.className || '');
+  const items = Array.from(ROOT.querySelectorAll('img')).filter(i => !i.closest('.animation')).map(e => ['image', e])
+    .concat(Array.from(ROOT.querySelectorAll('div.animation')).map(e => ['animation', e]));
+  const out = [];
+  let numbered = 0;
+  for (const [kind, e] of items) {
+    if (exempt(e)) continue;
+    const img = kind === 'image' ? e : e.querySelector('img');
+    const name = ((img && (img.getAttribute('alt') || (img.getAttribute('src') || '').slice(0, 60))) || '').slice(0, 70);
+    const fig = e.closest('figure');
+    const cap = fig && fig.querySelector('figcaption');
+    let why = null;
+    if (!fig) why = 'is not in a figure';
+    else if (!cap || !cap.textContent.trim()) why = 'is in a figure without a caption';
+    else if (!cap.querySelector('span.caption-number')) why = 'is in a figure whose caption has no number';
+    if (why) out.push({kind, name, why, where: where(e)}); else numbered += 1;
+  }
+  return {out, numbered};
+}"""
+
+# Visible text by block (paragraph, list item, output, caption...), without the code the reader types
+# (cell inputs, code blocks and inline code outside outputs) and without typeset math; the TeX of every
+# formula comes from MathJax's own list; the lines of monospace outputs are listed separately.
+_TEXT_JS = "() => {" + _JS_COMMON + """
+  const SKIP = '.cell_input, script, style, noscript, textarea, template, mjx-container, .headerlink';
+  const CODE = 'code, div[class*="highlight-"], pre';
+  const skipped = el => !!el.closest(SKIP) || (!!el.closest(CODE) && !el.closest('.cell_output'));
+  const BLOCK = 'p, li, pre, td, th, dt, dd, figcaption, caption, summary, h1, h2, h3, h4, h5, h6, .admonition-title, .cell_output';
+  const blocks = new Map();
+  const walker = document.createTreeWalker(ROOT, NodeFilter.SHOW_TEXT);
+  for (let n = walker.nextNode(); n; n = walker.nextNode()) {
+    const el = n.parentElement;
+    if (!el || skipped(el)) continue;
+    const b = el.closest(BLOCK) || el;
+    blocks.set(b, (blocks.get(b) || '') + n.data);
+  }
+  const text = Array.from(blocks, ([b, t]) => ({where: where(b), text: t, mono: b.tagName === 'PRE'}));
+  const tex = [];
+  if (window.MathJax && MathJax.startup && MathJax.startup.document) {
+    for (const item of MathJax.startup.document.math) {
+      const node = item.typesetRoot || (item.start && item.start.node);
+      if (node && node.nodeType === 1 && node.closest('.cell_input')) continue;
+      tex.push({where: node && node.nodeType === 1 ? where(node) : (node && node.parentElement ? where(node.parentElement) : ''),
+                text: String(item.math)});
+    }
+  } else {
+    ROOT.querySelectorAll('span.math, div.math').forEach(e => tex.push({where: where(e), text: e.textContent}));
+  }
+  return {text, tex};
+}"""
+
+# Boxes whose content is wider than the box, where the box is not a horizontal scroll container and no
+# scroll container inside the article takes the overflow. Only the innermost offender is reported.
+_OVERFLOW_JS = "() => {" + _JS_COMMON + """
+  const ox = e => getComputedStyle(e).overflowX;
+  const describe = e => {
+    if (e.matches('.admonition')) {
+      const t = e.querySelector('.admonition-title');
+      return 'box "' + (t ? t.textContent.trim().slice(0, 40) : e.className) + '"';
+    }
+    if (e.matches('.cell_output')) return 'cell output';
+    if (e.matches('div.math')) return 'display-math box';
+    return 'display equation';
+  };
+  // content width: scrollWidth, except that content sticking out on the left (display math is a
+  // flex row-reverse box) is not in scrollWidth: for math, the children's extent counts too
+  const contentWidth = e => {
+    let w = e.scrollWidth;
+    if (e.matches('div.math, mjx-container')) {
+      const r = e.getBoundingClientRect();
+      let lo = r.left, hi = r.right;
+      for (const c of e.children) {
+        if (!c.getClientRects().length) continue;
+        const q = c.getBoundingClientRect();
+        lo = Math.min(lo, q.left); hi = Math.max(hi, q.right);
+      }
+      w = Math.max(w, Math.round(e.clientWidth + (r.left - lo) + (hi - r.right)));
+    }
+    return w;
+  };
+  const bad = [];
+  for (const e of ROOT.querySelectorAll('.cell_output, .admonition, div.math, mjx-container[display="true"]')) {
+    if (!e.getClientRects().length || e.clientWidth === 0) continue;
+    if (contentWidth(e) - e.clientWidth <= 2 || /^(auto|scroll)$/.test(ox(e))) continue;
+    let ok = false;
+    for (let a = e.parentElement; a && a !== ROOT && ROOT.contains(a); a = a.parentElement) {
+      const o = ox(a);
+      if (o === 'auto' || o === 'scroll') { ok = true; break; }
+      if (o === 'hidden' || o === 'clip') break;
+    }
+    if (!ok) bad.push(e);
+  }
+  // what sticks out of a box: the innermost descendants past its padding edge (not looking inside
+  // descendants that scroll or clip, they keep their content), shown by their text
+  const stickingOut = e => {
+    const r = e.getBoundingClientRect();
+    const lo = r.left + e.clientLeft - 2, hi = r.left + e.clientLeft + e.clientWidth + 2;
+    const out = [];
+    const walk = n => {
+      for (const c of n.children) {
+        if (!c.getClientRects().length) continue;
+        const q = c.getBoundingClientRect();
+        if (q.right > hi || q.left < lo) out.push(c);
+        if (ox(c) === 'visible' && !c.matches('mjx-container')) walk(c);
+      }
+    };
+    walk(e);
+    const inner = out.filter(c => !out.some(o => o !== c && c.contains(o)));
+    return inner.slice(0, 2).map(c => {
+      const m = c.closest('mjx-container');
+      return (m ? (m.getAttribute('aria-label') || m.textContent) : c.textContent).trim().replace(/\\s+/g, ' ').slice(0, 50);
+    }).filter(t => t);
+  };
+  const boxes = bad.filter(e => !bad.some(o => o !== e && e.contains(o))).map(e => ({
+    what: describe(e), content: contentWidth(e), box: e.clientWidth, clipped: /^(hidden|clip)$/.test(ox(e)),
+    where: where(e), text: e.textContent.trim().replace(/\\s+/g, ' ').slice(0, 50), culprits: stickingOut(e)}));
+  // the whole page wider than the window: the elements that stick out, not inside any clipping box
+  const vw = document.documentElement.clientWidth, pw = document.documentElement.scrollWidth;
+  const culprits = [];
+  if (pw > vw + 2) {
+    const free = e => { for (let a = e.parentElement; a && a !== document.body; a = a.parentElement)
+                          if (ox(a) !== 'visible') return false; return true; };
+    const out = Array.from(ROOT.querySelectorAll('*')).filter(e => e.getClientRects().length
+      && e.getBoundingClientRect().right > vw + 2 && free(e));
+    for (const e of out.filter(e => !out.some(o => o !== e && e.contains(o))).slice(0, 3)) {
+      const block = e.closest('p, li, h1, h2, h3, h4, h5, h6, pre, td, th, .admonition, .cell_output, figure') || e;
+      culprits.push({tag: e.tagName.toLowerCase() + (e.className ? '.' + String(e.className).split(' ')[0] : ''),
+                     text: (block.textContent || '').trim().replace(/\\s+/g, ' ').slice(0, 60), where: where(e),
+                     right: Math.round(e.getBoundingClientRect().right)});
+    }
+  }
+  return {boxes, page: pw, window: vw, culprits};
+}"""
+
+# Every formula at the current width: does it fit, scroll in its own box, or get cut off?
+_MATH_FIT_JS = "() => {" + _JS_COMMON + """
+  const vw = document.documentElement.clientWidth;
+  const ox = e => getComputedStyle(e).overflowX;
+  const out = [];
+  for (const c of ROOT.querySelectorAll('mjx-container')) {
+    if (!c.getClientRects().length) continue;
+    const display = c.getAttribute('display') === 'true';
+    const m = c.querySelector(':scope > mjx-math') || c.firstElementChild || c;
+    const r = m.getBoundingClientRect();
+    const w = Math.round(r.width);
+    const tex = (c.getAttribute('aria-label') || c.textContent || '').trim().slice(0, 40);
+    let x = null;
+    for (let a = c; a && a !== document.documentElement; a = a.parentElement) {
+      if (ox(a) !== 'visible') { x = a; break; }
+    }
+    let why = null;
+    if (x && /^(hidden|clip)$/.test(ox(x))) {
+      if (w > x.clientWidth + 2) why = `is ${w} px wide and cut off at ${x.clientWidth} px by overflow: ${ox(x)} (no scroll container)`;
+    } else if (x && x !== ROOT && ROOT.contains(x) && x !== document.body) {
+      const s = x.getBoundingClientRect();
+      if (w > x.clientWidth + 2 && (s.right > vw + 1 || s.left < -1))
+        why = `scrolls in a box that itself runs off the ${vw} px screen`;
+      for (let a = x.parentElement; !why && a && a !== document.documentElement; a = a.parentElement) {
+        if (/^(hidden|clip)$/.test(ox(a)) && s.right > a.getBoundingClientRect().right + 2)
+          why = `scrolls in a box that is cut off by overflow: ${ox(a)} of its container`;
+      }
+    } else if (r.right > vw + 1 || r.left < -1) {
+      why = `is ${w} px wide and runs off the ${vw} px screen (no scroll container)`;
+    }
+    if (why) out.push({display, why, where: where(c), tex});
+  }
+  return out;
+}"""
+
+NEGATIVE_ZERO = re.compile(r"(?<![\w.])[-\u2212]\s?0(?:\.0*)?(?![\d.])")
+NEGATIVE_ZERO_TEX = re.compile(r"(?<![\w.}])-\s*0(?:\.0*)?(?![\d.])")
+CHECK_LINE = re.compile(r"[\u2713\u2714]\s*(?:checked|verified)\b", re.I)
+
+
+def negative_zeros_in(text: str, tex: bool = False) -> list[str]:
+    """Snippets of ``text`` that show a negative zero ("-0.", "−0.000", "-0").
+
+    >>> negative_zeros_in("array([ 0.    , -0.    ,  1.    ])")
+    ['...y([ 0. , -0. , 1....']
+    >>> negative_zeros_in("x = -0.5, y = 10-0.3, 1e-05, -0.05, −1.0")
+    []
+    """
+    pattern = NEGATIVE_ZERO_TEX if tex else NEGATIVE_ZERO
+    out = []
+    for m in pattern.finditer(text):
+        a, b = max(0, m.start() - 12), min(len(text), m.end() + 12)
+        out.append("..." + " ".join(text[a:b].split()) + "...")
+    return out
+
+
+def check_lines_in(text: str, monospace: bool = False) -> list[str]:
+    """Lines of ``text`` that are an old "✓ checked" printout (or, in a monospace output, any line opening with ✓).
+
+    >>> check_lines_in("✓ checked (sympy): e^{+[S1]θ1} ...")
+    ['✓ checked (sympy): e^{+[S1]θ1} ...']
+    >>> check_lines_in("✓ 4 conversions agree", monospace=True)
+    ['✓ 4 conversions agree']
+    >>> check_lines_in("Verified by code (3 checks)")
+    []
+    """
+    out = []
+    for line in text.splitlines():
+        line = line.strip()
+        if CHECK_LINE.search(line) or (monospace and line.startswith(("\u2713", "\u2714"))):
+            out.append(line[:100])
+    return out
+
+
+def _check_verdicts(page, report: "PageReport") -> None:
+    v = page.evaluate(_VERDICTS_JS)
+    report.counts["verdicts"] = len(v["verdicts"])
+    shown_correct = [x for x in v["verdicts"] if x["kind"] == "correct" and not x["solution"]]
+    if v["empty"] and shown_correct:
+        report.add("verdicts", f"a \u2018{shown_correct[0]['head']}\u2019 verdict is shown ({shown_correct[0]['where']!r}) "
+                   f"on a page that shows an empty answer `answer = None` ({v['empty'][0]!r}): "
+                   "the book ran the checker on the hidden solution")
+    if v["exercisePage"]:
+        for x in v["verdicts"]:
+            if not x["solution"]:
+                report.add("verdicts", f"a checker verdict \u2018{x['head']}\u2019 is shown outside a solution dropdown "
+                           f"(section {x['where']!r}): in the book the check cell must show nothing")
+
+
+def _check_figures(page, report: "PageReport") -> None:
+    f = page.evaluate(_FIGURES_JS)
+    report.counts["figures"] = f["numbered"]
+    for x in f["out"]:
+        report.add("figures", f"{x['kind']} {x['name']!r} {x['why']} (section {x['where']!r}): every figure and "
+                   "animation needs a numbered caption (cell metadata mystnb: figure: name, caption)")
+
+
+def _check_text(page, report: "PageReport") -> None:
+    t = page.evaluate(_TEXT_JS)
+    for block in t["text"]:
+        for snip in negative_zeros_in(block["text"]):
+            report.add("negative_zero", f"a negative zero in the text: {snip!r} (section {block['where']!r})")
+        for line in check_lines_in(block["text"], monospace=block["mono"]):
+            report.add("check_lines", f"a raw \u2713 check printout: {line!r} (section {block['where']!r}): "
+                       "record it with verified(...) and show verified.box()")
+    for formula in t["tex"]:
+        for snip in negative_zeros_in(formula["text"], tex=True):
+            report.add("negative_zero", f"a negative zero in a formula: {snip!r} (section {formula['where']!r})")
+
+
+def _check_layout(page, report: "PageReport", width: int) -> None:
+    o = page.evaluate(_OVERFLOW_JS)
+    for x in o["boxes"]:
+        how = "is cut off (overflow: hidden)" if x["clipped"] else "spills out (not a scroll container)"
+        what = ("; sticking out: " + ", ".join(repr(t) for t in x["culprits"])) if x["culprits"] else ""
+        report.add("overflow", f"at {width} px a {x['what']} is {x['content']} px wide in a {x['box']} px box and {how}: "
+                   f"{x['text']!r}{what} (section {x['where']!r})")
+    if o["culprits"]:
+        what = "; ".join(f"{c['tag']} reaching {c['right']} px in {c['text']!r} (section {c['where']!r})"
+                         for c in o["culprits"])
+        report.add("overflow", f"at {width} px the whole page scrolls sideways ({o['page']} px wide in a "
+                   f"{o['window']} px window): {what}")
+
+
+def _check_phone_math(page, report: "PageReport", width: int) -> None:
+    for x in page.evaluate(_MATH_FIT_JS):
+        kind = "display equation" if x["display"] else "inline formula"
+        report.add("phone_math", f"at {width} px a {kind} {x['why']}: {x['tex']!r} (section {x['where']!r})")
+
+
 def _local_target(url: str, base: str, root: Path) -> tuple[Path | None, str]:
     """File of the build a same-origin URL points at (index.html for folders), and its fragment."""
     parts = urlsplit(url)
@@ -348,7 +642,12 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     for snippet in raw_tex_in(page.evaluate(_VISIBLE_TEXT_JS)):
         report.add("math", f"raw TeX in the visible text: {snippet}")
 
+    _check_text(page, report)
     _lap("math")
+    # ---- exercise verdicts and numbered figures (structure: independent of what is open)
+    _check_verdicts(page, report)
+    _check_figures(page, report)
+    _lap("verdicts+figures")
     # ---- images: loaded, with real alt text
     page.evaluate("() => document.querySelectorAll('img[loading=lazy]').forEach(i => i.loading = 'eager')")
     page.evaluate(
@@ -516,16 +815,19 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         report.add("weight", f"page weighs {total / 2**20:.2f} MiB (> 3 MiB) over {len(responses)} requests")
 
     _lap("weight")
-    # ---- phone screenshot (after the checks: solutions shown open, animations paused)
-    if shots is not None:
-        stem = path.replace("/", "__").removesuffix(".html")
+    # ---- layout, every dropdown open: boxes that overflow, formulas cut off; desktop, then phone width
+    _check_layout(page, report, DESKTOP["width"])
+    _check_phone_math(page, report, DESKTOP["width"])
+    _lap("layout")
+    if phone:
         page.evaluate("() => window.scrollTo(0, 0)")
-        if phone:
-            page.set_viewport_size(PHONE)
-            page.wait_for_timeout(200)
-            overflow = page.evaluate("() => document.documentElement.scrollWidth")
-            if overflow > PHONE["width"] + 2:
-                report.notes.append(f"at phone width the page scrolls sideways ({overflow} px wide)")
+        page.set_viewport_size(PHONE)
+        page.wait_for_timeout(250)
+        _check_layout(page, report, PHONE["width"])
+        _check_phone_math(page, report, PHONE["width"])
+        # phone screenshot (after the checks: solutions shown open, animations paused)
+        if shots is not None:
+            stem = path.replace("/", "__").removesuffix(".html")
             page.screenshot(path=str(shots / f"{stem}__phone.jpg"), full_page=True, type="jpeg", quality=75)
     _lap("phone screenshot")
     page.close()
@@ -571,7 +873,7 @@ def main(argv: list[str] | None = None) -> int:
     with BookServer(args.html) as server, sync_playwright() as p:
         context, _profile = launch_browser(p)
         for path in pages:
-            r = check_page(context, server.base, args.html, path, shots=args.shots, phone=args.shots is not None)
+            r = check_page(context, server.base, args.html, path, shots=args.shots)
             print(r.summary())
             for aspect, msgs in r.problems.items():
                 for m in msgs:

@@ -21,6 +21,8 @@ sys.path.insert(0, str(ROOT / "_ext"))
 import offline_fixes  # noqa: E402
 
 CDN = "https://cdn.jsdelivr.net/npm/mathjax@3/es5/tex-mml-chtml.js"
+WIDE_TEX = " + ".join(f"a_{{{i}}} b_{{{i}}}" for i in range(1, 41))   # about 2000 px: wider than any screen
+MEDIUM_TEX = " + ".join(f"a_{{{i}}} b_{{{i}}}" for i in range(1, 11))  # about 500 px: fits 1280, not 390
 
 # name -> (how the page is broken, aspect that must complain, text the complaint must contain)
 BREAKAGES = {
@@ -48,6 +50,81 @@ BREAKAGES = {
                        '</div>', "animations", "did not change the frame"),
     "solution_never_opens": ("insert", '<details class="sd-dropdown"><summary onclick="event.preventDefault()">'
                              'Solution</summary><p>hidden forever</p></details>', "solutions", "does not open"),
+    # ---- page quality (issue #11)
+    "overflowing_output": ("insert", '<div class="cell docutils container"><div class="cell_output docutils container">'
+                           '<div style="width:1600px">an output wider than its box, broken on purpose</div></div></div>',
+                           "overflow", "cell output is"),
+    "overflowing_verified_box": ("insert", '<div class="admonition dropdown verified"><p class="admonition-title">'
+                                 'Verified by code (1 check)</p><ul><li><span style="white-space:nowrap">'
+                                 + "J_s(theta) = [Ad_{e^{[S1]theta1}}] S2, " * 12 + '</span></li></ul></div>',
+                                 "overflow", 'box "Verified by code'),
+    "box_cut_off_at_phone_width": ("insert", '<div class="admonition note" style="overflow:hidden">'
+                                   '<p class="admonition-title">Note</p><div style="width:600px">'
+                                   'fits at 1280 px, cut off at 390 px</div></div>', "overflow", "at 390 px a box"),
+    "page_scrolls_sideways": ("insert", '<p><span style="white-space:nowrap">' + "unbreakable_" * 30 + '</span></p>',
+                              "overflow", "whole page scrolls sideways"),
+    "image_outside_figure": ("insert", '<div class="cell_output docutils container"><img src="../_static/favicon.svg" '
+                             'alt="a plot of the arm"></div>', "figures", "image 'a plot of the arm' is not in a figure"),
+    "animation_outside_figure": ("insert", '<div class="animation"><img id="_anim_imgY" alt="an animation of the arm" '
+                                 'src="../_static/favicon.svg"><button onclick="void 0 /* play_animation */">play</button>'
+                                 '</div>', "figures", "animation 'an animation of the arm' is not in a figure"),
+    "figure_without_number": ("insert", '<figure><img src="../_static/favicon.svg" alt="a plot"><figcaption><p>'
+                              'A caption without a number.</p></figcaption></figure>', "figures", "has no number"),
+    "figure_without_caption": ("insert", '<figure><img src="../_static/favicon.svg" alt="a plot"></figure>',
+                               "figures", "without a caption"),
+    "correct_under_empty_answer": ("insert", '<div class="cell docutils container"><div class="cell_input docutils container">'
+                                   '<div class="highlight-ipython3 notranslate"><div class="highlight"><pre>'
+                                   'answer = None  # your answer here</pre></div></div></div>'
+                                   '<div class="cell_output docutils container"><div class="jacobians-feedback '
+                                   'jacobians-feedback-correct" role="status"><strong>&#10004; Correct</strong> '
+                                   '(ch02_ex1)<br>Your column matches the reference.</div></div></div>',
+                                   "verdicts", "empty answer `answer = None`"),
+    "verdict_outside_solution": ("insert", '<div class="exercise admonition"><p class="admonition-title">Exercise</p>'
+                                 '<p>Compute something.</p></div><div class="cell_output docutils container">'
+                                 '<div class="jacobians-feedback jacobians-feedback-wrong" role="status"><strong>'
+                                 '&#10008; Not yet</strong> (ch02_ex1)</div></div>', "verdicts",
+                                 "outside a solution dropdown"),
+    "display_math_clipped": ("insert", '<style>.broken-clip mjx-container { overflow: hidden !important; }</style>'
+                             '<div class="math notranslate nohighlight broken-clip">\\[' + WIDE_TEX + '\\]</div>',
+                             "phone_math", "cut off at"),
+    "display_math_off_screen": ("insert", '<style>.broken-run, .broken-run mjx-container { overflow: visible !important; }'
+                                '</style><div class="math notranslate nohighlight broken-run">\\[' + WIDE_TEX + '\\]</div>',
+                                "phone_math", "runs off the"),
+    "display_math_spills_out": ("insert", '<style>.broken-run, .broken-run mjx-container { overflow: visible !important; }'
+                                '</style><div class="math notranslate nohighlight broken-run">\\[' + WIDE_TEX + '\\]</div>',
+                                "overflow", "display-math box is"),
+    "display_math_clipped_only_on_phones": ("insert", '<style>.broken-clip mjx-container { overflow: hidden !important; }'
+                                            '</style><div class="math notranslate nohighlight broken-clip">\\['
+                                            + MEDIUM_TEX + '\\]</div>', "phone_math", "at 390 px a display equation"),
+    "negative_zero_in_output": ("insert", '<div class="cell_output docutils container"><div class="output text_plain">'
+                                '<pre>array([ 0.5   , -0.    ,  1.    ])</pre></div></div>', "negative_zero", "-0."),
+    "negative_zero_in_formula": ("insert", '<p>So <span class="math notranslate nohighlight">\\(x = -0.000\\)</span>.</p>',
+                                 "negative_zero", "in a formula"),
+    "negative_zero_in_prose": ("insert", '<p>The angle is \u22120.0 rad.</p>', "negative_zero", "\u22120.0"),
+    "check_printout": ("insert", '<div class="cell_output docutils container"><div class="output stream '
+                       'highlight-myst-ansi"><pre>\u2713 checked: e^{+[S1]\u03b81} on the right is not a twist</pre>'
+                       '</div></div>', "check_lines", "\u2713 checked"),
+}
+
+# Pages changed in a way that is fine: each must add no complaint under the aspects named.
+NOT_BROKEN = {
+    "verdict_inside_solution": ('<div class="exercise admonition"><p class="admonition-title">Exercise</p><p>Compute.</p>'
+                                '</div><div class="solution dropdown admonition"><p class="admonition-title">Solution</p>'
+                                '<div class="cell_output docutils container"><div class="jacobians-feedback '
+                                'jacobians-feedback-correct" role="status"><strong>&#10004; Correct</strong></div></div>'
+                                '</div>', ("verdicts",)),
+    "numbered_figure": ('<figure><img src="../_static/favicon.svg" alt="a plot"><figcaption><p><span class="caption-number">'
+                        'Fig. 9.9 </span><span class="caption-text">A caption.</span></p></figcaption></figure>',
+                        ("figures",)),
+    "wide_math_that_scrolls": ('<div class="math notranslate nohighlight">\\[' + WIDE_TEX + '\\]</div>',
+                               ("phone_math", "overflow")),
+    "numbers_that_are_not_negative_zeros": ('<p>x = -0.5, 1e-05, \u22120.25, 10-0.3, v_0.0 and '
+                                            '<span class="math notranslate nohighlight">\\(-0.05 + 0.0\\)</span></p>'
+                                            '<div class="cell_output docutils container"><div class="output text_plain">'
+                                            '<pre>array([-0.5  ,  0.   , -0.001])</pre></div></div>', ("negative_zero",)),
+    "verified_box": ('<div class="admonition dropdown verified"><p class="admonition-title">Verified by code (1 check)</p>'
+                     '<ul><li>The columns of J_s are the current screw axes<br><em>Checked by:</em> finite differences</li>'
+                     '</ul></div>', ("check_lines", "overflow")),
 }
 
 
@@ -63,10 +140,11 @@ def _overlay(book: Path, dest: Path) -> Path:
 
 
 def _break(html: str, how: str, payload: str | None) -> str:
-    if how == "insert":
-        new, n = re.subn(r"(<h1[^>]*>.*?</h1>)", lambda m: m.group(1) + payload, html, count=1, flags=re.S)
+    if how == "insert":  # after the page's title in the article (the first <h1> is a print-only copy)
+        start = max(html.find("<article"), 0)
+        new, n = re.subn(r"(<h1[^>]*>.*?</h1>)", lambda m: m.group(1) + payload, html[start:], count=1, flags=re.S)
         assert n == 1, "the page has no <h1> to insert after"
-        return new
+        return html[:start] + new
     if how == "insert_head":
         return html.replace("</head>", payload + "</head>", 1)
     if how == "drop_mathjax":
@@ -87,6 +165,8 @@ def broken_book(book_html, tmp_path_factory):
     assert "tex-mml-chtml.js" in original and 'class="math' in original, "conventions page should have math"
     for name, (how, payload, _aspect, _text) in BREAKAGES.items():
         (root / "chapters" / f"broken_{name}.html").write_text(_break(original, how, payload), encoding="utf-8")
+    for name, (payload, _aspects) in NOT_BROKEN.items():
+        (root / "chapters" / f"fine_{name}.html").write_text(_break(original, "insert", payload), encoding="utf-8")
     with bookcheck.BookServer(root) as server:
         yield root, server.base
 
@@ -131,6 +211,32 @@ def test_breakage_is_reported(broken_reports, control, name):
     )
 
 
+@pytest.mark.parametrize("name, aspect", [("box_cut_off_at_phone_width", "overflow"),
+                                          ("display_math_clipped_only_on_phones", "phone_math")])
+def test_phone_only_faults_are_found_at_phone_width_only(broken_reports, name, aspect):
+    """The layout checks run at both widths: a fault that only a phone shows is reported at 390 px, not 1280 px."""
+    msgs = broken_reports(name).problems[aspect]
+    assert any(m.startswith("at 390 px") for m in msgs), msgs
+    assert not any(m.startswith("at 1280 px") for m in msgs), msgs
+
+
+@pytest.mark.parametrize("name", list(NOT_BROKEN))
+def test_fine_change_is_not_reported(broken_book, browser_context, control, name):
+    """No false alarm: a change that is fine adds no complaint under the aspects it touches."""
+    root, base = broken_book
+    _payload, aspects = NOT_BROKEN[name]
+    report = bookcheck.check_page(browser_context, base, root, f"chapters/fine_{name}.html", shots=None, settle_ms=100)
+    for aspect in aspects:
+        new = [c for c in report.problems.get(aspect, []) if c not in set(control.problems.get(aspect, []))]
+        assert not new, f"{name}: a fine change, yet {aspect!r} complains: {new}"
+
+
+def test_control_page_is_clean_under_the_page_quality_checks(control):
+    """The conventions page has no output, figure or verdict: the new checks find nothing on it."""
+    for aspect in ("overflow", "figures", "verdicts", "phone_math", "negative_zero", "check_lines"):
+        assert not control.problems[aspect], (aspect, control.problems[aspect])
+
+
 def test_missing_page_is_reported(broken_book, browser_context):
     root, base = broken_book
     report = bookcheck.check_page(browser_context, base, root, "chapters/not_built.html", shots=None)
@@ -152,6 +258,22 @@ def test_missing_book_gives_a_clear_message(tmp_path):
 
 
 # ---------------------------------------------------------------- pure helpers
+def test_negative_zero_detection():
+    assert bookcheck.negative_zeros_in("array([ 0.    , -0.    ,  1.    ])")
+    assert bookcheck.negative_zeros_in("the angle is \u22120.000 rad")
+    assert bookcheck.negative_zeros_in("(1, -0, 2)")
+    assert bookcheck.negative_zeros_in(r"\begin{bmatrix}1 & -0.000\end{bmatrix}", tex=True)
+    assert not bookcheck.negative_zeros_in("x = -0.5, 1e-05, \u22120.25, 10-0.3, [-0.001]")
+    assert not bookcheck.negative_zeros_in(r"x_{k-0.5} = -0.05", tex=True)
+
+
+def test_check_line_detection():
+    assert bookcheck.check_lines_in("\u2713 checked (sympy): [w]x = w \u00d7 x")
+    assert bookcheck.check_lines_in("\u2713 4 conversions agree", monospace=True)
+    assert not bookcheck.check_lines_in("\u2713 4 conversions agree")  # a tick in prose is fine
+    assert not bookcheck.check_lines_in("Verified by code (2 checks)")
+
+
 def test_raw_tex_detection():
     assert bookcheck.raw_tex_in(r"the twist \(\mathcal V_s\) is") != []
     assert bookcheck.raw_tex_in(r"\begin{bmatrix} 1 \end{bmatrix}") != []

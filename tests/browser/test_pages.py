@@ -86,6 +86,44 @@ def test_page_weight_under_3_mb(page_reports, path):
     _assert_clean(report, "weight")
 
 
+# ---------------------------------------------------------------- page quality (issue #11)
+@pytest.mark.parametrize("path", PAGES)
+def test_no_box_overflows(page_reports, path):
+    """At 1280 px and 390 px, no output, admonition (a "Verified by code" box too) or display-math box has
+    content wider than itself unless it scrolls sideways in its own box; the page itself never does."""
+    _assert_clean(page_reports(path), "overflow")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_every_figure_and_animation_has_a_numbered_caption(page_reports, path):
+    _assert_clean(page_reports(path), "figures")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_no_verdict_under_an_empty_answer(page_reports, path):
+    """No "Correct" next to `answer = None`; on a page with exercises, verdicts only inside solutions."""
+    _assert_clean(page_reports(path), "verdicts")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_formulas_scroll_rather_than_being_cut_off(page_reports, path):
+    """At 390 px (and 1280 px) a formula wider than its room scrolls in its own box: never clipped by
+    overflow: hidden, never running off the screen."""
+    _assert_clean(page_reports(path), "phone_math")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_no_negative_zero_is_shown(page_reports, path):
+    """No "-0." (or "−0.000", "-0") in the text, the outputs or the formulas a reader sees."""
+    _assert_clean(page_reports(path), "negative_zero")
+
+
+@pytest.mark.parametrize("path", PAGES)
+def test_no_raw_check_printout(page_reports, path):
+    """Checks are reported in "Verified by code" boxes, not as monospace "✓ checked: ..." lines."""
+    _assert_clean(page_reports(path), "check_lines")
+
+
 def test_search_finds_adjoint(book_url, browser_context):
     """The Sphinx search page, fed "adjoint", lists the pages that define it."""
     hits = bookcheck.search(browser_context, book_url, "adjoint")

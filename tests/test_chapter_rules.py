@@ -1,0 +1,300 @@
+"""Source-level rules every chapter follows (issue #11), checked without building or running anything.
+
+The chapters are read as notebooks with jupytext and their Markdown cells cut into ``##`` sections
+with markdown-it (so a ``##`` inside a code fence is not a heading). The rules:
+
+* every ``##`` section that displays a formula (``$$``, a ``{math}`` block, an amsmath environment)
+  or states a prf theorem / proposition / lemma / corollary has a code cell calling
+  ``verified.box()`` before the next ``##`` heading, after the section's last ``verified(...)``
+  record (a record after it would land in the next section's box); the box cell hides its input
+  and is skipped on slides; a page that shows boxes renders Markdown outputs as MyST and creates
+  ``verified = Verified()``;
+* no code cell prints an old "✓ checked" line;
+* every code cell with a ``mystnb: figure:`` option gives both ``name`` and ``caption`` (the name
+  ``chNN-fig-...`` in chapter NN), and the text refers to the figure with {numref}.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import jupytext
+import pytest
+import yaml
+from markdown_it import MarkdownIt
+
+ROOT = Path(__file__).resolve().parent.parent
+CHAPTERS = sorted((ROOT / "chapters").glob("*.md"))
+
+_PLAIN_FENCE = re.compile(r"^(?P<f>`{3,}(?!`)|~{3,}(?!~))(?!\s*\{)[^\n]*\n.*?^(?P=f)[ \t]*$", re.M | re.S)
+_CODE_SPAN = re.compile(r"(`+)(?!`)[^`\n][^\n]*?(?<!`)\1(?!`)")  # on one line: a fence is not a span
+_DISPLAY_MATH = re.compile(
+    r"\$\$|^\s*[`:]{3,}\s*\{math\}|^\s*\\begin\{(?:equation|align|alignat|gather|multline|flalign|eqnarray)\*?\}", re.M)
+_THEOREM = re.compile(r"\{prf:(theorem|proposition|lemma|corollary)\}")
+_BOX = re.compile(r"\bverified\.box\(")
+_RECORD = re.compile(r"\bverified\(")
+_CHECK_PRINT = re.compile(r"""\bprint\(\s*[rRfFbBuU]{0,2}(?:'{3}|"{3}|'|")\s*\u2713""")
+_NUMREF = re.compile(r"\{numref\}`(?:[^`<]*<)?([^`>]+)>?`")
+
+
+@dataclass
+class Section:
+    """One ``##`` section (or, with ``title=None``, the text before the first one)."""
+
+    title: str | None
+    line: int
+    cells: list = field(default_factory=list)  # ("md", text) or ("code", cell), in page order
+
+    @property
+    def markdown(self) -> str:
+        return "\n".join(t for kind, t in self.cells if kind == "md")
+
+    @property
+    def code(self) -> list:
+        return [c for kind, c in self.cells if kind == "code"]
+
+    def __str__(self) -> str:
+        return f"## {self.title} (line {self.line})" if self.title is not None else "(before the first ##)"
+
+
+def _h2_cuts(markdown: str) -> list[tuple[int, str]]:
+    """(line in the cell, title) of each top-level ``##`` heading of a Markdown cell."""
+    tokens = MarkdownIt("commonmark").parse(markdown)
+    return [(tok.map[0], tokens[i + 1].content.strip()) for i, tok in enumerate(tokens)
+            if tok.type == "heading_open" and tok.tag == "h2" and tok.level == 0]
+
+
+def split_sections(text: str) -> list[Section]:
+    """The sections of a MyST notebook given as text; the first one (title None) is what precedes any ``##``."""
+    raw_lines = text.splitlines()
+
+    def line_of(title: str) -> int:
+        for n, raw in enumerate(raw_lines, 1):
+            if re.fullmatch(r"##\s+" + re.escape(title) + r"\s*#*\s*", raw.strip()):
+                return n
+        return 0
+
+    nb = jupytext.reads(text, fmt="md:myst")
+    sections = [Section(None, 1)]
+    for cell in nb.cells:
+        if cell.cell_type == "markdown":
+            lines = cell.source.splitlines()
+            start = 0
+            for at, title in _h2_cuts(cell.source):
+                sections[-1].cells.append(("md", "\n".join(lines[start:at])))
+                sections.append(Section(title, line_of(title)))
+                start = at + 1
+            sections[-1].cells.append(("md", "\n".join(lines[start:])))
+        elif cell.cell_type == "code":
+            sections[-1].cells.append(("code", cell))
+    return sections
+
+
+def _prose(markdown: str) -> str:
+    """Markdown without plain code fences and inline code (directive fences such as {math} stay)."""
+    return _CODE_SPAN.sub("", _PLAIN_FENCE.sub("", markdown))
+
+
+def needs_box(section: Section) -> list[str]:
+    """Why the section must end with a 'Verified by code' box (empty: it need not)."""
+    prose = _prose(section.markdown)
+    why = []
+    if _DISPLAY_MATH.search(prose):
+        why.append("display math")
+    why += [f"a prf {kind}" for kind in dict.fromkeys(_THEOREM.findall(prose))]
+    return why
+
+
+def box_problems(sections: list[Section]) -> list[str]:
+    """Every section that needs a box and has none, or has records after its last box."""
+    problems = []
+    for sec in sections:
+        code = sec.code
+        boxes = [i for i, c in enumerate(code) if _BOX.search(c.source)]
+        records = [i for i, c in enumerate(code) if _RECORD.search(_BOX.sub("", c.source))]
+        why = needs_box(sec)
+        if sec.title is not None and why and not boxes:
+            problems.append(f"{sec}: has {', '.join(why)} but no code cell calling verified.box()")
+        late = [i for i in records if not boxes or i > boxes[-1]]
+        if late:
+            problems.append(f"{sec}: {len(late)} verified(...) record(s) after the section's last verified.box(), "
+                            "or with no box at all (they would show in the next section's box)")
+    return problems
+
+
+def _ids(paths):
+    return [p.name for p in paths]
+
+
+# ------------------------------------------------------------------ the parser itself
+
+SAMPLE = """---
+jupytext:
+  text_representation:
+    extension: .md
+    format_name: myst
+    format_version: 0.13
+kernelspec:
+  display_name: Python 3
+  language: python
+  name: python3
+---
+
+# Title
+
+Intro with $$x = 1$$ before any section.
+
+## A formula and its box
+
+$$J = \\partial f/\\partial\\theta$$
+
+```{code-cell} ipython3
+verified("$J$", "sympy")
+```
+
+```{code-cell} ipython3
+verified.box()
+```
+
+## A theorem without a box
+
+```{prf:theorem} Something
+:label: th
+It holds.
+```
+
+```python
+## not a heading: inside a code fence, and `$$` here is code
+```
+
+## A proposition in a four-backtick fence
+
+````{prf:proposition} Nested
+:label: pr
+```{math}
+x = y
+```
+````
+
+```{code-cell} ipython3
+verified.box()
+```
+
+## Prose only, with `$$` in inline code
+
+Nothing displayed.
+
+## A box, then a record too late
+
+$$a = b$$
+
+```{code-cell} ipython3
+verified.box()
+```
+
+```{code-cell} ipython3
+verified("$a = b$", "late")
+```
+
+### A subsection is part of its section
+
+$$c = d$$
+"""
+
+
+def test_the_section_parser_finds_what_it_should():
+    sections = split_sections(SAMPLE)
+    assert [s.title for s in sections] == [None, "A formula and its box", "A theorem without a box",
+                                           "A proposition in a four-backtick fence",
+                                           "Prose only, with `$$` in inline code", "A box, then a record too late"]
+    assert [needs_box(s) for s in sections[1:]] == [["display math"], ["a prf theorem"],
+                                                    ["display math", "a prf proposition"], [], ["display math"]]
+    assert [len(s.code) for s in sections] == [0, 2, 0, 1, 0, 2]
+    problems = box_problems(sections)
+    assert len(problems) == 2, problems
+    assert problems[0].startswith("## A theorem without a box (line ") and "a prf theorem" in problems[0]
+    assert problems[1].startswith("## A box, then a record too late") and "after the section's last" in problems[1]
+    # the same page with the late record moved above the box, and a box for the theorem: no problem left
+    fixed = SAMPLE.replace("It holds.\n```\n", "It holds.\n```\n\n```{code-cell} ipython3\nverified.box()\n```\n")
+    fixed = fixed.replace('```{code-cell} ipython3\nverified.box()\n```\n\n```{code-cell} ipython3\n'
+                          'verified("$a = b$", "late")\n```', '```{code-cell} ipython3\nverified("$a = b$", "late")\n'
+                          '```\n\n```{code-cell} ipython3\nverified.box()\n```')
+    assert fixed != SAMPLE and box_problems(split_sections(fixed)) == []
+
+
+def test_the_check_print_and_numref_patterns():
+    assert _CHECK_PRINT.search('print("\u2713 checked: x")') and _CHECK_PRINT.search("print(f'\u2713 {n} agree')")
+    assert not _CHECK_PRINT.search('print("checked")') and not _CHECK_PRINT.search('verified("\u2713", "x")')
+    assert _NUMREF.findall("see {numref}`ch02-fig-arm` and {numref}`Figure %s <ch02-fig-b>`") == [
+        "ch02-fig-arm", "ch02-fig-b"]
+
+
+def test_there_are_chapters():
+    assert len(CHAPTERS) >= 9 and all(p.suffix == ".md" for p in CHAPTERS)
+
+
+# ------------------------------------------------------------------ the rules, per chapter
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=_ids(CHAPTERS))
+def test_every_section_with_a_formula_or_theorem_ends_with_a_verified_box(path):
+    problems = box_problems(split_sections(path.read_text(encoding="utf-8")))
+    assert not problems, f"{path.name}:\n  " + "\n  ".join(problems)
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=_ids(CHAPTERS))
+def test_box_cells_hide_their_input_and_pages_with_boxes_are_set_up(path):
+    text = path.read_text(encoding="utf-8")
+    nb = jupytext.reads(text, fmt="md:myst")
+    boxes = [c for c in nb.cells if c.cell_type == "code" and _BOX.search(c.source)]
+    if not boxes:
+        return
+    problems = []
+    for c in boxes:
+        tags = c.metadata.get("tags", [])
+        if "remove-input" not in tags and "remove-cell" not in tags:
+            problems.append(f"box cell {c.source.strip()[:40]!r} does not have the tag remove-input")
+        if "remove-cell" in tags:
+            problems.append(f"box cell {c.source.strip()[:40]!r} is tagged remove-cell: the box would never show")
+        if c.metadata.get("slideshow", {}).get("slide_type") != "skip":
+            problems.append(f"box cell {c.source.strip()[:40]!r} is not slide_type: skip")
+    front = yaml.safe_load(text.split("---", 2)[1]) if text.startswith("---") else {}
+    if (front.get("mystnb") or {}).get("render_markdown_format") != "myst":
+        problems.append("front matter lacks `mystnb: render_markdown_format: myst` (the boxes would show as raw text)")
+    if not any(re.search(r"^\s*verified\s*=\s*Verified\(\)", c.source, re.M) for c in nb.cells if c.cell_type == "code"):
+        problems.append("no set-up cell creates `verified = Verified()`")
+    assert not problems, f"{path.name}:\n  " + "\n  ".join(problems)
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=_ids(CHAPTERS))
+def test_no_check_printout(path):
+    nb = jupytext.reads(path.read_text(encoding="utf-8"), fmt="md:myst")
+    found = [line.strip()[:90] for c in nb.cells if c.cell_type == "code"
+             for line in c.source.splitlines() if _CHECK_PRINT.search(line)]
+    assert not found, f"{path.name}: {len(found)} print(\"\u2713 ...\") line(s) left (record with verified(...)):\n  " + \
+        "\n  ".join(found)
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=_ids(CHAPTERS))
+def test_every_figure_cell_has_a_name_and_a_caption_and_is_referenced(path):
+    text = path.read_text(encoding="utf-8")
+    nb = jupytext.reads(text, fmt="md:myst")
+    number = re.match(r"(\d\d)_", path.name)
+    refs = set(_NUMREF.findall("\n".join(c.source for c in nb.cells if c.cell_type == "markdown")))
+    problems = []
+    for c in nb.cells:
+        if c.cell_type != "code" or "figure" not in (c.metadata.get("mystnb") or {}):
+            continue
+        fig = c.metadata["mystnb"]["figure"] or {}
+        name, caption = fig.get("name"), fig.get("caption")
+        where = (c.source.strip().splitlines() or [""])[0][:50]
+        if not (isinstance(name, str) and name.strip()):
+            problems.append(f"figure cell {where!r}: no name")
+        elif number and not re.fullmatch(rf"ch{number.group(1)}-fig-[a-z0-9-]+", name):
+            problems.append(f"figure {name!r}: the name should read ch{number.group(1)}-fig-<short-name>")
+        elif name not in refs:
+            problems.append(f"figure {name!r}: the text never refers to it with {{numref}}`{name}`")
+        if not (isinstance(caption, str) and caption.strip()):
+            problems.append(f"figure cell {where!r} ({name}): no caption")
+    assert not problems, f"{path.name}:\n  " + "\n  ".join(problems)
