@@ -171,3 +171,12 @@ def test_chapter_1_ends_with_references(ch01):
     # the sections the brief lists, and no others
     for sec in ("§3.2.3", "§3.3.2", "§3.3.3", "§4.1.1", "§4.1.3", "§2.5", "§2.7", "§3.1.1", "§8.1"):
         assert sec in body
+
+
+@pytest.mark.parametrize("page", ["01_twists.md", "conventions.md"])
+def test_no_bracket_swallowed_as_an_optional_argument(page):
+    # "\begin{gathered}" or "\\" followed by "[..." reads the bracket as an optional argument,
+    # and MathJax silently drops it (it dropped "[\mathcal V_s]" of Definition 3 once)
+    src = (ROOT / "chapters" / page).read_text(encoding="utf-8")
+    bad = re.findall(r"(?:\\begin\{(?:gathered|aligned)\}|\\\\)\s*\n\s*\[", src)
+    assert bad == []
