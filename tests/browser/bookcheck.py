@@ -144,7 +144,7 @@ class PageReport:
             f"{self.path:40s} {self.total_bytes / 1024:8.0f} KiB total "
             f"({self.own_bytes / 1024:6.0f} KiB page+images, {self.requests:3d} requests) "
             f"math {c.get('math_rendered', 0)}/{c.get('math_source', 0)}  img {c.get('images', 0)}  "
-            f"anim {c.get('animations', 0)}  sliders {c.get('sliders', 0)}  dropdowns {c.get('dropdowns', 0)}  "
+            f"anim {c.get('animations', 0)}  numbered figures {c.get('figures', 0)}  sliders {c.get('sliders', 0)}  dropdowns {c.get('dropdowns', 0)}  "
             f"links {c.get('links', 0)}  {self.seconds:4.1f} s"
         )
 
