@@ -3,9 +3,10 @@
 // makes them reachable from the keyboard (arrow keys scroll a focused box).
 (function () {
   "use strict";
-  const SELECTOR = "div.math, .cell_output .math, .cell_output pre";
+  const SELECTOR = "div.math, .cell_output div.math, .cell_output pre";
 
   function update(el) {
+    if (getComputedStyle(el).display === "inline") return;  // inline math never scrolls
     const wide = el.scrollWidth > el.clientWidth + 1;
     el.classList.toggle("jac-scroll", wide);
     el.classList.toggle("jac-more-left", wide && el.scrollLeft > 1);
