@@ -7,7 +7,7 @@
 
   function update(el) {
     if (getComputedStyle(el).display === "inline") return;  // inline math never scrolls
-    const wide = el.scrollWidth > el.clientWidth + 1;
+    const wide = el.scrollWidth > el.clientWidth + 4;  // a few px of sub-pixel spill is not content
     el.classList.toggle("jac-scroll", wide);
     el.classList.toggle("jac-more-left", wide && el.scrollLeft > 1);
     el.classList.toggle("jac-more-right", wide && el.scrollLeft + el.clientWidth < el.scrollWidth - 1);
