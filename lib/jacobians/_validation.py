@@ -10,26 +10,27 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
+from numpy.typing import NDArray
 
 #: Tolerance used to decide whether a rotation is orthonormal, an axis is
 #: unit length, and so on.  Loose enough for values typed with 6 digits.
 UNIT_TOL = 1e-6
 
 
-def _describe(value) -> str:
+def _describe(value: object) -> str:
     """A short description of what came, for error messages."""
     if isinstance(value, np.ndarray):
         return f"array with shape {value.shape} and dtype {value.dtype}"
     if isinstance(value, (list, tuple)):
         try:
-            shape = np.shape(np.asarray(value, dtype=object))
+            shape: object = np.shape(np.asarray(value, dtype=object))
         except Exception:  # pragma: no cover - exotic ragged input
             shape = "?"
         return f"{type(value).__name__} of shape {shape}"
     return f"{type(value).__name__} {value!r}"[:120]
 
 
-def as_float_array(value, name: str) -> np.ndarray:
+def as_float_array(value: object, name: str) -> NDArray[np.float64]:
     """Convert ``value`` to a float64 array, or raise ``TypeError``.
 
     Strings, ``None``, complex numbers, ragged nested lists and arbitrary
@@ -63,19 +64,21 @@ def as_float_array(value, name: str) -> np.ndarray:
     return np.asarray(arr, dtype=float)
 
 
-def check_finite(arr: np.ndarray, name: str) -> np.ndarray:
+def check_finite(arr: NDArray[np.float64], name: str) -> NDArray[np.float64]:
     if not np.all(np.isfinite(arr)):
         raise ValueError(f"Expected finite values in {name}, got NaN or inf")
     return arr
 
 
-def check_shape_tail(arr: np.ndarray, tail: tuple, name: str, batch_allowed: bool = True) -> np.ndarray:
+def check_shape_tail(
+    arr: NDArray[np.float64], tail: tuple[int | None, ...], name: str, batch_allowed: bool = True
+) -> NDArray[np.float64]:
     """Require ``arr.shape`` to end with ``tail`` (``None`` entries match any size)."""
     pattern = ", ".join("n" if t is None else str(t) for t in tail)
     want = f"(..., {pattern})" if batch_allowed else f"({pattern})"
     ok = arr.ndim >= len(tail) if batch_allowed else arr.ndim == len(tail)
     if ok:
-        for have, need in zip(arr.shape[arr.ndim - len(tail):], tail):
+        for have, need in zip(arr.shape[arr.ndim - len(tail):], tail, strict=True):
             if need is not None and have != need:
                 ok = False
     if not ok:
@@ -83,14 +86,16 @@ def check_shape_tail(arr: np.ndarray, tail: tuple, name: str, batch_allowed: boo
     return arr
 
 
-def real_array(value, name: str, tail: tuple, batch_allowed: bool = True) -> np.ndarray:
+def real_array(
+    value: object, name: str, tail: tuple[int | None, ...], batch_allowed: bool = True
+) -> NDArray[np.float64]:
     """Float array with a checked trailing shape and only finite values."""
     arr = as_float_array(value, name)
     check_shape_tail(arr, tail, name, batch_allowed)
     return check_finite(arr, name)
 
 
-def check_rotation(R: np.ndarray, name: str, tol: float = UNIT_TOL) -> None:
+def check_rotation(R: NDArray[np.float64], name: str, tol: float = UNIT_TOL) -> None:
     """Raise ``ValueError`` unless every ``R[..., :, :]`` is in SO(3)."""
     RtR = np.swapaxes(R, -1, -2) @ R
     err = np.abs(RtR - np.eye(3)).max(initial=0.0)
@@ -104,23 +109,25 @@ def check_rotation(R: np.ndarray, name: str, tol: float = UNIT_TOL) -> None:
         raise ValueError(f"Expected {name} to be a rotation (det R = +1), got det R = {np.min(det):.3g}")
 
 
-def transform_array(value, name: str = "T", batch_allowed: bool = True) -> np.ndarray:
+def transform_array(value: object, name: str = "T", batch_allowed: bool = True) -> NDArray[np.float64]:
     """A checked homogeneous transform (or a batch of them)."""
     T = real_array(value, name, (4, 4), batch_allowed)
     bottom = T[..., 3, :]
     if np.abs(bottom - np.array([0.0, 0.0, 0.0, 1.0])).max(initial=0.0) > UNIT_TOL:
-        raise ValueError(f"Expected {name} in SE(3) with last row [0, 0, 0, 1], got last row {bottom.reshape(-1, 4)[0]}")
+        raise ValueError(
+            f"Expected {name} in SE(3) with last row [0, 0, 0, 1], got last row {bottom.reshape(-1, 4)[0]}"
+        )
     check_rotation(T[..., :3, :3], f"the rotation part of {name}")
     return T
 
 
-def rotation_array(value, name: str = "R", batch_allowed: bool = True) -> np.ndarray:
+def rotation_array(value: object, name: str = "R", batch_allowed: bool = True) -> NDArray[np.float64]:
     R = real_array(value, name, (3, 3), batch_allowed)
     check_rotation(R, name)
     return R
 
 
-def screw_axes_array(value, name: str = "screw_axes") -> np.ndarray:
+def screw_axes_array(value: object, name: str = "screw_axes") -> NDArray[np.float64]:
     """A checked 6 x n matrix whose columns are unit screw axes (omega, v)."""
     S = as_float_array(value, name)
     if S.ndim == 1 and S.shape[0] == 6:
@@ -155,7 +162,7 @@ def screw_axes_array(value, name: str = "screw_axes") -> np.ndarray:
     return S
 
 
-def theta_array(value, dof: int, name: str = "theta") -> np.ndarray:
+def theta_array(value: object, dof: int, name: str = "theta") -> NDArray[np.float64]:
     """Joint values with shape (..., dof)."""
     th = as_float_array(value, name)
     if th.ndim == 0:
@@ -164,15 +171,19 @@ def theta_array(value, dof: int, name: str = "theta") -> np.ndarray:
         else:
             raise ValueError(f"Expected {name} with shape (..., {dof}), got a scalar")
     if th.shape[-1] != dof:
-        raise ValueError(f"Expected {name} with shape (..., {dof}) for a chain with {dof} joints, got shape {th.shape}")
+        raise ValueError(
+            f"Expected {name} with shape (..., {dof}) for a chain with {dof} joints, got shape {th.shape}"
+        )
     return check_finite(th, name)
 
 
-def jacobian_array(value, name: str = "J") -> np.ndarray:
+def jacobian_array(value: object, name: str = "J") -> NDArray[np.float64]:
     return real_array(value, name, (6, None))
 
 
-def broadcast_leading(a: np.ndarray, a_core: int, b: np.ndarray, b_core: int, names: tuple) -> tuple:
+def broadcast_leading(
+    a: NDArray[np.float64], a_core: int, b: NDArray[np.float64], b_core: int, names: tuple[str, str]
+) -> tuple[int, ...]:
     """Check that the batch (leading) shapes of two arrays broadcast, or raise."""
     sa = a.shape[: a.ndim - a_core]
     sb = b.shape[: b.ndim - b_core]
@@ -185,16 +196,17 @@ def broadcast_leading(a: np.ndarray, a_core: int, b: np.ndarray, b_core: int, na
         ) from None
 
 
-def positive_int(value, name: str) -> int:
+def positive_int(value: object, name: str) -> int:
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise TypeError(f"Expected an integer for {name}, got {_describe(value)}")
     return int(value)
 
 
-def positive_float(value, name: str, allow_zero: bool = False) -> float:
+def positive_float(value: object, name: str, allow_zero: bool = False) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"Expected a real number for {name}, got {_describe(value)}")
     v = float(value)
     if not np.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
-        raise ValueError(f"Expected a {'non-negative' if allow_zero else 'positive'} finite number for {name}, got {v!r}")
+        kind = "non-negative" if allow_zero else "positive"
+        raise ValueError(f"Expected a {kind} finite number for {name}, got {v!r}")
     return v

@@ -21,11 +21,11 @@ array([0., 2., 0.])
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import _kernels as K
 from ._validation import (
     UNIT_TOL,
-    as_float_array,
     real_array,
     screw_axes_array,
     theta_array,
@@ -77,7 +77,14 @@ class SerialChain:
     array([0., 0., 1., 0., 2., 0.])
     """
 
-    def __init__(self, screw_axes, home, link_homes=None, name: str | None = None, joint_points=None):
+    def __init__(
+        self,
+        screw_axes: ArrayLike,
+        home: ArrayLike,
+        link_homes: ArrayLike | None = None,
+        name: str | None = None,
+        joint_points: ArrayLike | None = None,
+    ) -> None:
         S = screw_axes_array(screw_axes, "screw_axes")
         M = transform_array(home, "home", batch_allowed=False)
         # Re-orthonormalise tiny typing errors away so products stay in SE(3).
@@ -116,25 +123,25 @@ class SerialChain:
     @property
     def dof(self) -> int:
         """Number of joints n."""
-        return self._S.shape[1]
+        return int(self._S.shape[1])
 
     @property
-    def screw_axes(self) -> np.ndarray:
+    def screw_axes(self) -> NDArray[np.float64]:
         """(6, n) space-frame screw axes at home (read-only)."""
         return self._S
 
     @property
-    def body_axes(self) -> np.ndarray:
-        r"""(6, n) body-frame screw axes :math:`\mathcal B_i = [\mathrm{Ad}_{M^{-1}}]\mathcal S_i` (read-only)."""
+    def body_axes(self) -> NDArray[np.float64]:
+        r"""(6, n) body-frame screw axes (read-only): :math:`\mathcal B_i = [\mathrm{Ad}_{M^{-1}}]\mathcal S_i`."""
         return self._B
 
     @property
-    def home(self) -> np.ndarray:
+    def home(self) -> NDArray[np.float64]:
         """(4, 4) home pose M of {b} (read-only)."""
         return self._M
 
     @property
-    def link_homes(self) -> np.ndarray:
+    def link_homes(self) -> NDArray[np.float64]:
         """(n, 4, 4) home poses of the link frames (read-only)."""
         return self._link_homes
 
@@ -148,7 +155,7 @@ class SerialChain:
         return f"<SerialChain{label}: {self.dof} joints {self._types}>"
 
     # ------------------------------------------------------------ helpers
-    def _default_link_homes(self) -> np.ndarray:
+    def _default_link_homes(self) -> NDArray[np.float64]:
         n = self.dof
         homes = np.tile(np.eye(4), (n, 1, 1))
         prev = np.zeros(3)
@@ -163,7 +170,7 @@ class SerialChain:
         homes[-1] = self._M
         return homes
 
-    def _check_joint_points(self, joint_points) -> np.ndarray:
+    def _check_joint_points(self, joint_points: ArrayLike | None) -> NDArray[np.float64]:
         n = self.dof
         if joint_points is None:
             out = np.empty((n, 3))
@@ -177,19 +184,19 @@ class SerialChain:
                 w, v = self._S[:3, i], self._S[3:, i]
                 q = pts[i]
                 off = (q - w * np.dot(w, q)) - np.cross(w, v)  # perpendicular offset from the axis line
-                if np.linalg.norm(off) > 1e-6 * max(1.0, np.linalg.norm(q)):
+                if np.linalg.norm(off) > 1e-6 * max(1.0, float(np.linalg.norm(q))):
                     raise ValueError(
                         f"joint_points[{i}] = {q} is not on the axis of revolute joint {i} "
                         f"(it is {np.linalg.norm(off):.3g} away from the line)"
                     )
         return pts.copy()
 
-    def axis_points(self) -> np.ndarray:
+    def axis_points(self) -> NDArray[np.float64]:
         """(n, 3) the point of each joint axis where the joint sits at home (``joint_points``)."""
         return self._joint_points.copy()
 
     # ------------------------------------------------------------ kinematics
-    def fk(self, theta) -> np.ndarray:
+    def fk(self, theta: ArrayLike) -> NDArray[np.float64]:
         r"""Forward kinematics :math:`T_{sb}(\theta)`. MR: ``FKinSpace`` / ``FKinBody``.
 
         Parameters
@@ -214,19 +221,19 @@ class SerialChain:
         out[:, 3, 3] = 1.0
         for a in range(0, N, K.CHUNK):
             thT = np.ascontiguousarray(flat[a:a + K.CHUNK].T)
-            _, R, p, _ = K.sweep_batch(self._C, thT, want_columns=False)
+            R, p = K.product_batch(self._C, thT)
             RM, pM = K.times_home(R, p, self._M)
             out[a:a + K.CHUNK, :3, :3] = RM.transpose(2, 0, 1)
             out[a:a + K.CHUNK, :3, 3] = pM.T
         return out.reshape(batch + (4, 4))
 
-    def joint_transforms(self, theta) -> np.ndarray:
+    def joint_transforms(self, theta: ArrayLike) -> NDArray[np.float64]:
         r"""The exponentials :math:`e^{[\mathcal S_i]\theta_i}`, shape (..., n, 4, 4)."""
         th = theta_array(theta, self.dof)
         return _exp_se3(np.swapaxes(self._S, 0, 1) * th[..., :, None])
 
-    def prefix_transforms(self, theta) -> np.ndarray:
-        r"""Partial products :math:`e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_i]\theta_i}` for i = 0..n.
+    def prefix_transforms(self, theta: ArrayLike) -> NDArray[np.float64]:
+        r"""Partial products :math:`e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_i]\theta_i}`, i = 0..n.
 
         Returns shape (..., n + 1, 4, 4); entry 0 is the identity. Column i of the
         space Jacobian is :math:`[\mathrm{Ad}]` of entry i - 1 applied to :math:`\mathcal S_i`.
@@ -238,15 +245,16 @@ class SerialChain:
             out[..., i + 1, :, :] = out[..., i, :, :] @ E[..., i, :, :]
         return out
 
-    def link_poses(self, theta) -> np.ndarray:
-        r"""Poses :math:`T_{s,i}(\theta) = e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_i]\theta_i} M_i` of the link frames.
+    def link_poses(self, theta: ArrayLike) -> NDArray[np.float64]:
+        r"""Poses :math:`T_{s,i}(\theta)` of the link frames, shape (..., n, 4, 4).
 
-        Returns shape (..., n, 4, 4).
+        :math:`T_{s,i}(\theta) = e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_i]\theta_i} M_i`.
         """
         P = self.prefix_transforms(theta)
-        return P[..., 1:, :, :] @ self._link_homes
+        poses: NDArray[np.float64] = P[..., 1:, :, :] @ self._link_homes
+        return poses
 
-    def joint_positions(self, theta) -> np.ndarray:
+    def joint_positions(self, theta: ArrayLike) -> NDArray[np.float64]:
         """Where each joint's axis point is at ``theta``, followed by the origin of {b}: shape (..., n + 1, 3).
 
         Joint i is carried by the joints before it, so its point is
@@ -260,15 +268,24 @@ class SerialChain:
 
     # ------------------------------------------------------------ constructors
     @classmethod
-    def from_dh(cls, a, alpha, d, offset=None, joint_types=None, convention: str = "classical",
-                tool=None, name: str | None = None) -> "SerialChain":
+    def from_dh(
+        cls,
+        a: ArrayLike,
+        alpha: ArrayLike,
+        d: ArrayLike,
+        offset: ArrayLike | None = None,
+        joint_types: str | None = None,
+        convention: str = "classical",
+        tool: ArrayLike | None = None,
+        name: str | None = None,
+    ) -> SerialChain:
         r"""A chain from Denavit–Hartenberg parameters.
 
         Classical (standard) convention, link by link:
         :math:`{}^{i-1}T_i = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`.
         Modified (Craig) convention:
-        :math:`{}^{i-1}T_i = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`,
-        where the i-th entries of ``a`` and ``alpha`` are :math:`a_{i-1}, \alpha_{i-1}`.
+        :math:`{}^{i-1}T_i = R_x(\alpha{i-1})\,T_x(a{i-1})\,R_z(\theta_i)\,T_z(d_i)`,
+        where the i-th entries of ``a`` and ``alpha`` are :math:`a{i-1}, \alpha{i-1}`.
 
         For a revolute joint the joint variable is :math:`\theta_i` minus its
         ``offset``; for a prismatic joint it is :math:`d_i` minus its offset and
@@ -309,12 +326,12 @@ class SerialChain:
         if len(joint_types) != n or set(joint_types) - {"R", "P"}:
             raise ValueError(f"Expected joint_types of {n} letters 'R' or 'P', got {joint_types!r}")
 
-        def trans(axis, x):
+        def trans(axis: str, x: float) -> NDArray[np.float64]:
             T = np.eye(4)
             T["xyz".index(axis), 3] = x
             return T
 
-        def rot(axis, x):
+        def rot(axis: str, x: float) -> NDArray[np.float64]:
             T = np.eye(4)
             T[:3, :3] = rotation_about(axis, x)
             return T
@@ -347,7 +364,7 @@ class SerialChain:
         return cls(S, M, link_homes=np.array(frames), name=name, joint_points=np.array(points))
 
 
-def _as_chain(chain) -> SerialChain:
+def _as_chain(chain: object) -> SerialChain:
     if not isinstance(chain, SerialChain):
         raise TypeError(f"Expected a jacobians.SerialChain, got {type(chain).__name__}")
     return chain

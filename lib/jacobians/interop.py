@@ -25,7 +25,10 @@ True
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validation import jacobian_array
 from .chain import SerialChain, _as_chain
@@ -36,7 +39,7 @@ __all__ = ["to_linear_first", "to_angular_first", "SWAP", "to_pinocchio_model"]
 SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
 
 
-def to_linear_first(J) -> np.ndarray:
+def to_linear_first(J: ArrayLike) -> NDArray[np.float64]:
     """Reorder rows from (ω, v) to (v, ω): shape (..., 6, n) or (..., 6) for a twist."""
     J = np.asarray(J, dtype=float)
     if J.ndim >= 1 and J.shape[-1] == 6 and (J.ndim == 1 or J.shape[-2] != 6):
@@ -45,12 +48,12 @@ def to_linear_first(J) -> np.ndarray:
     return np.concatenate([J[..., 3:, :], J[..., :3, :]], axis=-2)
 
 
-def to_angular_first(J) -> np.ndarray:
+def to_angular_first(J: ArrayLike) -> NDArray[np.float64]:
     """Reorder rows from (v, ω) to (ω, v); the same permutation, which is its own inverse."""
     return to_linear_first(J)
 
 
-def to_pinocchio_model(chain: SerialChain):
+def to_pinocchio_model(chain: SerialChain) -> tuple[Any, int]:
     """A Pinocchio model of the chain, with the tool frame {b} as an operational frame named ``"tool"``.
 
     Each joint i becomes a ``JointModelRevoluteUnaligned`` (or
@@ -61,7 +64,7 @@ def to_pinocchio_model(chain: SerialChain):
 
     Returns
     -------
-    (model, tool_frame_id)
+    (model, tool_frame_id) : (pinocchio.Model, int)
     """
     import pinocchio as pin
 

@@ -22,6 +22,7 @@ True
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validation import real_array, rotation_array, transform_array
 
@@ -46,7 +47,7 @@ __all__ = [
 _SMALL = 1e-4  # below this angle the series expansions are used
 
 
-def _skew(w: np.ndarray) -> np.ndarray:
+def _skew(w: NDArray[np.float64]) -> NDArray[np.float64]:
     x, y, z = w[..., 0], w[..., 1], w[..., 2]
     zero = np.zeros_like(x)
     return np.stack(
@@ -54,7 +55,7 @@ def _skew(w: np.ndarray) -> np.ndarray:
     )
 
 
-def skew(omega) -> np.ndarray:
+def skew(omega: ArrayLike) -> NDArray[np.float64]:
     r"""The skew-symmetric matrix :math:`[\omega]` with :math:`[\omega] x = \omega \times x`.
 
     MR: ``VecToso3``.
@@ -75,7 +76,7 @@ def skew(omega) -> np.ndarray:
     return _skew(real_array(omega, "omega", (3,)))
 
 
-def unskew(W) -> np.ndarray:
+def unskew(W: ArrayLike) -> NDArray[np.float64]:
     r"""The vector :math:`\omega` of a skew-symmetric matrix :math:`[\omega]`. MR: ``so3ToVec``.
 
     Only the skew-symmetric part of ``W`` is used.
@@ -87,13 +88,15 @@ def unskew(W) -> np.ndarray:
     return _unskew(W)
 
 
-def _unskew(W: np.ndarray) -> np.ndarray:
+def _unskew(W: NDArray[np.float64]) -> NDArray[np.float64]:
     return 0.5 * np.stack(
         [W[..., 2, 1] - W[..., 1, 2], W[..., 0, 2] - W[..., 2, 0], W[..., 1, 0] - W[..., 0, 1]], -1
     )
 
 
-def _coefficients(theta: np.ndarray):
+def _coefficients(
+    theta: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """A = sin t / t, B = (1 - cos t) / t^2, C = (t - sin t) / t^3, stable near 0."""
     t2 = theta * theta
     small = theta < _SMALL
@@ -105,14 +108,14 @@ def _coefficients(theta: np.ndarray):
     return A, B, C
 
 
-def _exp_so3(w: np.ndarray) -> np.ndarray:
+def _exp_so3(w: NDArray[np.float64]) -> NDArray[np.float64]:
     theta = np.linalg.norm(w, axis=-1)
     A, B, _ = _coefficients(theta)
     K = _skew(w)
     return np.eye(3) + A[..., None, None] * K + B[..., None, None] * (K @ K)
 
 
-def exp_so3(omega_theta) -> np.ndarray:
+def exp_so3(omega_theta: ArrayLike) -> NDArray[np.float64]:
     r"""Rotation :math:`e^{[\hat\omega]\theta}` from exponential coordinates :math:`\hat\omega\theta`.
 
     Rodrigues' formula. MR: ``MatrixExp3`` (which takes the matrix ``[ω]θ``).
@@ -133,10 +136,10 @@ def exp_so3(omega_theta) -> np.ndarray:
     return _exp_so3(real_array(omega_theta, "omega_theta", (3,)))
 
 
-def _log_so3(R: np.ndarray) -> np.ndarray:
+def _log_so3(R: NDArray[np.float64]) -> NDArray[np.float64]:
     a = _unskew(R)  # = sin(theta) * omega_hat
-    s = np.linalg.norm(a, axis=-1)
-    c = 0.5 * (np.trace(R, axis1=-2, axis2=-1) - 1.0)
+    s: NDArray[np.float64] = np.linalg.norm(a, axis=-1)
+    c: NDArray[np.float64] = 0.5 * (np.trace(R, axis1=-2, axis2=-1) - 1.0)
     theta = np.arctan2(s, c)
     # Regular branch: omega_theta = a * theta / sin(theta)
     small = theta < _SMALL
@@ -160,7 +163,7 @@ def _log_so3(R: np.ndarray) -> np.ndarray:
     return out
 
 
-def log_so3(R) -> np.ndarray:
+def log_so3(R: ArrayLike) -> NDArray[np.float64]:
     r"""Exponential coordinates :math:`\hat\omega\theta` of a rotation, with :math:`\theta \in [0, \pi]`.
 
     MR: ``MatrixLog3`` (which returns the matrix ``[ω]θ``). At :math:`\theta = \pi`
@@ -180,7 +183,7 @@ def log_so3(R) -> np.ndarray:
     return _log_so3(rotation_array(R, "R"))
 
 
-def _exp_se3(xi: np.ndarray) -> np.ndarray:
+def _exp_se3(xi: NDArray[np.float64]) -> NDArray[np.float64]:
     w, v = xi[..., :3], xi[..., 3:]
     theta = np.linalg.norm(w, axis=-1)
     A, B, C = _coefficients(theta)
@@ -195,7 +198,7 @@ def _exp_se3(xi: np.ndarray) -> np.ndarray:
     return T
 
 
-def exp_se3(twist_theta) -> np.ndarray:
+def exp_se3(twist_theta: ArrayLike) -> NDArray[np.float64]:
     r"""The transform :math:`e^{[\mathcal S]\theta}` from the 6-vector :math:`\mathcal S\theta`.
 
     MR: ``MatrixExp6`` (which takes the matrix ``[S]θ``). Works for any twist,
@@ -215,15 +218,17 @@ def exp_se3(twist_theta) -> np.ndarray:
     return _exp_se3(real_array(twist_theta, "twist_theta", (6,)))
 
 
-def _gamma(theta: np.ndarray) -> np.ndarray:
+def _gamma(theta: NDArray[np.float64]) -> NDArray[np.float64]:
     """(1/t^2) (1 - (t/2) cot(t/2)), the [w]^2 coefficient of the inverse left Jacobian."""
     small = theta < _SMALL
     safe = np.where(small, 1.0, theta)
     half = 0.5 * safe
-    return np.where(small, 1.0 / 12.0 + theta * theta / 720.0, (1.0 - half * np.cos(half) / np.sin(half)) / (safe * safe))
+    return np.where(
+        small, 1.0 / 12.0 + theta * theta / 720.0, (1.0 - half * np.cos(half) / np.sin(half)) / (safe * safe)
+    )
 
 
-def log_se3(T) -> np.ndarray:
+def log_se3(T: ArrayLike) -> NDArray[np.float64]:
     r"""The 6-vector :math:`\mathcal S\theta` with :math:`e^{[\mathcal S]\theta} = T`.
 
     MR: ``MatrixLog6`` (which returns the matrix ``[S]θ``).
@@ -245,7 +250,7 @@ def log_se3(T) -> np.ndarray:
     return np.concatenate([w, v], axis=-1)
 
 
-def twist_to_matrix(twist) -> np.ndarray:
+def twist_to_matrix(twist: ArrayLike) -> NDArray[np.float64]:
     r"""The 4x4 matrix :math:`[\mathcal V]` of a twist. MR: ``VecTose3``."""
     V = real_array(twist, "twist", (6,))
     out = np.zeros(V.shape[:-1] + (4, 4))
@@ -254,7 +259,7 @@ def twist_to_matrix(twist) -> np.ndarray:
     return out
 
 
-def matrix_to_twist(M) -> np.ndarray:
+def matrix_to_twist(M: ArrayLike) -> NDArray[np.float64]:
     r"""The twist :math:`\mathcal V` of a 4x4 matrix :math:`[\mathcal V]` in se(3). MR: ``se3ToVec``.
 
     Raises ``ValueError`` if ``M`` is not in se(3) (skew-symmetric top-left block,
@@ -263,12 +268,13 @@ def matrix_to_twist(M) -> np.ndarray:
     M = real_array(M, "M", (4, 4))
     top = M[..., :3, :3]
     scale = max(1.0, float(np.abs(M).max(initial=0.0)))
-    if np.abs(top + np.swapaxes(top, -1, -2)).max(initial=0.0) > 1e-6 * scale or np.abs(M[..., 3, :]).max(initial=0.0) > 1e-6 * scale:
+    asymmetry = np.abs(top + np.swapaxes(top, -1, -2)).max(initial=0.0)
+    if asymmetry > 1e-6 * scale or np.abs(M[..., 3, :]).max(initial=0.0) > 1e-6 * scale:
         raise ValueError("Expected a matrix in se(3): skew-symmetric 3x3 block and a zero last row")
     return np.concatenate([_unskew(top), M[..., :3, 3]], axis=-1)
 
 
-def make_transform(R, p) -> np.ndarray:
+def make_transform(R: ArrayLike, p: ArrayLike) -> NDArray[np.float64]:
     """The transform with rotation ``R`` (..., 3, 3) and translation ``p`` (..., 3). MR: ``RpToTrans``.
 
     >>> make_transform(np.eye(3), [1, 2, 3])[:, 3]
@@ -284,7 +290,7 @@ def make_transform(R, p) -> np.ndarray:
     return T
 
 
-def _inverse_transform(T: np.ndarray) -> np.ndarray:
+def _inverse_transform(T: NDArray[np.float64]) -> NDArray[np.float64]:
     Rt = np.swapaxes(T[..., :3, :3], -1, -2)
     out = np.zeros_like(T)
     out[..., :3, :3] = Rt
@@ -293,7 +299,7 @@ def _inverse_transform(T: np.ndarray) -> np.ndarray:
     return out
 
 
-def inverse_transform(T) -> np.ndarray:
+def inverse_transform(T: ArrayLike) -> NDArray[np.float64]:
     r"""The inverse :math:`T^{-1} = \begin{bmatrix}R^T & -R^Tp\\0&1\end{bmatrix}`. MR: ``TransInv``.
 
     >>> T = exp_se3([0.3, 0.2, 0.1, 1, 2, 3])
@@ -303,7 +309,7 @@ def inverse_transform(T) -> np.ndarray:
     return _inverse_transform(transform_array(T, "T"))
 
 
-def _adjoint(T: np.ndarray) -> np.ndarray:
+def _adjoint(T: NDArray[np.float64]) -> NDArray[np.float64]:
     R = T[..., :3, :3]
     P = _skew(T[..., :3, 3])
     out = np.zeros(T.shape[:-2] + (6, 6))
@@ -313,7 +319,7 @@ def _adjoint(T: np.ndarray) -> np.ndarray:
     return out
 
 
-def adjoint(T) -> np.ndarray:
+def adjoint(T: ArrayLike) -> NDArray[np.float64]:
     r"""The adjoint map :math:`[\mathrm{Ad}_T] = \begin{bmatrix}R & 0\\ [p]R & R\end{bmatrix}`.
 
     It maps a twist expressed in frame {b} to the same twist expressed in {a}
@@ -337,8 +343,9 @@ def adjoint(T) -> np.ndarray:
     return _adjoint(transform_array(T, "T"))
 
 
-def ad(twist) -> np.ndarray:
-    r"""The small adjoint :math:`[\mathrm{ad}_{\mathcal V}] = \begin{bmatrix}[\omega] & 0\\ [v] & [\omega]\end{bmatrix}`.
+def ad(twist: ArrayLike) -> NDArray[np.float64]:
+    r"""The small adjoint :math:`[\mathrm{ad}_{\mathcal V}]
+    = \begin{bmatrix}[\omega] & 0\\ [v] & [\omega]\end{bmatrix}`.
 
     :math:`[\mathrm{ad}_{\mathcal V_1}]\mathcal V_2` is the Lie bracket of two twists. MR: ``ad``.
 
@@ -356,7 +363,7 @@ def ad(twist) -> np.ndarray:
     return out
 
 
-def rotation_about(axis: str, angle) -> np.ndarray:
+def rotation_about(axis: str, angle: ArrayLike) -> NDArray[np.float64]:
     """Rotation about the coordinate axis ``"x"``, ``"y"`` or ``"z"`` by ``angle`` (radians, broadcasts).
 
     >>> rotation_about("z", np.pi / 2).round(12) + 0.0
@@ -377,7 +384,7 @@ def rotation_about(axis: str, angle) -> np.ndarray:
     return np.stack([np.stack(r, -1) for r in rows], -2)
 
 
-def left_jacobian_so3(omega_theta) -> np.ndarray:
+def left_jacobian_so3(omega_theta: ArrayLike) -> NDArray[np.float64]:
     r"""Left Jacobian of SO(3): :math:`\omega_s = J_l(r)\,\dot r` for :math:`R = e^{[r]}`.
 
     :math:`J_l(r) = I + \frac{1-\cos\theta}{\theta^2}[r] + \frac{\theta-\sin\theta}{\theta^3}[r]^2`,
@@ -391,7 +398,7 @@ def left_jacobian_so3(omega_theta) -> np.ndarray:
     return np.eye(3) + B[..., None, None] * K + C[..., None, None] * (K @ K)
 
 
-def left_jacobian_so3_inverse(omega_theta) -> np.ndarray:
+def left_jacobian_so3_inverse(omega_theta: ArrayLike) -> NDArray[np.float64]:
     r"""Inverse of :func:`left_jacobian_so3`: :math:`I - \tfrac12[r] + \gamma(\theta)[r]^2`.
 
     :math:`\gamma(\theta) = \frac{1}{\theta^2}\left(1 - \frac{\theta}{2}\cot\frac{\theta}{2}\right)`;

@@ -31,6 +31,7 @@ True
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validation import real_array, rotation_array
 from .lie import _exp_so3, _log_so3, left_jacobian_so3, left_jacobian_so3_inverse
@@ -52,33 +53,35 @@ class RepresentationSingularityError(ValueError):
     """Raised where a minimal orientation representation is singular (gimbal lock)."""
 
 
-def check_representation(representation) -> str:
+def check_representation(representation: object) -> str:
     if not isinstance(representation, str):
-        raise TypeError(f"Expected representation as a str, one of {REPRESENTATIONS}, got {type(representation).__name__}")
+        raise TypeError(
+            f"Expected representation as a str, one of {REPRESENTATIONS}, got {type(representation).__name__}"
+        )
     if representation not in REPRESENTATIONS:
         raise ValueError(f"Unknown representation {representation!r}: expected one of {REPRESENTATIONS}")
     return representation
 
 
-def _rz(a):
+def _rz(a: NDArray[np.float64]) -> NDArray[np.float64]:
     c, s = np.cos(a), np.sin(a)
     z, o = np.zeros_like(a), np.ones_like(a)
     return np.stack([np.stack([c, -s, z], -1), np.stack([s, c, z], -1), np.stack([z, z, o], -1)], -2)
 
 
-def _ry(a):
+def _ry(a: NDArray[np.float64]) -> NDArray[np.float64]:
     c, s = np.cos(a), np.sin(a)
     z, o = np.zeros_like(a), np.ones_like(a)
     return np.stack([np.stack([c, z, s], -1), np.stack([z, o, z], -1), np.stack([-s, z, c], -1)], -2)
 
 
-def _rx(a):
+def _rx(a: NDArray[np.float64]) -> NDArray[np.float64]:
     c, s = np.cos(a), np.sin(a)
     z, o = np.zeros_like(a), np.ones_like(a)
     return np.stack([np.stack([o, z, z], -1), np.stack([z, c, -s], -1), np.stack([z, s, c], -1)], -2)
 
 
-def rotation_from_coordinates(phi, representation: str = "zyx") -> np.ndarray:
+def rotation_from_coordinates(phi: ArrayLike, representation: str = "zyx") -> NDArray[np.float64]:
     """The rotation matrix (..., 3, 3) described by ``phi`` (..., 3)."""
     representation = check_representation(representation)
     phi = real_array(phi, "phi", (3,))
@@ -90,7 +93,7 @@ def rotation_from_coordinates(phi, representation: str = "zyx") -> np.ndarray:
     return _rz(a) @ _ry(b) @ _rz(c)
 
 
-def _coords(R: np.ndarray, representation: str) -> np.ndarray:
+def _coords(R: NDArray[np.float64], representation: str) -> NDArray[np.float64]:
     if representation == "exp":
         return _log_so3(R)
     if representation == "zyx":
@@ -110,7 +113,7 @@ def _coords(R: np.ndarray, representation: str) -> np.ndarray:
     return np.stack([a, b, c], -1)
 
 
-def coordinates_from_rotation(R, representation: str = "zyx") -> np.ndarray:
+def coordinates_from_rotation(R: ArrayLike, representation: str = "zyx") -> NDArray[np.float64]:
     """Coordinates ``phi`` (..., 3) of the rotation ``R`` (..., 3, 3), within the principal ranges.
 
     At a representation singularity one of the infinitely many solutions is
@@ -120,7 +123,7 @@ def coordinates_from_rotation(R, representation: str = "zyx") -> np.ndarray:
     return _coords(rotation_array(R, "R"), representation)
 
 
-def _B(phi: np.ndarray, representation: str) -> np.ndarray:
+def _B(phi: NDArray[np.float64], representation: str) -> NDArray[np.float64]:
     if representation == "exp":
         return left_jacobian_so3(phi)
     a, b = phi[..., 0], phi[..., 1]
@@ -133,7 +136,7 @@ def _B(phi: np.ndarray, representation: str) -> np.ndarray:
     return np.stack([np.stack(r, -1) for r in rows], -2)
 
 
-def rate_to_angular_velocity(phi, representation: str = "zyx") -> np.ndarray:
+def rate_to_angular_velocity(phi: ArrayLike, representation: str = "zyx") -> NDArray[np.float64]:
     r"""The matrix :math:`B(\phi)` with :math:`\omega_s = B(\phi)\dot\phi`, shape (..., 3, 3).
 
     ZYX: columns :math:`\hat z`, :math:`R_z(\phi_1)\hat y`, :math:`R_z(\phi_1)R_y(\phi_2)\hat x`;
@@ -144,7 +147,7 @@ def rate_to_angular_velocity(phi, representation: str = "zyx") -> np.ndarray:
     return _B(real_array(phi, "phi", (3,)), representation)
 
 
-def representation_singularity_margin(phi, representation: str = "zyx") -> np.ndarray:
+def representation_singularity_margin(phi: ArrayLike, representation: str = "zyx") -> NDArray[np.float64]:
     r"""How far ``phi`` is from the singularity of its representation (0 at the singularity).
 
     ``zyx``: :math:`|\cos\phi_2|`; ``zyz``: :math:`|\sin\phi_2|`; ``exp``:
@@ -155,15 +158,16 @@ def representation_singularity_margin(phi, representation: str = "zyx") -> np.nd
     return _margin(phi, representation)
 
 
-def _margin(phi, representation):
+def _margin(phi: NDArray[np.float64], representation: str) -> NDArray[np.float64]:
     if representation == "zyx":
         return np.abs(np.cos(phi[..., 1]))
     if representation == "zyz":
         return np.abs(np.sin(phi[..., 1]))
-    return np.pi - np.linalg.norm(phi, axis=-1)
+    angle: NDArray[np.float64] = np.linalg.norm(phi, axis=-1)
+    return np.pi - angle
 
 
-def _Binv(phi: np.ndarray, representation: str) -> np.ndarray:
+def _Binv(phi: NDArray[np.float64], representation: str) -> NDArray[np.float64]:
     if representation == "exp":
         return left_jacobian_so3_inverse(phi)
     a, b = phi[..., 0], phi[..., 1]
@@ -179,7 +183,7 @@ def _Binv(phi: np.ndarray, representation: str) -> np.ndarray:
     return np.stack([np.stack(r, -1) for r in rows], -2)
 
 
-def angular_velocity_to_rate(phi, representation: str = "zyx", tol: float = 1e-9) -> np.ndarray:
+def angular_velocity_to_rate(phi: ArrayLike, representation: str = "zyx", tol: float = 1e-9) -> NDArray[np.float64]:
     r""":math:`B(\phi)^{-1}`, the map from :math:`\omega_s` to :math:`\dot\phi` (the notes' :math:`E(x)` block).
 
     Raises :class:`RepresentationSingularityError` where the representation is

@@ -16,33 +16,47 @@ array([[ 0.,  0.,  1.,  0.,  0.,  0.],
 
 from __future__ import annotations
 
+from collections.abc import Collection
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validation import positive_float
 from .chain import SerialChain
 
-__all__ = ["planar", "planar_2r", "planar_3r", "ur5", "spatial_rrp", "scara", "spatial_5r", "zyx_wrist", "zyz_wrist", "PLANAR_NAMES"]
+__all__ = [
+    "planar",
+    "planar_2r",
+    "planar_3r",
+    "ur5",
+    "spatial_rrp",
+    "scara",
+    "spatial_5r",
+    "zyx_wrist",
+    "zyz_wrist",
+    "PLANAR_NAMES",
+]
 
 PLANAR_NAMES = ("planar_2r", "planar_3r")
 
 
-def _revolute(axis, point):
+def _revolute(axis: ArrayLike, point: ArrayLike) -> NDArray[np.float64]:
     w = np.asarray(axis, dtype=float)
     q = np.asarray(point, dtype=float)
     return np.concatenate([w, -np.cross(w, q)])
 
 
-def _prismatic(direction):
+def _prismatic(direction: ArrayLike) -> NDArray[np.float64]:
     return np.concatenate([np.zeros(3), np.asarray(direction, dtype=float)])
 
 
-def _translation(p):
+def _translation(p: ArrayLike) -> NDArray[np.float64]:
     T = np.eye(4)
     T[:3, 3] = p
     return T
 
 
-def planar(lengths, name: str | None = None) -> SerialChain:
+def planar(lengths: Collection[float], name: str | None = None) -> SerialChain:
     r"""A planar arm of revolute joints with the given link lengths.
 
     Joint i turns about z through :math:`(l_1 + \dots + l_{i-1}, 0, 0)`; the tool
@@ -87,7 +101,9 @@ def ur5() -> SerialChain:
         [0, 1, 0, H2 - H1, 0, L1 + L2],
     ], dtype=float).T
     M = np.array([[-1, 0, 0, L1 + L2], [0, 0, 1, W1 + W2], [0, 1, 0, H1 - H2], [0, 0, 0, 1]], dtype=float)
-    points = [[0, 0, 0], [0, 0, H1], [L1, 0, H1], [L1 + L2, 0, H1], [L1 + L2, W1, 0], [L1 + L2, 0, H1 - H2]]
+    points: list[list[float]] = [
+        [0, 0, 0], [0, 0, H1], [L1, 0, H1], [L1 + L2, 0, H1], [L1 + L2, W1, 0], [L1 + L2, 0, H1 - H2]
+    ]
     return SerialChain(S, M, name="UR5", joint_points=points)
 
 
@@ -101,7 +117,7 @@ def spatial_rrp(h: float = 1.0, reach: float = 1.0) -> SerialChain:
     h, reach = positive_float(h, "h"), positive_float(reach, "reach")
     S = np.stack([_revolute([0, 0, 1], [0, 0, 0]), _revolute([0, 1, 0], [0, 0, h]), _prismatic([1, 0, 0])], axis=1)
     return SerialChain(S, _translation([reach, 0, h]), name="spatial RRP",
-                       joint_points=[[0, 0, 0], [0, 0, h], [0, 0, h]])
+                       joint_points=[[0.0, 0.0, 0.0], [0.0, 0.0, h], [0.0, 0.0, h]])
 
 
 def scara(l1: float = 0.5, l2: float = 0.4, h: float = 0.3) -> SerialChain:
@@ -119,7 +135,7 @@ def scara(l1: float = 0.5, l2: float = 0.4, h: float = 0.3) -> SerialChain:
         _revolute([0, 0, 1], [l1 + l2, 0, 0]),
     ], axis=1)
     return SerialChain(S, _translation([l1 + l2, 0, h]), name="SCARA",
-                       joint_points=[[0, 0, 0], [l1, 0, 0], [l1 + l2, 0, h], [l1 + l2, 0, 0]])
+                       joint_points=[[0.0, 0.0, 0.0], [l1, 0, 0], [l1 + l2, 0, h], [l1 + l2, 0, 0]])
 
 
 def spatial_5r(h: float = 0.5, l1: float = 1.0, l2: float = 1.0, l3: float = 0.5, l4: float = 0.3) -> SerialChain:
@@ -129,7 +145,9 @@ def spatial_5r(h: float = 0.5, l1: float = 1.0, l2: float = 1.0, l3: float = 0.5
     :math:`(l_1,0,h)`; x through :math:`(l_1+l_2,0,h)`; z through
     :math:`(l_1+l_2+l_3,0,h)`. Tool at :math:`(l_1+l_2+l_3+l_4, 0, h)`.
     """
-    h, l1, l2, l3, l4 = (positive_float(v, k) for v, k in zip((h, l1, l2, l3, l4), ("h", "l1", "l2", "l3", "l4")))
+    h, l1, l2, l3, l4 = (
+        positive_float(v, k) for v, k in zip((h, l1, l2, l3, l4), ("h", "l1", "l2", "l3", "l4"), strict=True)
+    )
     S = np.stack([
         _revolute([0, 0, 1], [0, 0, 0]),
         _revolute([0, 1, 0], [0, 0, h]),
@@ -137,7 +155,7 @@ def spatial_5r(h: float = 0.5, l1: float = 1.0, l2: float = 1.0, l3: float = 0.5
         _revolute([1, 0, 0], [l1 + l2, 0, h]),
         _revolute([0, 0, 1], [l1 + l2 + l3, 0, h]),
     ], axis=1)
-    points = [[0, 0, 0], [0, 0, h], [l1, 0, h], [l1 + l2, 0, h], [l1 + l2 + l3, 0, h]]
+    points: list[list[float]] = [[0, 0, 0], [0, 0, h], [l1, 0, h], [l1 + l2, 0, h], [l1 + l2 + l3, 0, h]]
     return SerialChain(S, _translation([l1 + l2 + l3 + l4, 0, h]), name="spatial 5R", joint_points=points)
 
 
@@ -150,7 +168,8 @@ def zyx_wrist(tool: float = 0.2) -> SerialChain:
     :math:`(\text{tool}, 0, 0)` at home.
     """
     tool = positive_float(tool, "tool", allow_zero=True)
-    S = np.stack([_revolute([0, 0, 1], [0, 0, 0]), _revolute([0, 1, 0], [0, 0, 0]), _revolute([1, 0, 0], [0, 0, 0])], axis=1)
+    origin = [0, 0, 0]
+    S = np.stack([_revolute([0, 0, 1], origin), _revolute([0, 1, 0], origin), _revolute([1, 0, 0], origin)], axis=1)
     return SerialChain(S, _translation([tool, 0, 0]), name="ZYX wrist")
 
 
@@ -167,5 +186,6 @@ def zyz_wrist(tool: float = 0.2) -> SerialChain:
     identity and its geometric Jacobian loses rank at gimbal lock.)
     """
     tool = positive_float(tool, "tool", allow_zero=True)
-    S = np.stack([_revolute([0, 0, 1], [0, 0, 0]), _revolute([0, 1, 0], [0, 0, 0]), _revolute([0, 0, 1], [0, 0, 0])], axis=1)
+    origin = [0, 0, 0]
+    S = np.stack([_revolute([0, 0, 1], origin), _revolute([0, 1, 0], origin), _revolute([0, 0, 1], origin)], axis=1)
     return SerialChain(S, _translation([0, 0, tool]), name="ZYZ wrist")
