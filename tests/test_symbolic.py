@@ -3,6 +3,7 @@ against finite differences, against closed forms derived by hand, and on bad inp
 
 from __future__ import annotations
 
+import inspect
 import subprocess
 import sys
 
@@ -20,6 +21,10 @@ s, c = sp.sin, sp.cos
 
 def _random_thetas(n, k=6):
     return RNG.uniform(-np.pi, np.pi, size=(k, n))
+
+
+def _one_joint():
+    return sym.SymbolicChain(sp.Matrix([0, 0, 1, 0, 0, 0]), sp.eye(4))
 
 
 def _is_zero_matrix(A):
@@ -67,7 +72,7 @@ def test_exp_se3_derivative_is_the_twist():
     a, b = sp.symbols("a b", real=True)
     S = sp.Matrix([0, 0, 1, a, b, 0])
     T = sym.exp_se3(S, t)
-    assert sp.simplify(T.diff(t).subs(t, 0) - sym.matrix_from_twist(S)) == sp.zeros(4, 4)
+    assert sp.simplify(T.diff(t).subs(t, 0) - sym.twist_to_matrix(S)) == sp.zeros(4, 4)
 
 
 def test_adjoint_and_inverse_against_numeric():
@@ -82,15 +87,15 @@ def test_adjoint_identity_symbolic():
     t = sp.Symbol("t", real=True)
     T = sym.exp_se3([0, 1, 0, -1, 0, 2], t)
     V = sp.Matrix(sp.symbols("w1 w2 w3 v1 v2 v3", real=True))
-    lhs = T * sym.matrix_from_twist(V) * sym.inverse_transform(T)
-    rhs = sym.matrix_from_twist(sym.adjoint(T) * V)
+    lhs = T * sym.twist_to_matrix(V) * sym.inverse_transform(T)
+    rhs = sym.twist_to_matrix(sym.adjoint(T) * V)
     assert _is_zero_matrix(lhs - rhs)
 
 
 def test_twist_matrix_round_trip():
     V = sp.Matrix(sp.symbols("w1 w2 w3 v1 v2 v3"))
-    assert sym.twist_from_matrix(sym.matrix_from_twist(V)) == V
-    assert sym.matrix_from_twist(V)[3, :] == sp.zeros(1, 4)
+    assert sym.matrix_to_twist(sym.twist_to_matrix(V)) == V
+    assert sym.twist_to_matrix(V)[3, :] == sp.zeros(1, 4)
 
 
 # ------------------------------------------------------------------ planar chains
@@ -102,12 +107,13 @@ def test_planar_chain_matches_robots_planar(n):
     assert all(l.is_positive for l in ls) and all(t.is_real for t in th)
     lengths = RNG.uniform(0.3, 2.0, size=n)
     num = jac.robots.planar(list(lengths))
-    subs = dict(zip(ls, lengths))
+    subs = dict(zip(ls, lengths, strict=True))
     assert np.allclose(np.array(arm.screw_axes.subs(subs), dtype=float), num.screw_axes)
     assert np.allclose(np.array(arm.home.subs(subs), dtype=float), num.home)
     assert np.allclose(np.array(arm.body_axes.subs(subs), dtype=float), num.body_axes)
-    fs = {name: sym.lambdify_matrix(getattr(arm, name)(), th + ls)
-          for name in ("space_jacobian", "body_jacobian", "geometric_jacobian", "fk")}
+    fs = {name: sym.lambdify_matrix(getattr(sym, name)(arm), th + ls)
+          for name in ("space_jacobian", "body_jacobian", "geometric_jacobian")}
+    fs["fk"] = sym.lambdify_matrix(arm.fk(), th + ls)
     thetas = _random_thetas(n)
     x = np.concatenate([thetas, np.broadcast_to(lengths, thetas.shape)], axis=-1)
     assert np.allclose(fs["space_jacobian"](x), jac.space_jacobian(num, thetas), atol=1e-12)
@@ -135,7 +141,7 @@ def test_planar_2r_textbook_closed_forms():
     # position rows of the geometric Jacobian = d/dtheta of (x, y)
     J_p = sp.Matrix([[-l1 * s1 - l2 * s12, -l2 * s12],
                      [l1 * c1 + l2 * c12, l2 * c12]])
-    J = arm.geometric_jacobian()
+    J = sym.geometric_jacobian(arm)
     assert J[3:5, :] == J_p                       # textbook form, exactly
     assert J[:3, :] == sp.Matrix([[0, 0], [0, 0], [1, 1]])
     assert J[5, :] == sp.zeros(1, 2)
@@ -148,8 +154,8 @@ def test_planar_2r_textbook_closed_forms():
     assert not _is_zero_matrix(wrong - J_p)
     assert sp.simplify(J_p[1, 0] - wrong[1, 0] - l2 * c12) == 0
     # space and body Jacobians
-    assert arm.space_jacobian() == sp.Matrix([[0, 0], [0, 0], [1, 1], [0, l1 * s1], [0, -l1 * c1], [0, 0]])
-    assert arm.body_jacobian() == sp.Matrix([[0, 0], [0, 0], [1, 1],
+    assert sym.space_jacobian(arm) == sp.Matrix([[0, 0], [0, 0], [1, 1], [0, l1 * s1], [0, -l1 * c1], [0, 0]])
+    assert sym.body_jacobian(arm) == sp.Matrix([[0, 0], [0, 0], [1, 1],
                                              [l1 * s(t2), 0], [l1 * c(t2) + l2, l2], [0, 0]])
     # manipulability of the position rows: |det J_p| = l1 l2 |sin theta2|
     assert sp.simplify(sym.simplify_matrix(sp.Matrix([J_p.det()]))[0] - l1 * l2 * s(t2)) == 0
@@ -171,9 +177,9 @@ def test_planar_3r_textbook_closed_forms():
                    [-l1 * s1 - l2 * s12 - l3 * s123, -l2 * s12 - l3 * s123, -l3 * s123],
                    [l1 * c1 + l2 * c12 + l3 * c123, l2 * c12 + l3 * c123, l3 * c123],
                    [0, 0, 0]])
-    assert arm.space_jacobian() == J_s
-    assert arm.body_jacobian() == J_b
-    assert arm.geometric_jacobian() == J
+    assert sym.space_jacobian(arm) == J_s
+    assert sym.body_jacobian(arm) == J_b
+    assert sym.geometric_jacobian(arm) == J
     T = arm.fk()
     assert T[:2, 3] == sp.Matrix([l1 * c1 + l2 * c12 + l3 * c123, l1 * s1 + l2 * s12 + l3 * s123])
     assert T[:3, :3] == sym.exp_so3([0, 0, 1], t1 + t2 + t3)
@@ -183,7 +189,7 @@ def test_planar_3r_textbook_closed_forms():
 def test_relations_between_jacobians_simplify_to_zero(n):
     arm, th, _ = sym.planar_chain(n)
     T = arm.fk()
-    J_s, J_b, J = arm.space_jacobian(), arm.body_jacobian(), arm.geometric_jacobian()
+    J_s, J_b, J = sym.space_jacobian(arm), sym.body_jacobian(arm), sym.geometric_jacobian(arm)
     assert _is_zero_matrix(J_b - sym.adjoint(sym.inverse_transform(T)) * J_s)
     assert _is_zero_matrix(J_s - sym.adjoint(T) * J_b)
     R = T[:3, :3]
@@ -202,22 +208,22 @@ def test_spatial_rrp_symbolic_against_numeric_and_twist_definition():
     arm, (h, r) = _symbolic_rrp()
     th = arm.thetas
     T = arm.fk()
-    J_s = arm.space_jacobian()
+    J_s = sym.space_jacobian(arm)
     # definition: [V_s] = Tdot T^-1, so column i is the twist of dT/dtheta_i T^-1
     Tinv = sym.inverse_transform(T)
     for i in range(3):
-        col = sym.twist_from_matrix(sym.simplify_matrix(T.diff(th[i]) * Tinv))
+        col = sym.matrix_to_twist(sym.simplify_matrix(T.diff(th[i]) * Tinv))
         assert _is_zero_matrix(col - J_s[:, i])
-    J_b = arm.body_jacobian()
+    J_b = sym.body_jacobian(arm)
     for i in range(3):
-        col = sym.twist_from_matrix(sym.simplify_matrix(Tinv * T.diff(th[i])))
+        col = sym.matrix_to_twist(sym.simplify_matrix(Tinv * T.diff(th[i])))
         assert _is_zero_matrix(col - J_b[:, i])
     # numbers
     num = jac.robots.spatial_rrp(h=0.7, reach=1.3)
     vals = {h: 0.7, r: 1.3}
     thetas = _random_thetas(3)
     for A, ref in ((J_s, jac.space_jacobian(num, thetas)), (J_b, jac.body_jacobian(num, thetas)),
-                   (arm.geometric_jacobian(), jac.geometric_jacobian(num, thetas)), (T, num.fk(thetas))):
+                   (sym.geometric_jacobian(arm), jac.geometric_jacobian(num, thetas)), (T, num.fk(thetas))):
         f = sym.lambdify_matrix(A.subs(vals), th)
         assert np.allclose(f(thetas), ref, atol=1e-12)
 
@@ -225,7 +231,7 @@ def test_spatial_rrp_symbolic_against_numeric_and_twist_definition():
 def test_geometric_jacobian_is_derivative_of_position():
     arm, _ = _symbolic_rrp()
     T = arm.fk()
-    J = arm.geometric_jacobian()
+    J = sym.geometric_jacobian(arm)
     assert _is_zero_matrix(T[:3, 3].jacobian(list(arm.thetas)) - J[3:, :])
 
 
@@ -234,8 +240,8 @@ def ur5_symbolic():
     """The UR5's symbolic Jacobians, computed once (the slowest thing in this file)."""
     chain = jac.robots.ur5()
     arm = sym.SymbolicChain.from_numeric(chain)
-    return chain, arm, {"space": arm.space_jacobian(), "body": arm.body_jacobian(),
-                        "geometric": arm.geometric_jacobian(), "fk": arm.fk()}
+    return chain, arm, {"space": sym.space_jacobian(arm), "body": sym.body_jacobian(arm),
+                        "geometric": sym.geometric_jacobian(arm), "fk": arm.fk()}
 
 
 def test_ur5_symbolic_matches_numeric(ur5_symbolic):
@@ -258,9 +264,9 @@ def test_from_numeric_matches_numeric(factory):
     assert arm.dof == chain.dof
     thetas = _random_thetas(chain.dof, 4)
     for simplify in (True, False):
-        pairs = ((arm.space_jacobian(simplify=simplify), jac.space_jacobian(chain, thetas)),
-                 (arm.body_jacobian(simplify=simplify), jac.body_jacobian(chain, thetas)),
-                 (arm.geometric_jacobian(simplify=simplify), jac.geometric_jacobian(chain, thetas)),
+        pairs = ((sym.space_jacobian(arm, simplify=simplify), jac.space_jacobian(chain, thetas)),
+                 (sym.body_jacobian(arm, simplify=simplify), jac.body_jacobian(chain, thetas)),
+                 (sym.geometric_jacobian(arm, simplify=simplify), jac.geometric_jacobian(chain, thetas)),
                  (arm.fk(simplify=simplify), chain.fk(thetas)))
         for A, ref in pairs:
             assert np.allclose(sym.lambdify_matrix(A, arm.thetas)(thetas), ref, atol=1e-12)
@@ -287,14 +293,16 @@ def test_link_jacobians_against_numeric():
     arm, th, ls = sym.planar_chain(3)
     lengths = [0.8, 1.1, 0.5]
     num = jac.robots.planar(lengths)
-    subs = dict(zip(ls, lengths))
+    subs = dict(zip(ls, lengths, strict=True))
     thetas = _random_thetas(3, 3)
     for frame in ("space", "body", "geometric"):
         ref = jac.link_jacobians(num, thetas, frame=frame)
+        homes = [sp.Matrix(H).applyfunc(sp.nsimplify) for H in num.link_homes]
+        exact = sym.SymbolicChain(arm.screw_axes.subs(subs).applyfunc(sp.nsimplify), sp.eye(4), link_homes=homes)
+        J_links = sym.link_jacobians(exact, th, frame=frame)
+        assert len(J_links) == 3
         for i in range(1, 4):
-            M_i = sp.Matrix(num.link_homes[i - 1]).applyfunc(sp.nsimplify)
-            J_i = sym.link_jacobian(arm.screw_axes.subs(subs).applyfunc(sp.nsimplify), th, i,
-                                    link_home=M_i, frame=frame)
+            J_i = J_links[i - 1]
             assert J_i[:, i:].is_zero_matrix
             assert np.allclose(sym.lambdify_matrix(J_i, th)(thetas), ref[:, i - 1], atol=1e-12)
 
@@ -358,19 +366,27 @@ def test_importing_jacobians_does_not_import_sympy():
     (lambda: sym.adjoint(sp.eye(3)), ValueError, r"shape \(4, 4\)"),
     (lambda: sym.adjoint(sp.ones(4, 4)), ValueError, "last row"),
     (lambda: sym.inverse_transform([[1, 2], [3]]), TypeError, "nested list"),
-    (lambda: sym.twist_from_matrix(sp.ones(4, 4)), ValueError, "skew-symmetric"),
-    (lambda: sym.twist_from_matrix(sym.matrix_from_twist([1, 0, 0, 0, 0, 0]) + sp.Matrix(4, 4, lambda i, j: int(i == 3))),
+    (lambda: sym.matrix_to_twist(sp.ones(4, 4)), ValueError, "skew-symmetric"),
+    (lambda: sym.matrix_to_twist(sym.twist_to_matrix([1, 0, 0, 0, 0, 0]) + sp.Matrix(4, 4, lambda i, j: int(i == 3))),
      ValueError, "zero last row"),
-    (lambda: sym.fk(sp.ones(3, 6), sp.eye(4), [1, 2, 3]), ValueError, "transposed"),
-    (lambda: sym.fk(sp.zeros(6, 0), sp.eye(4), []), ValueError, "at least one column"),
-    (lambda: sym.fk(sp.Matrix([0, 0, 1, 0, 0, 0]), sp.eye(4), [1, 2]), ValueError, "1 joint variables"),
-    (lambda: sym.fk(sp.Matrix([0, 0, 1, 0, 0, 0]), sp.eye(4), "t"), TypeError, "joint symbols"),
-    (lambda: sym.space_jacobian(sp.Matrix([0, 0, 0, 0, 0, 0]), [1]), ValueError, "unit linear part"),
-    (lambda: sym.body_jacobian(np.ones((6, 2)) * (1 + 1j), [1, 2]), TypeError, "complex"),
-    (lambda: sym.link_jacobian(sp.Matrix([0, 0, 1, 0, 0, 0]), [1], 0), ValueError, "1 <= i <= 1"),
-    (lambda: sym.link_jacobian(sp.Matrix([0, 0, 1, 0, 0, 0]), [1], 1.0), TypeError, "integer"),
-    (lambda: sym.link_jacobian(sp.Matrix([0, 0, 1, 0, 0, 0]), [1], 1, frame="body"), ValueError, "link_home"),
-    (lambda: sym.link_jacobian(sp.Matrix([0, 0, 1, 0, 0, 0]), [1], 1, frame="world"), ValueError, "frame"),
+    (lambda: sym.SymbolicChain(sp.ones(3, 6), sp.eye(4)), ValueError, "transposed"),
+    (lambda: sym.SymbolicChain(sp.zeros(6, 0), sp.eye(4)), ValueError, "at least one column"),
+    (lambda: _one_joint().fk([1, 2]), ValueError, "1 joint variables"),
+    (lambda: _one_joint().fk("t"), TypeError, "joint symbols"),
+    (lambda: sym.space_jacobian(_one_joint(), [1, 2]), ValueError, "1 joint variables"),
+    (lambda: sym.SymbolicChain(sp.Matrix([0, 0, 0, 0, 0, 0]), sp.eye(4)), ValueError, "unit linear part"),
+    (lambda: sym.SymbolicChain(np.ones((6, 2)) * (1 + 1j), sp.eye(4)), TypeError, "complex"),
+    (lambda: _one_joint().prefix_fk(2), ValueError, "0 <= i <= 1"),
+    (lambda: _one_joint().prefix_fk(1.0), ValueError, "0 <= i <= 1"),
+    (lambda: sym.link_jacobians(_one_joint(), [1], frame="body"), ValueError, "link_home"),
+    (lambda: sym.link_jacobians(_one_joint(), [1], frame="world"), ValueError, "frame"),
+    (lambda: sym.jacobian(_one_joint(), [1], frame="analytic"), ValueError, "frame"),
+    (lambda: sym.space_jacobian(jac.robots.planar_2r(), [1, 2]), TypeError, "SymbolicChain"),
+    (lambda: sym.space_to_body(sp.ones(3, 2), sp.eye(4)), ValueError, r"shape \(6, n\)"),
+    (lambda: sym.unskew(sp.ones(3, 3)), ValueError, "skew-symmetric"),
+    (lambda: sym.rotation_about("w", 1), ValueError, "axis"),
+    (lambda: sym.is_zero("x - x"), TypeError, "sympy expression"),
+    (lambda: sym.is_zero(sp.Eq(sp.Symbol("x"), 1)), TypeError, "sympy expression"),
     (lambda: sym.planar_chain(0), ValueError, "at least one joint"),
     (lambda: sym.planar_chain(True), TypeError, "integer"),
     (lambda: sym.planar_chain(2, lengths=[1]), ValueError, "2 link lengths"),
@@ -396,10 +412,11 @@ def test_input_forms_are_accepted():
     S1 = sp.Matrix([0, 0, 1, 0, 0, 0])
     M = sp.eye(4)
     # one joint: a bare symbol, a list, a numpy array of numbers
-    assert sym.fk(S1, M, t) == sym.fk(S1, M, [t])
-    assert np.allclose(np.array(sym.fk(S1, M, np.array([0.5])), dtype=float), lie.exp_se3([0, 0, 0.5, 0, 0, 0]))
+    one = sym.SymbolicChain(S1, M)
+    assert one.fk(t) == one.fk([t])
+    assert np.allclose(np.array(one.fk(np.array([0.5])), dtype=float), lie.exp_se3([0, 0, 0.5, 0, 0, 0]))
     # screw axes as a numpy array, transforms as nested lists, rows for vectors
-    assert sym.space_jacobian(np.array([[0, 0, 1, 0, 0, 0]]).T, [t]) == sp.Matrix(S1)
+    assert sym.space_jacobian(sym.SymbolicChain(np.array([[0, 0, 1, 0, 0, 0]]).T, M), [t]) == sp.Matrix(S1)
     assert sym.adjoint(np.eye(4, dtype=int).tolist()) == sp.eye(6)
     assert sym.exp_se3(sp.Matrix([[0, 0, 1, 0, 0, 0]]), t) == sym.exp_se3([0, 0, 1, 0, 0, 0], t)
     # a prismatic joint with a symbolic direction is taken as unit
@@ -423,7 +440,7 @@ def test_symbolic_chain_repr_and_custom_symbols():
     arm = sym.SymbolicChain(sp.Matrix([[0, 0, 1, 0, 0, 0], [0, 0, 0, 1, 0, 0]]).T, sp.eye(4), thetas=q)
     assert "2 joints" in repr(arm)
     assert arm.thetas == q
-    assert arm.space_jacobian()[:, 1].T == sp.Matrix([[0, 0, 0, sp.cos(q[0]), sp.sin(q[0]), 0]])
+    assert sym.space_jacobian(arm)[:, 1].T == sp.Matrix([[0, 0, 0, sp.cos(q[0]), sp.sin(q[0]), 0]])
     assert arm.body_axes == arm.screw_axes  # home = identity
 
 
@@ -436,7 +453,7 @@ def test_float_axes_are_checked_with_a_tolerance():
     arm = sym.SymbolicChain.from_numeric(chain, exact=False)
     assert arm.screw_axes[0, 1] == 0
     theta = np.array([0.4, -0.3])
-    f = sym.lambdify_matrix(arm.space_jacobian(), arm.thetas)
+    f = sym.lambdify_matrix(sym.space_jacobian(arm), arm.thetas)
     assert np.allclose(f(theta), jac.space_jacobian(chain, theta))
     with pytest.raises(ValueError, match="unit"):
         sym.exp_so3([0.6, 0.0, 0.8 + 1e-6], t)
@@ -446,14 +463,14 @@ def test_link_homes_of_planar_chain_and_round_trip():
     arm, th, ls = sym.planar_chain(3)
     lengths = [0.8, 1.1, 0.5]
     num = jac.robots.planar(lengths)
-    subs = dict(zip(ls, lengths))
+    subs = dict(zip(ls, lengths, strict=True))
     assert np.allclose([np.array(H.subs(subs), dtype=float) for H in arm.link_homes], num.link_homes)
     back = sym.to_numeric_chain(arm, subs)
     assert np.allclose(back.link_homes, num.link_homes)
     thetas = _random_thetas(3, 3)
     ref = jac.link_jacobians(num, thetas, frame="geometric")
     for i in (1, 2, 3):
-        J_i = arm.link_jacobian(i, frame="geometric").subs(subs)
+        J_i = sym.link_jacobians(arm, frame="geometric")[i - 1].subs(subs)
         assert np.allclose(sym.lambdify_matrix(J_i, th)(thetas), ref[:, i - 1], atol=1e-12)
     # from_numeric keeps the numeric chain's link frames
     ur5 = jac.robots.ur5()
@@ -464,4 +481,98 @@ def test_link_homes_of_planar_chain_and_round_trip():
     with pytest.raises(TypeError, match="link_homes"):
         sym.SymbolicChain(arm.screw_axes, arm.home, link_homes=sp.eye(4))
     with pytest.raises(ValueError, match="link_home"):
-        sym.SymbolicChain(arm.screw_axes, arm.home).link_jacobian(2, frame="body")
+        sym.link_jacobians(sym.SymbolicChain(arm.screw_axes, arm.home), frame="body")
+
+
+# ------------------------------------------------------------------ one API: the symbolic mirrors the numeric
+
+def _params(f):
+    return [p for p in inspect.signature(f).parameters if p != "simplify"]
+
+
+@pytest.mark.parametrize("name", ["skew", "unskew", "twist_to_matrix", "matrix_to_twist", "make_transform",
+                                  "inverse_transform", "adjoint", "ad", "rotation_about"])
+def test_lie_functions_have_the_numeric_names_and_arguments(name):
+    assert _params(getattr(sym, name)) == _params(getattr(lie, name))
+
+
+@pytest.mark.parametrize("name", ["space_jacobian", "body_jacobian", "geometric_jacobian", "link_jacobians",
+                                  "space_to_body", "body_to_space", "space_to_geometric", "geometric_to_space",
+                                  "body_to_geometric", "geometric_to_body"])
+def test_jacobian_functions_have_the_numeric_names_and_arguments(name):
+    assert _params(getattr(sym, name)) == _params(getattr(jac, name))
+
+
+def test_exponentials_take_axis_then_angle():
+    # the one documented difference: sympy cannot split a product omega*theta back into axis and angle
+    assert _params(sym.exp_so3) == ["omega", "theta"]
+    assert _params(sym.exp_se3) == ["screw", "theta"]
+
+
+def test_symbolic_chain_is_read_only_like_serial_chain():
+    arm, th, ls = sym.planar_chain(2)
+    num = jac.robots.planar_2r()
+    for attr in ("screw_axes", "body_axes", "home", "link_homes", "dof", "joint_types", "name"):
+        assert hasattr(num, attr) and hasattr(arm, attr), attr
+    for attr in ("screw_axes", "body_axes", "home", "link_homes", "dof", "joint_types", "thetas", "params"):
+        with pytest.raises(AttributeError):
+            setattr(arm, attr, None)
+    with pytest.raises(TypeError):
+        arm.screw_axes[0, 0] = 5  # an immutable matrix
+    assert arm.joint_types == num.joint_types == "RR"
+    assert arm.thetas == th and arm.params == ls
+
+
+def test_small_lie_functions_against_numeric():
+    V = np.array([0.3, -0.2, 0.5, 1.0, -2.0, 0.7])
+    assert np.allclose(np.array(sym.ad(V), dtype=float), lie.ad(V))
+    assert np.allclose(np.array(sym.unskew(lie.skew(V[:3])), dtype=float).ravel(), V[:3])
+    R, p = lie.exp_so3(V[:3]), V[3:]
+    assert np.allclose(np.array(sym.make_transform(R, p), dtype=float), lie.make_transform(R, p))
+    for axis in "xyz":
+        assert np.allclose(np.array(sym.rotation_about(axis, 0.7), dtype=float), lie.rotation_about(axis, 0.7))
+
+
+def test_conversions_and_jacobian_by_frame_against_numeric():
+    arm = sym.SymbolicChain.from_numeric(jac.robots.spatial_rrp())
+    num = jac.robots.spatial_rrp()
+    theta = np.array([0.3, -0.8, 0.4])
+    T = arm.fk(theta)
+    J_s, J_b, J = (sym.jacobian(arm, theta, f) for f in sym.FRAMES)
+    num_of = {"space": jac.space_jacobian, "body": jac.body_jacobian, "geometric": jac.geometric_jacobian}
+    for f, A in zip(sym.FRAMES, (J_s, J_b, J), strict=True):
+        assert np.allclose(np.array(A, dtype=float), num_of[f](num, theta), atol=1e-12), f
+    pairs = [(sym.space_to_body(J_s, T), J_b), (sym.body_to_space(J_b, T), J_s),
+             (sym.space_to_geometric(J_s, T), J), (sym.geometric_to_space(J, T), J_s),
+             (sym.body_to_geometric(J_b, T), J), (sym.geometric_to_body(J, T), J_b)]
+    for got, want in pairs:
+        assert np.allclose(np.array(got, dtype=float), np.array(want, dtype=float), atol=1e-12)
+
+
+def test_link_poses_against_numeric():
+    arm, th, ls = sym.planar_chain(3)
+    lengths = [0.8, 1.1, 0.5]
+    num = jac.robots.planar(lengths)
+    theta = np.array([0.2, -1.0, 0.6])
+    poses = arm.link_poses(theta)
+    subs = dict(zip(ls, lengths, strict=True))
+    assert np.allclose([np.array(P.subs(subs), dtype=float) for P in poses], num.link_poses(theta))
+    assert arm.prefix_fk(0) == sp.eye(4)
+    with pytest.raises(ValueError, match="link_homes"):
+        sym.SymbolicChain(arm.screw_axes, arm.home).link_poses()
+
+
+def test_is_zero_decides_identities_exactly():
+    a, b, l = sp.symbols("a b l", real=True)
+    assert sym.is_zero(s(a + b) - s(a) * c(b) - c(a) * s(b))
+    assert sym.is_zero(c(2 * a) - 1 + 2 * s(a) ** 2)
+    assert sym.is_zero(l * (s(a) ** 2 + c(a) ** 2) / (1 + l**2) - l / (1 + l**2))
+    assert not sym.is_zero(sp.sqrt(l**2) - l)  # l real: |l| - l is not zero
+    assert not sym.is_zero(s(a) - c(a))
+    assert not sym.is_zero(s(a + b) - s(a) - s(b))
+    assert sym.is_zero_matrix(sp.Matrix([[0, s(a) ** 2 + c(a) ** 2 - 1]]))
+    assert not sym.is_zero_matrix(sp.Matrix([[0, s(a)]]))
+    # the relations between the Jacobians of the 3R arm, decided without simplify_matrix
+    arm, th, _ = sym.planar_chain(3)
+    T = arm.fk(simplify=False)
+    assert sym.is_zero_matrix(sym.body_jacobian(arm, simplify=False) - sym.space_to_body(sym.space_jacobian(arm), T))
