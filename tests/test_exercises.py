@@ -16,13 +16,13 @@ import pytest
 import sympy as sp
 
 import jacobians as jac
-from jacobians import grading
+from course import exercises
 from jacobians.grading import Feedback
 
 ROOT = Path(__file__).resolve().parent.parent
-IDS = grading.exercise_ids()
+IDS = exercises.exercise_ids()
 SEEDS = [0, 1, 2, 3, 7]
-KINDS = {eid: grading.load(eid).kind for eid in IDS}
+KINDS = {eid: exercises.load(eid).kind for eid in IDS}
 
 
 def _accepted_answer(ex):
@@ -44,8 +44,8 @@ def test_every_exercise_appears_in_its_notebook():
         chapter = eid[2:4]
         (src,) = ROOT.glob(f"exercises/{chapter}_*.md")
         text = src.read_text()
-        assert f'grading.load("{eid}", seed=SEED)' in text
-        assert f'grading.check("{eid}", answer, seed=SEED)' in text
+        assert f'exercises.load("{eid}", seed=SEED)' in text
+        assert f'exercises.check("{eid}", answer, seed=SEED)' in text
 
 
 # ------------------------------------------------------------------ reference accepted
@@ -53,8 +53,8 @@ def test_every_exercise_appears_in_its_notebook():
 @pytest.mark.parametrize("eid", IDS)
 def test_reference_accepted_for_several_seeds(eid):
     for seed in SEEDS:
-        ex = grading.load(eid, seed=seed)
-        fb = grading.check(eid, _accepted_answer(ex), seed=seed)
+        ex = exercises.load(eid, seed=seed)
+        fb = exercises.check(eid, _accepted_answer(ex), seed=seed)
         assert fb.correct and fb.kind == "correct", (seed, fb)
 
 
@@ -64,10 +64,10 @@ def test_reference_accepted_for_several_seeds(eid):
 def test_each_catalogued_mistake_rejected_with_its_own_message(eid):
     seen = set()
     for seed in SEEDS:
-        ex = grading.load(eid, seed=seed)
+        ex = exercises.load(eid, seed=seed)
         messages = {}
         for m in ex.mistakes:
-            fb = grading.check(eid, m.value, seed=seed)
+            fb = exercises.check(eid, m.value, seed=seed)
             assert not fb.correct, (seed, m.name)
             assert fb.mistake == m.name and fb.message == m.message, (seed, m.name, fb)
             messages[m.name] = fb.message
@@ -79,7 +79,7 @@ def test_each_catalogued_mistake_rejected_with_its_own_message(eid):
 @pytest.mark.parametrize("eid", [e for e in IDS if KINDS[e] == "numeric"])
 def test_generic_mistakes_detected(eid):
     for seed in SEEDS[:3]:
-        ex = grading.load(eid, seed=seed)
+        ex = exercises.load(eid, seed=seed)
         ref = np.asarray(ex.solution(), dtype=float)
         wrong = ref.copy()
         wrong.flat[-1] += 0.37 * (1 + abs(wrong.flat[-1]))
@@ -97,7 +97,7 @@ def test_named_mistakes_of_the_issue_are_all_catalogued_somewhere():
     names = set()
     for eid in IDS:
         for seed in SEEDS[:2]:
-            ex = grading.load(eid, seed=seed)
+            ex = exercises.load(eid, seed=seed)
             names |= {m.name for m in ex.mistakes}
             if ex.kind == "function":
                 rng = np.random.default_rng(ex.seed + 1000)
@@ -116,7 +116,7 @@ def _imitating(cases, name):
     """A 'student' function that makes mistake ``name`` on the checker's own test inputs."""
     def student(*args):
         for case_args, ref, mistakes, _ in cases:
-            if all(np.array_equal(np.asarray(a), np.asarray(b)) for a, b in zip(case_args, args)):
+            if all(np.array_equal(np.asarray(a), np.asarray(b)) for a, b in zip(case_args, args, strict=False)):
                 return next((m.value for m in mistakes if m.name == name), ref)
         raise AssertionError("unexpected input")
     return student
@@ -125,7 +125,7 @@ def _imitating(cases, name):
 @pytest.mark.parametrize("eid", [e for e in IDS if KINDS[e] == "function"])
 def test_function_mistakes_rejected_with_their_message(eid):
     for seed in (0, 3):
-        ex = grading.load(eid, seed=seed)
+        ex = exercises.load(eid, seed=seed)
         cases = _replayed_cases(ex)
         first_args, first_ref, first_mistakes, _ = cases[0]
         names = [m.name for m in first_mistakes]
@@ -150,8 +150,8 @@ def test_a_realistic_wrong_space_jacobian_function():
             T = jac.lie.exp_se3(S[:, i] * theta[i]) @ T
         return J
 
-    assert grading.check("ch02_ex4", forgot_adjoint).mistake == "home_axes"
-    fb = grading.check("ch02_ex4", reversed_product, seed=1)
+    assert exercises.check("ch02_ex4", forgot_adjoint).mistake == "home_axes"
+    fb = exercises.check("ch02_ex4", reversed_product, seed=1)
     assert fb.mistake in ("product_order", "wrong_entries") and not fb.correct
 
 
@@ -159,7 +159,7 @@ def test_a_realistic_wrong_space_jacobian_function():
 
 def test_gimbal_lock_exercise():
     for seed in range(6):
-        ex = grading.load("ch06_ex4", seed=seed)
+        ex = exercises.load("ch06_ex4", seed=seed)
         rep = ex.given["representation"]
         right = np.pi / 2 if rep == "zyx" else np.pi
         assert ex.check(right).correct and ex.check(right + 2 * np.pi).correct
@@ -171,7 +171,7 @@ def test_gimbal_lock_exercise():
 
 
 def test_singular_configuration_exercise():
-    ex = grading.load("ch09_ex6", seed=2)
+    ex = exercises.load("ch09_ex6", seed=2)
     assert ex.check(np.pi).correct and ex.check(-np.pi).correct
     assert ex.check(0.0).mistake == "excluded_zero"
     assert ex.check(180).mistake == "degrees_for_radians"
@@ -183,7 +183,7 @@ def test_singular_configuration_exercise():
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_references_agree_with_the_library(seed):
     def g(eid):
-        return grading.load(eid, seed=seed)
+        return exercises.load(eid, seed=seed)
 
     ex = g("ch02_ex1")
     arm = jac.robots.planar(ex.given["lengths"])
@@ -245,7 +245,7 @@ def test_references_agree_with_the_library(seed):
     th = np.radians(ex.given["theta_deg"])
     M_fd = np.zeros((2, 2))
     for i in range(2):
-        Jc = jac.numerical_jacobian(lambda x: arm.link_poses(x)[i][:2, 3], th)
+        Jc = jac.numerical_jacobian(lambda x, i=i: arm.link_poses(x)[i][:2, 3], th)
         Jw = np.array([[1.0, 1.0 if i == 1 else 0.0]])
         M_fd += m[i] * Jc.T @ Jc + m[i] * L[i] ** 2 / 12 * Jw.T @ Jw
     np.testing.assert_allclose(ex.solution(), M_fd, atol=1e-6)
@@ -265,17 +265,17 @@ def test_references_agree_with_the_library(seed):
 
 def test_conversion_references_agree_with_the_library():
     for seed in range(3):
-        ex = grading.load("ch04_ex1", seed=seed)
+        ex = exercises.load("ch04_ex1", seed=seed)
         T = ex.given["T_sb"].copy()
         U, _, Vt = np.linalg.svd(T[:3, :3])  # the library wants an exact rotation; the statement shows 4 digits
         T[:3, :3] = U @ Vt
         np.testing.assert_allclose(ex.solution(), jac.space_to_body(ex.given["J_s"], T), atol=2e-3)
-        ex = grading.load("ch05_ex2", seed=seed)
+        ex = exercises.load("ch05_ex2", seed=seed)
         T = ex.given["T_sb"].copy()
         U, _, Vt = np.linalg.svd(T[:3, :3])
         T[:3, :3] = U @ Vt
         np.testing.assert_allclose(ex.solution(), jac.body_to_geometric(ex.given["J_b"], T), atol=2e-3)
-        ex = grading.load("ch07_ex2", seed=seed)
+        ex = exercises.load("ch07_ex2", seed=seed)
         T = ex.given["T_sb"].copy()
         U, _, Vt = np.linalg.svd(T[:3, :3])
         T[:3, :3] = U @ Vt
@@ -286,7 +286,7 @@ def test_conversion_references_agree_with_the_library():
 def test_symbolic_references_agree_with_the_library_numerically():
     rng = np.random.default_rng(0)
     for eid, fn in (("ch02_ex3", jac.space_jacobian), ("ch03_ex3", jac.body_jacobian)):
-        ex = grading.load(eid)
+        ex = exercises.load(eid)
         syms = ex.symbols
         for _ in range(3):
             l1, l2 = rng.uniform(0.5, 2, size=2)
@@ -294,7 +294,7 @@ def test_symbolic_references_agree_with_the_library_numerically():
             val = np.array(ex.reference.subs({syms["theta1"]: th[0], syms["theta2"]: th[1], syms["l1"]: l1,
                                               syms["l2"]: l2}).evalf().tolist(), dtype=float)
             np.testing.assert_allclose(val, fn(jac.robots.planar_2r(l1, l2), th), atol=1e-12)
-    ex = grading.load("ch06_ex1")
+    ex = exercises.load("ch06_ex1")
     s = ex.symbols
     arm = jac.robots.planar_2r(0.7, 1.3)
     th = np.array([0.4, -1.1])
@@ -305,7 +305,7 @@ def test_symbolic_references_agree_with_the_library_numerically():
 
 def test_symbolic_answers_in_other_forms():
     th1, th2, l1, l2 = sp.symbols("theta1 theta2 l1 l2")  # no assumptions: matched by name
-    ex = grading.load("ch06_ex1", seed=3)
+    ex = exercises.load("ch06_ex1", seed=3)
     x = l1 * sp.cos(th1) + l2 * sp.cos(th1 + th2)
     y = l1 * sp.sin(th1) + l2 * sp.sin(th1 + th2)
     J = sp.Matrix([x, y]).jacobian([th1, th2])
@@ -332,7 +332,7 @@ GARBAGE = [None, "answer", [[1, 2], [3]], np.full((6, 3), np.nan), np.inf, np.on
 @pytest.mark.parametrize("eid", IDS)
 def test_every_exercise_answers_garbage_with_feedback(eid):
     for answer in GARBAGE:
-        fb = grading.check(eid, answer, seed=1)
+        fb = exercises.check(eid, answer, seed=1)
         assert isinstance(fb, Feedback) and not fb.correct and fb.message, (eid, answer)
 
 
@@ -370,7 +370,7 @@ def test_student_versions_have_no_solutions_and_no_outputs(student_dir):
         # no reference computation leaks: every answer cell leaves answer = None
         assert not re.search(r"^answer = (?!None)", text, re.M), path.name
         assert text.count("answer = None") >= 4
-        assert text.count("grading.check(") == text.count("grading.load(") >= 4
+        assert text.count("exercises.check(") == text.count("exercises.load(") >= 4
 
 
 def test_student_versions_keep_every_non_solution_cell(student_dir):
@@ -401,7 +401,7 @@ def test_student_notebook_executes_and_shows_no_answer_yet(student_dir):
     from nbclient import NotebookClient
     nb = nbformat.read(student_dir / "02_space_jacobian.ipynb", as_version=4)
     NotebookClient(nb, timeout=120, kernel_name="python3", resources={"metadata": {"path": str(ROOT)}}).execute()
-    boxes = [o for c in nb.cells if c.cell_type == "code" and "grading.check(" in c.source for o in c.outputs]
+    boxes = [o for c in nb.cells if c.cell_type == "code" and "exercises.check(" in c.source for o in c.outputs]
     assert len(boxes) == 4
     for out in boxes:
         html = out["data"]["text/html"]
@@ -421,9 +421,9 @@ def _source_cells(eid):
     (src,) = ROOT.glob(f"exercises/{eid[2:4]}_*.md")
     cells = jupytext.read(src).cells
     start = next(i for i, c in enumerate(cells) if c.cell_type == "code"
-                 and f'grading.load("{eid}", seed=SEED)' in c.source)
+                 and f'exercises.load("{eid}", seed=SEED)' in c.source)
     end = next((i for i, c in enumerate(cells) if i > start and c.cell_type == "code"
-                and "grading.load(" in c.source), len(cells))
+                and "exercises.load(" in c.source), len(cells))
     return cells[start:end]
 
 
@@ -433,7 +433,7 @@ def _tags(cell):
 
 @pytest.mark.parametrize("eid", IDS)
 def test_book_version_of_each_exercise_hides_the_answer_and_shows_the_verdict_in_the_solution(eid):
-    check = f'grading.check("{eid}", answer, seed=SEED)'
+    check = f'exercises.check("{eid}", answer, seed=SEED)'
     cells = _source_cells(eid)
     line, ans, start = cells[1], cells[2], cells[3]
     # the book-only line, right where the answer cell is
@@ -456,7 +456,7 @@ def test_book_version_of_each_exercise_hides_the_answer_and_shows_the_verdict_in
     assert len(after) == 2, [c.source for c in after]
     assert _tags(after[0]) == {"remove-cell"} and after[0].source.strip() == check
     assert _tags(after[1]) == {"solution", "remove-cell"}
-    assert check.replace("grading.check", "_fb = grading.check") in after[1].source
+    assert check.replace("exercises.check", "_fb = exercises.check") in after[1].source
     assert "assert _fb.correct, _fb" in after[1].source
     # nothing else of the exercise is shown outside the dropdown but the statement
     shown = [c for c in cells[:3] + cells[end + 1:] if c.cell_type == "code" and not _tags(c) & {"remove-cell"}]
@@ -474,9 +474,9 @@ def test_student_version_of_each_exercise_is_statement_answer_check(student_dir)
         assert "In the student notebook" not in "\n".join(c.source for c in nb.cells), path.name
     assert sorted(found) == sorted(IDS) and len(found) == 39
     for eid, (load, ans, check) in found.items():
-        assert load.startswith(f'ex{eid.split("_ex")[1]} = grading.load("{eid}", seed=SEED)'), (eid, load)
+        assert load.startswith(f'ex{eid.split("_ex")[1]} = exercises.load("{eid}", seed=SEED)'), (eid, load)
         assert re.search(r"^answer = None\b", ans, re.M) and len(re.findall(r"^answer\s*=", ans, re.M)) == 1, (eid, ans)
-        assert check == f'grading.check("{eid}", answer, seed=SEED)', (eid, check)
+        assert check == f'exercises.check("{eid}", answer, seed=SEED)', (eid, check)
 
 
 def test_check_student_rejects_a_notebook_without_its_check_cell_or_with_a_solution():
@@ -484,7 +484,7 @@ def test_check_student_rejects_a_notebook_without_its_check_cell_or_with_a_solut
     nb = tool.student_notebook(ROOT / "exercises" / "02_space_jacobian.md")
     tool.check_student(nb)  # the real one passes
     no_check = nbformat.from_dict(nb)
-    no_check.cells = [c for c in nb.cells if c.source.strip() != 'grading.check("ch02_ex3", answer, seed=SEED)']
+    no_check.cells = [c for c in nb.cells if c.source.strip() != 'exercises.check("ch02_ex3", answer, seed=SEED)']
     with pytest.raises(AssertionError, match="ch02_ex3"):
         tool.check_student(no_check)
     no_answer = nbformat.from_dict(nb)
@@ -508,7 +508,7 @@ def test_book_version_executes_and_shows_only_correct_verdicts_inside_solutions(
     for cell in nb.cells:
         if cell.cell_type != "code":
             continue
-        m = re.fullmatch(r'grading\.check\("(\w+)", answer, seed=SEED\)', cell.source.strip())
+        m = re.fullmatch(r'exercises\.check\("(\w+)", answer, seed=SEED\)', cell.source.strip())
         if m and _tags(cell) == {"solution"}:
             (out,) = [o for o in cell.outputs if o.get("output_type") == "execute_result"]
             verdicts[m.group(1)] = out["data"]["text/html"]

@@ -11,8 +11,8 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from jacobians import grading
-from jacobians.grading import Exercise, Feedback, Mistake, _compare
+from course import exercises
+from jacobians.grading import Exercise, Feedback, Mistake, compare
 
 
 def _numeric_exercise(ref, mistakes=()):
@@ -25,12 +25,12 @@ REF = np.arange(12, dtype=float).reshape(6, 2) + 1.0
 # ------------------------------------------------------------------ Feedback
 
 def test_feedback_repr_and_html():
-    fb = grading.check("ch01_ex1", grading.load("ch01_ex1", seed=0).solution(), seed=0)
+    fb = exercises.check("ch01_ex1", exercises.load("ch01_ex1", seed=0).solution(), seed=0)
     assert fb.correct and fb.kind == "correct" and bool(fb)
     assert str(fb).startswith("[ch01_ex1] Correct:")
     html = fb._repr_html_()
     assert "Correct" in html and "#009E73" in html and "jacobians-feedback-correct" in html
-    wrong = grading.check("ch01_ex1", np.zeros(6), seed=0)
+    wrong = exercises.check("ch01_ex1", np.zeros(6), seed=0)
     assert not wrong.correct and "#D55E00" in wrong._repr_html_() and "Not yet" in str(wrong)
 
 
@@ -40,7 +40,7 @@ def test_feedback_html_escapes_message():
 
 
 def test_empty_answer_is_polite():
-    fb = grading.check("ch02_ex2", None, seed=0)
+    fb = exercises.check("ch02_ex2", None, seed=0)
     assert fb.kind == "empty" and not fb.correct and "Set `answer`" in fb.message
 
 
@@ -125,7 +125,7 @@ GARBAGE = [None, "text", "[[1, 2], [3, 4]]", b"bytes", [[1, 2], [3]], [1, [2, 3]
 @pytest.mark.parametrize("exercise_id", ["ch02_ex2", "ch01_ex4", "ch03_ex3", "ch06_ex4", "ch09_ex3"])
 @pytest.mark.parametrize("answer", GARBAGE, ids=lambda a: type(a).__name__)
 def test_garbage_gets_feedback_not_exception(exercise_id, answer):
-    fb = grading.check(exercise_id, answer, seed=1)
+    fb = exercises.check(exercise_id, answer, seed=1)
     assert isinstance(fb, Feedback) and not fb.correct
     assert fb.kind in ("wrong", "empty", "invalid") and fb.message and fb.exercise_id == exercise_id
 
@@ -140,22 +140,22 @@ def test_text_is_never_evaluated(monkeypatch):
 
     monkeypatch.setattr(sp, "sympify", spy)
     for eid in ("ch02_ex3", "ch06_ex1", "ch02_ex2"):
-        fb = grading.check(eid, "Matrix([[0, 0]])", seed=0)
+        fb = exercises.check(eid, "Matrix([[0, 0]])", seed=0)
         assert fb.kind == "invalid" and "not text" in fb.message
-        fb = grading.check(eid, [["theta1", "0"]], seed=0)
+        fb = exercises.check(eid, [["theta1", "0"]], seed=0)
         assert fb.kind == "invalid"
     assert not any(isinstance(a[0], str) for a in calls)
 
 
 def test_unknown_exercise_is_feedback_from_check_but_error_from_load():
-    fb = grading.check("ch99_ex9", [1], seed=0)
+    fb = exercises.check("ch99_ex9", [1], seed=0)
     assert fb.kind == "invalid" and "Unknown exercise" in fb.message
     with pytest.raises(KeyError):
-        grading.load("ch99_ex9")
+        exercises.load("ch99_ex9")
     with pytest.raises(TypeError):
-        grading.load("ch01_ex1", seed="3")
+        exercises.load("ch01_ex1", seed="3")
     with pytest.raises(ValueError):
-        grading.load("ch01_ex1", seed=-1)
+        exercises.load("ch01_ex1", seed=-1)
 
 
 answers = st.recursive(
@@ -170,7 +170,7 @@ answers = st.recursive(
 @given(answer=answers, eid=st.sampled_from(["ch02_ex2", "ch05_ex3", "ch09_ex5", "ch09_ex6", "ch06_ex1"]))
 def test_fuzz_never_raises(answer, eid):
     before = copy.deepcopy(answer)
-    fb = grading.check(eid, answer, seed=2)
+    fb = exercises.check(eid, answer, seed=2)
     assert isinstance(fb, Feedback)
     assert repr(answer) == repr(before)  # not mutated
 
@@ -183,7 +183,7 @@ def test_fuzz_arrays(arr, shape):
     if shape is not None and a.size == 18:
         a = a.reshape(shape)
     copy_a = a.copy()
-    fb = grading.check("ch02_ex2", a, seed=0)
+    fb = exercises.check("ch02_ex2", a, seed=0)
     assert isinstance(fb, Feedback)
     np.testing.assert_array_equal(a, copy_a)
 
@@ -191,7 +191,7 @@ def test_fuzz_arrays(arr, shape):
 # ------------------------------------------------------------------ no mutation
 
 def test_check_does_not_mutate_arrays_lists_or_function_inputs():
-    ex = grading.load("ch02_ex2", seed=4)
+    ex = exercises.load("ch02_ex2", seed=4)
     ans = ex.solution()
     ans_list = ans.tolist()
     snapshot, snapshot_list = ans.copy(), copy.deepcopy(ans_list)
@@ -202,7 +202,7 @@ def test_check_does_not_mutate_arrays_lists_or_function_inputs():
 
 
 def test_function_that_mutates_its_input_cannot_change_reference():
-    ex = grading.load("ch04_ex3", seed=0)
+    ex = exercises.load("ch04_ex3", seed=0)
     ref_fn = ex.solution()
 
     def vandal(J_s, T_sb):
@@ -221,7 +221,7 @@ def test_function_that_loops_is_stopped():
         while True:
             pass
 
-    fb = grading.check("ch02_ex4", forever, seed=0)
+    fb = exercises.check("ch02_ex4", forever, seed=0)
     assert not fb.correct and "did not finish" in fb.message
 
 
@@ -229,7 +229,7 @@ def test_function_that_raises_is_reported_politely():
     def broken(S, theta):
         return S @ np.ones(99)
 
-    fb = grading.check("ch02_ex4", broken, seed=0)
+    fb = exercises.check("ch02_ex4", broken, seed=0)
     assert not fb.correct and fb.mistake == "raised" and "ValueError" in fb.message
 
 
@@ -242,40 +242,40 @@ def test_function_that_exits_or_recurses():
     def deep(S, theta):
         return deep(S, theta)
 
-    assert "exit()" in grading.check("ch02_ex4", leaves).message
-    assert "RecursionError" in grading.check("ch02_ex4", deep).message
+    assert "exit()" in exercises.check("ch02_ex4", leaves).message
+    assert "RecursionError" in exercises.check("ch02_ex4", deep).message
 
 
 def test_function_returning_none_wrong_shape_or_text():
-    assert grading.check("ch02_ex4", lambda S, th: None).mistake == "returned_none"
-    assert grading.check("ch02_ex4", lambda S, th: np.zeros((3, 3))).mistake == "wrong_shape"
-    assert grading.check("ch02_ex4", lambda S, th: "J").mistake == "bad_return"
-    assert grading.check("ch02_ex4", lambda: 1).mistake == "raised"  # wrong signature
+    assert exercises.check("ch02_ex4", lambda S, th: None).mistake == "returned_none"
+    assert exercises.check("ch02_ex4", lambda S, th: np.zeros((3, 3))).mistake == "wrong_shape"
+    assert exercises.check("ch02_ex4", lambda S, th: "J").mistake == "bad_return"
+    assert exercises.check("ch02_ex4", lambda: 1).mistake == "raised"  # wrong signature
 
 
 def test_function_given_where_numbers_expected_and_vice_versa():
-    assert "call your function" in grading.check("ch02_ex2", lambda: 0, seed=0).message
-    assert "wants a function" in grading.check("ch02_ex4", np.zeros((6, 2)), seed=0).message
+    assert "call your function" in exercises.check("ch02_ex2", lambda: 0, seed=0).message
+    assert "wants a function" in exercises.check("ch02_ex4", np.zeros((6, 2)), seed=0).message
 
 
 # ------------------------------------------------------------------ variants
 
 def test_same_seed_same_numbers_different_seed_different_numbers():
-    a, b, c = (grading.load("ch02_ex2", seed=s) for s in (5, 5, 6))
+    a, b, c = (exercises.load("ch02_ex2", seed=s) for s in (5, 5, 6))
     assert a.statement == b.statement
     np.testing.assert_array_equal(a.solution(), b.solution())
-    different = [grading.load("ch02_ex2", seed=s).statement for s in range(6)]
+    different = [exercises.load("ch02_ex2", seed=s).statement for s in range(6)]
     assert len(set(different)) > 3
 
 
 def test_answer_for_one_variant_is_wrong_for_another():
-    ex0, ex1 = grading.load("ch05_ex1", seed=0), grading.load("ch05_ex1", seed=1)
+    ex0, ex1 = exercises.load("ch05_ex1", seed=0), exercises.load("ch05_ex1", seed=1)
     assert not np.allclose(ex0.solution(), ex1.solution())
-    assert not grading.check("ch05_ex1", ex0.solution(), seed=1).correct
+    assert not exercises.check("ch05_ex1", ex0.solution(), seed=1).correct
 
 
 def test_statement_renders_as_markdown_with_numbers():
-    ex = grading.load("ch02_ex1", seed=0)
+    ex = exercises.load("ch02_ex1", seed=0)
     md = ex._repr_markdown_()
     assert "ch02_ex1" in md and "$" in md
     for v in ex.given["lengths"]:
@@ -283,5 +283,5 @@ def test_statement_renders_as_markdown_with_numbers():
 
 
 def test_compare_on_nan_reference_is_not_called_correct():
-    fb = _compare(np.array([np.nan]), np.array([1.0]), [], 1e-3, 1e-3, "x")
+    fb = compare(np.array([np.nan]), np.array([1.0]), [], 1e-3, 1e-3, "x")
     assert not fb.correct

@@ -32,7 +32,7 @@ def test_every_exercise_has_a_book_only_line_saying_where_the_answer_goes_and_th
     tool = _tool()
     for path in sorted((ROOT / "exercises").glob("[0-9][0-9]_*.md")):
         nb = jupytext.read(path)
-        n_exercises = sum("grading.load(" in c.source for c in nb.cells if c.cell_type == "code")
+        n_exercises = sum("exercises.load(" in c.source for c in nb.cells if c.cell_type == "code")
         lines = [c for c in nb.cells if c.cell_type == "markdown" and "In the student notebook" in c.source]
         assert len(lines) == n_exercises >= 4, path.name
         assert all(c.metadata.get("tags") == ["book-only"] for c in lines), path.name
@@ -40,6 +40,6 @@ def test_every_exercise_has_a_book_only_line_saying_where_the_answer_goes_and_th
         assert not any("In the student notebook" in c.source for c in student.cells), path.name
         # every answer cell and check cell reaches the student, without the book's remove-cell tag
         kept = [c for c in student.cells if c.cell_type == "code" and ("answer = None" in c.source
-                                                                       or "grading.check(" in c.source)]
+                                                                       or "exercises.check(" in c.source)]
         assert len(kept) == 2 * n_exercises, path.name
         assert not any("remove-cell" in c.metadata.get("tags", []) for c in student.cells), path.name

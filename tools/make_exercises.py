@@ -4,14 +4,14 @@ The sources exercises/NN_name.md are the instructor versions (MyST Markdown
 notebooks whose solution cells carry the tag ``solution``). Each exercise is,
 in order::
 
-    grading.load("chNN_exK", seed=SEED)      statement, shown in book and notebook
+    exercises.load("chNN_exK", seed=SEED)     statement, shown in book and notebook
     (book-only Markdown line)                 "in the notebook, your answer goes here"
     answer = None  # your answer here         tag remove-cell: hidden in the book
     (solution-start ... solution cells ...)   tag solution
-    grading.check("chNN_exK", answer, ...)    tag solution: the verdict on the
+    exercises.check("chNN_exK", answer, ...)  tag solution: the verdict on the
                                               solution, last cell of the dropdown
     (solution-end)                            tag solution
-    grading.check("chNN_exK", answer, ...)    tag remove-cell: the student's check
+    exercises.check("chNN_exK", answer, ...)  tag remove-cell: the student's check
     assert _fb.correct                        tags solution, remove-cell: CI only
 
 For each source this script writes DEST/NN_name.ipynb with
@@ -50,7 +50,7 @@ _ROLE = re.compile(r"\{(?:doc|ref|numref|prf:ref)\}`([^`<]*?)(?:\s*<([^>]*)>)?`"
 _LABEL = re.compile(r"^\([\w-]+\)=\s*$", re.M)
 
 
-def _role_text(match: re.Match) -> str:
+def _role_text(match: re.Match[str]) -> str:
     text, target = match.group(1).strip(), match.group(2)
     if target:  # {ref}`words <target>`
         return text
@@ -67,7 +67,7 @@ def _plain_markdown(source: str) -> str:
 
 def student_notebook(path: Path) -> nbformat.NotebookNode:
     """The student version of one source notebook."""
-    nb = jupytext.read(path)
+    nb: nbformat.NotebookNode = jupytext.read(path)
     cells = []
     for cell in nb.cells:
         tags = cell.get("metadata", {}).get("tags", [])
@@ -102,12 +102,12 @@ def student_notebook(path: Path) -> nbformat.NotebookNode:
     return nb
 
 
-_LOAD = re.compile(r'grading\.load\("(\w+)", seed=SEED\)')
+_LOAD = re.compile(r'exercises\.load\("(\w+)", seed=SEED\)')
 _ANSWER = re.compile(r"^answer = None\b", re.M)
 
 
 def exercise_cells(nb: nbformat.NotebookNode) -> dict[str, list[nbformat.NotebookNode]]:
-    """The code cells of each exercise, by id: from its ``grading.load`` cell to the next one."""
+    """The code cells of each exercise, by id: from its ``exercises.load`` cell to the next one."""
     out: dict[str, list] = {}
     current = None
     for cell in nb.cells:
@@ -132,13 +132,14 @@ def check_student(nb: nbformat.NotebookNode) -> None:
             assert not cell.get("outputs"), "a code cell has outputs"
             assert cell.get("execution_count") is None, "a code cell has an execution count"
         assert "solution-start" not in cell.source and "solution-end" not in cell.source, "solution markup remains"
-    exercises = exercise_cells(nb)
-    assert exercises, "no exercise (no grading.load cell)"
-    for eid, cells in exercises.items():
+    by_id = exercise_cells(nb)
+    assert by_id, "no exercise (no exercises.load cell)"
+    for eid, cells in by_id.items():
         sources = [c.source.strip() for c in cells]
         assert len(cells) == 3, f"{eid}: expected 3 code cells (load, answer, check), got {len(cells)}: {sources}"
-        assert len(re.findall(r"^answer\s*=", sources[1], re.M)) == 1 and _ANSWER.search(sources[1]), f"{eid}: no answer cell: {sources[1]!r}"
-        assert sources[2] == f'grading.check("{eid}", answer, seed=SEED)', f"{eid}: no check cell: {sources[2]!r}"
+        one_answer = len(re.findall(r"^answer\s*=", sources[1], re.M)) == 1 and _ANSWER.search(sources[1])
+        assert one_answer, f"{eid}: no answer cell: {sources[1]!r}"
+        assert sources[2] == f'exercises.check("{eid}", answer, seed=SEED)', f"{eid}: no check cell: {sources[2]!r}"
 
 
 def main(dest: Path) -> int:

@@ -2,31 +2,43 @@
 
 from __future__ import annotations
 
-import numpy as np
+from typing import Any
 
-from .. import robots
-from ..grading import Exercise, Feedback, Mistake, register
-from ._common import (DEG, adj, angles_deg, blockdiag, bmatrix, body_jac, degrees_mistake, degs, expS, fk,
-                      inv_T, lengths, planar_chain, random_chain, space_jac, swap, swap_mistake, vec)
+import numpy as np
+from numpy.random import Generator
+from numpy.typing import ArrayLike
+
+from jacobians.grading import Case, Exercise, Feedback, Mistake
+
+from ._common import (
+    DEG,
+    Array,
+    adj,
+    angles_deg,
+    blockdiag,
+    bmatrix,
+    chain_case,
+    degrees_mistake,
+    degs,
+    expS,
+    fk,
+    inv_T,
+    lengths,
+    planar_chain,
+    planar_pose,
+    space_jac,
+    spatial_5r_pose,
+    swap,
+    swap_mistake,
+    vec,
+)
+from ._registry import register, register_code
 
 V_FIRST = ("Rows 1-3 of your answer should be the angular part and rows 4-6 the linear part: Modern Robotics "
-           "puts \u03c9 first, unlike Siciliano, Corke and Pinocchio.")
+           "puts ω first, unlike Siciliano, Corke and Pinocchio.")
 
 
-def _spatial_state(rng, digits=4):
-    vals = [float(v) for v in rng.choice([0.3, 0.5, 0.8, 1.0], size=5)]
-    arm = robots.spatial_5r(*vals)
-    th = angles_deg(rng, 5, step=30, low=-120, high=120) * DEG
-    T = fk(arm.screw_axes, arm.home, th)
-    T[:3, :] = np.round(T[:3, :], digits)
-    J_b = np.round(body_jac(arm.body_axes, th), digits)
-    R = T[:3, :3]
-    J = blockdiag(R, R) @ J_b           # geometric (omega_s, pdot)
-    J_s = adj(T) @ J_b
-    return T, J_b, J, J_s
-
-
-def _p_cross(p, J):
+def _p_cross(p: Array, J: Array) -> Array:
     """Rows (omega, v + p x omega)."""
     out = J.copy()
     out[3:] = J[3:] + np.cross(p, J[:3].T).T
@@ -36,15 +48,15 @@ def _p_cross(p, J):
 # =================================================================== chapter 7
 
 @register("ch07_ex1")
-def _ch07_ex1(rng):
-    T, J_b, J, J_s = _spatial_state(rng)
+def _ch07_ex1(rng: Generator) -> Exercise:
+    T, J_b, J, J_s = spatial_5r_pose(rng)
     J_sic = np.round(swap(J), 4)
     ref = swap(J_sic)
     mistakes = [
-        Mistake("unchanged", J_sic, "You copied Siciliano's matrix unchanged; its rows are (\u1e57, \u03c9). " + V_FIRST),
+        Mistake("unchanged", J_sic, "You copied Siciliano's matrix unchanged; its rows are (ṗ, ω). " + V_FIRST),
         Mistake("space_for_geometric", _p_cross(T[:3, 3], ref),
                 "You also moved the reference point to the origin of {s}: that is the space Jacobian. The exercise "
-                "asks for the geometric Jacobian, which keeps \u1e57 of the tool point."),
+                "asks for the geometric Jacobian, which keeps ṗ of the tool point."),
     ]
     st = (f"Siciliano's book writes the geometric Jacobian with rows $(\\dot p, \\omega)$. For a 5-joint arm it "
           f"is \n\n$$J_{{Sic}} = {bmatrix(J_sic, 4)}.$$\n\nGive the same Jacobian in this course's convention, rows "
@@ -54,8 +66,8 @@ def _ch07_ex1(rng):
 
 
 @register("ch07_ex2")
-def _ch07_ex2(rng):
-    T, J_b, J, J_s = _spatial_state(rng)
+def _ch07_ex2(rng: Generator) -> Exercise:
+    T, J_b, J, J_s = spatial_5r_pose(rng)
     J0 = np.round(swap(J), 4)          # Corke's jacob0: (v of the tool point, omega) in the world frame
     Jg = swap(J0)
     p = T[:3, 3]
@@ -64,22 +76,23 @@ def _ch07_ex2(rng):
         Mistake("only_swapped", Jg,
                 "You reordered the rows, which gives the geometric Jacobian (velocity of the tool point). "
                 "J_s wants the velocity of the body point at the origin of {s}: shift the reference point."),
-        Mistake("unchanged", J0, "You copied jacob0 unchanged: its rows are (v, \u03c9). " + V_FIRST),
+        Mistake("unchanged", J0, "You copied jacob0 unchanged: its rows are (v, ω). " + V_FIRST),
         Mistake("wrong_shift_sign", _p_cross(-p, Jg),
-                "The reference-point shift has the wrong sign: v_s = \u1e57 - \u03c9 \u00d7 p = \u1e57 + p \u00d7 \u03c9."),
+                "The reference-point shift has the wrong sign: v_s = ṗ - ω × p = ṗ + p × ω."),
         Mistake("shift_not_swapped", swap(_p_cross(p, Jg)),
-                "The point shift is right but the rows are (v, \u03c9). " + V_FIRST),
+                "The point shift is right but the rows are (v, ω). " + V_FIRST),
     ]
     st = (f"Robotics Toolbox's `jacob0` returns, for a 5-joint arm, the world-frame Jacobian of the tool point "
-          f"with rows $(v, \\omega)$: \n\n$$J_0 = {bmatrix(J0, 4)}.$$\n\nThe tool pose is \n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\n"
+          f"with rows $(v, \\omega)$: \n\n$$J_0 = {bmatrix(J0, 4)}.$$\n\n"
+          f"The tool pose is \n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\n"
           "Give the space Jacobian $J_s$ of Modern Robotics.")
     return Exercise("", "From Corke's jacob0 to the space Jacobian", st, {"J0": J0, "T_sb": T}, "numeric", ref,
                     mistakes, what="space Jacobian")
 
 
 @register("ch07_ex3")
-def _ch07_ex3(rng):
-    T, J_b, J, J_s = _spatial_state(rng)
+def _ch07_ex3(rng: Generator) -> Exercise:
+    T, J_b, J, J_s = spatial_5r_pose(rng)
     J_lwa = np.round(swap(J), 4)       # Pinocchio LOCAL_WORLD_ALIGNED: (v of the frame origin, omega) in world axes
     R = T[:3, :3]
     Jg = swap(J_lwa)
@@ -89,10 +102,10 @@ def _ch07_ex3(rng):
                 "You reordered the rows only. LOCAL_WORLD_ALIGNED uses the axes of the world frame; J_b needs "
                 "both halves expressed in the tool frame."),
         Mistake("R_not_transposed", blockdiag(R, R) @ Jg,
-                "You rotated with R_sb; to express world-axis vectors in {b}, multiply by R_sb\u1d40."),
+                "You rotated with R_sb; to express world-axis vectors in {b}, multiply by R_sbᵀ."),
         Mistake("only_angular_rotated", blockdiag(R.T, np.eye(3)) @ Jg, "Only the angular half was rotated into {b}."),
         Mistake("only_linear_rotated", blockdiag(np.eye(3), R.T) @ Jg, "Only the linear half was rotated into {b}."),
-        Mistake("not_swapped", blockdiag(R.T, R.T) @ J_lwa, "The rotation is right but the rows are (v, \u03c9). "
+        Mistake("not_swapped", blockdiag(R.T, R.T) @ J_lwa, "The rotation is right but the rows are (v, ω). "
                 + V_FIRST),
     ]
     st = (f"Pinocchio's `getFrameJacobian(..., LOCAL_WORLD_ALIGNED)` gives, for the tool frame of a 5-joint arm, "
@@ -102,45 +115,46 @@ def _ch07_ex3(rng):
                     {"J_lwa": J_lwa, "T_sb": T}, "numeric", ref, mistakes, what="body Jacobian")
 
 
-def ref_from_pinocchio_world(J_world):
+def ref_from_pinocchio_world(J_world: ArrayLike) -> Array:
     """Reference: Pinocchio WORLD (v, omega) at the world origin -> MR J_s (omega, v)."""
     return swap(np.asarray(J_world, float))
 
 
-def _world_case(rng):
-    S, M, th = random_chain(rng)
+@chain_case
+def _world_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
     J_s = space_jac(S, th)
     J_world = swap(J_s)
     T = fk(S, M, th)
     mistakes = [
-        Mistake("unchanged", J_world, "Your function returns its input unchanged: WORLD rows are (v, \u03c9). " + V_FIRST),
+        Mistake("unchanged", J_world, "Your function returns its input unchanged: WORLD rows are (v, ω). " + V_FIRST),
         Mistake("moved_point", space_jac(S, th) - np.vstack([np.zeros((3, J_s.shape[1])),
                                                             np.cross(T[:3, 3], J_s[:3].T).T]),
                 "Your function moves the reference point to the tool. WORLD is already taken at the world origin, "
                 "like J_s: only the row order differs."),
     ]
-    return (J_world,), J_s, mistakes, f"a random {S.shape[1]}-joint chain"
+    return (J_world,), J_s, mistakes
 
 
-@register("ch07_ex4")
-def _ch07_ex4(rng):
-    st = ("Pinocchio's `WORLD` Jacobian is the space Jacobian with rows $(v, \\omega)$. Write "
-          "`from_pinocchio_world(J_world)` returning the Modern Robotics space Jacobian $J_s$ ($6\\times n$, "
-          "numpy). Set `answer = from_pinocchio_world`.")
-    return Exercise("", "Code: from Pinocchio's WORLD frame", st, {}, "function", reference=ref_from_pinocchio_world,
-                    make_case=_world_case, fn_name="from_pinocchio_world", what="space Jacobian")
+register_code(
+    "ch07_ex4", "Code: from Pinocchio's WORLD frame",
+    "Pinocchio's `WORLD` Jacobian is the space Jacobian with rows $(v, \\omega)$. Write "
+    "`from_pinocchio_world(J_world)` returning the Modern Robotics space Jacobian $J_s$ ($6\\times n$, "
+    "numpy). Set `answer = from_pinocchio_world`.",
+    reference=ref_from_pinocchio_world, make_case=_world_case, fn_name="from_pinocchio_world",
+    what="space Jacobian")
 
 
 # =================================================================== chapter 8
 
-def link_space_jacobians(S, theta):
+def link_space_jacobians(S: ArrayLike, theta: ArrayLike) -> Array:
     """(n, 6, n): link i's space Jacobian = J_s with the columns after i zeroed."""
     J_s = space_jac(S, theta)
     n = J_s.shape[1]
     return np.stack([J_s * (np.arange(n) <= i) for i in range(n)])
 
 
-def link_poses(S, link_homes, theta):
+def link_poses(S: Array, link_homes: Array, theta: Array) -> Array:
+    """The pose of every link's frame: (n, 4, 4)."""
     n = np.asarray(S).shape[1]
     out = []
     T = np.eye(4)
@@ -151,11 +165,8 @@ def link_poses(S, link_homes, theta):
 
 
 @register("ch08_ex1")
-def _ch08_ex1(rng):
-    ls = lengths(rng, 3)
-    th_deg = angles_deg(rng, 3)
-    arm = planar_chain(ls)
-    th = th_deg * DEG
+def _ch08_ex1(rng: Generator) -> Exercise:
+    ls, th_deg, th, arm = planar_pose(rng, 3)
     J_s = space_jac(arm.screw_axes, th)
     ref = link_space_jacobians(arm.screw_axes, th)[1]
     Tl = link_poses(arm.screw_axes, arm.link_homes, th)[1]
@@ -174,23 +185,20 @@ def _ch08_ex1(rng):
                     ref, mistakes, what="link Jacobian")
 
 
-def centre_jacobian(ls, th, link=1):
+def centre_jacobian(ls: Array, th: Array, link: int = 1) -> Array:
     """Geometric Jacobian (omega_s, pdot of the centre of link `link`, 0-based) of a planar arm."""
     arm = planar_chain(ls)
     S = arm.screw_axes
     Jl = link_space_jacobians(S, th)[link]
     c = link_poses(S, arm.link_homes, th)[link][:3, 3]
-    out = Jl.copy()
+    out = np.array(Jl, dtype=float)
     out[3:] = Jl[3:] - np.cross(c, Jl[:3].T).T
     return out
 
 
 @register("ch08_ex2")
-def _ch08_ex2(rng):
-    ls = lengths(rng, 3)
-    th_deg = angles_deg(rng, 3)
-    arm = planar_chain(ls)
-    th = th_deg * DEG
+def _ch08_ex2(rng: Generator) -> Exercise:
+    ls, th_deg, th, arm = planar_pose(rng, 3)
     S = arm.screw_axes
     Jl = link_space_jacobians(S, th)[1]
     ref = centre_jacobian(ls, th)
@@ -216,7 +224,8 @@ def _ch08_ex2(rng):
                     "numeric", ref, mistakes, what="link Jacobian")
 
 
-def mass_matrix_2r(ls, ms, th, frame="body", with_rotation=True):
+def mass_matrix_2r(ls: Array, ms: Array, th: Array, frame: str = "body", with_rotation: bool = True) -> Array:
+    """The mass matrix of a planar 2R arm of uniform rods; the options give the two catalogued mistakes."""
     arm = planar_chain(ls)
     S = arm.screw_axes
     Jl = link_space_jacobians(S, th)
@@ -231,7 +240,7 @@ def mass_matrix_2r(ls, ms, th, frame="body", with_rotation=True):
 
 
 @register("ch08_ex3")
-def _ch08_ex3(rng):
+def _ch08_ex3(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     ms = np.round(rng.uniform(1.0, 4.0, size=2), 1)
     th_deg = angles_deg(rng, 2)
@@ -255,8 +264,8 @@ def _ch08_ex3(rng):
                     "numeric", ref, mistakes, what="mass matrix")
 
 
-def _links_case(rng):
-    S, M, th = random_chain(rng)
+@chain_case
+def _links_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
     ref = link_space_jacobians(S, th)
     J_s = space_jac(S, th)
     n = S.shape[1]
@@ -268,23 +277,23 @@ def _links_case(rng):
         Mistake("off_by_one", np.stack([J_s * (np.arange(n) < i) for i in range(n)]),
                 "Off by one: link i is moved by joints 1..i, including joint i itself."),
     ]
-    return (S, th), ref, mistakes, f"a random {n}-joint chain"
+    return (S, th), ref, mistakes
 
 
-@register("ch08_ex4")
-def _ch08_ex4(rng):
-    st = ("Write `my_link_jacobians(S, theta)` returning an array of shape $(n, 6, n)$ whose entry `[i]` is the "
-          "space Jacobian of link $i+1$ (0-based `i`). You may call `jacobians.space_jacobian` with "
-          "`jacobians.SerialChain(S, np.eye(4))`, but not `link_jacobians`. Set `answer = my_link_jacobians`.")
-    return Exercise("", "Code: the Jacobians of every link", st, {}, "function", reference=link_space_jacobians,
-                    make_case=_links_case, fn_name="my_link_jacobians", what="stack of link Jacobians")
+register_code(
+    "ch08_ex4", "Code: the Jacobians of every link",
+    "Write `my_link_jacobians(S, theta)` returning an array of shape $(n, 6, n)$ whose entry `[i]` is the "
+    "space Jacobian of link $i+1$ (0-based `i`). You may call `jacobians.space_jacobian` with "
+    "`jacobians.SerialChain(S, np.eye(4))`, but not `link_jacobians`. Set `answer = my_link_jacobians`.",
+    reference=link_space_jacobians, make_case=_links_case, fn_name="my_link_jacobians",
+    what="stack of link Jacobians")
 
 
 # =================================================================== chapter 9
 
 @register("ch09_ex1")
-def _ch09_ex1(rng):
-    T, J_b, J, J_s = _spatial_state(rng)
+def _ch09_ex1(rng: Generator) -> Exercise:
+    T, J_b, J, J_s = spatial_5r_pose(rng)
     J_b = J_b[:, :3].copy()
     J_s = np.round(adj(T) @ J_b, 4)
     F_b = rng.integers(-3, 4, size=6).astype(float)
@@ -292,22 +301,23 @@ def _ch09_ex1(rng):
     ref = J_b.T @ F_b
     mistakes = [
         Mistake("frame_mismatch", J_s.T @ F_b,
-                "You paired the space Jacobian with a wrench given in {b}. Power is F\u1d40V only when both are in "
+                "You paired the space Jacobian with a wrench given in {b}. Power is FᵀV only when both are in "
                 "the same frame: use J_b with F_b (or convert F_b to {s} first)."),
         Mistake("force_moment_swapped", J_b.T @ np.concatenate([F_b[3:], F_b[:3]]),
-                "You read the wrench as (f, m). In this course wrenches are (m, f), moment first, matching (\u03c9, v)."),
-        Mistake("negated", -ref, "The sign is flipped: \u03c4 = J\u1d40F gives the joint torques that make the tool "
+                "You read the wrench as (f, m). In this course wrenches are (m, f), moment first, matching (ω, v)."),
+        Mistake("negated", -ref, "The sign is flipped: τ = JᵀF gives the joint torques that make the tool "
                 "apply the wrench F."),
     ]
     st = (f"The first three joints of an arm have, at the current pose, the body Jacobian "
-          f"\n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nand the space Jacobian \n\n$$J_s = {bmatrix(J_s, 4)}.$$\n\nThe tool must apply the "
+          f"\n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nand the space Jacobian \n\n$$J_s = {bmatrix(J_s, 4)}.$$\n\n"
+          "The tool must apply the "
           f"wrench $\\mathcal F_b = {vec(F_b)}$ (moment first, in the tool frame {{b}}). Give the joint torques "
           "$\\tau$ (3-vector).")
     return Exercise("", "Joint torques for a wrench", st, {"J_b": J_b, "J_s": J_s, "F_b": F_b}, "numeric", ref,
                     mistakes, what="torque vector")
 
 
-def _pos_jac_planar(ls, th):
+def _pos_jac_planar(ls: Array, th: Array) -> Array:
     c = np.cumsum(th)
     x = -np.array([np.sum(ls[i:] * np.sin(c[i:])) for i in range(len(ls))])
     y = np.array([np.sum(ls[i:] * np.cos(c[i:])) for i in range(len(ls))])
@@ -315,7 +325,7 @@ def _pos_jac_planar(ls, th):
 
 
 @register("ch09_ex2")
-def _ch09_ex2(rng):
+def _ch09_ex2(rng: Generator) -> Exercise:
     ls = lengths(rng, 3)
     th_deg = angles_deg(rng, 3, step=30, low=-120, high=120)
     while abs(np.sin(th_deg[1] * DEG)) < 0.3 and abs(np.sin(th_deg[2] * DEG)) < 0.3:
@@ -326,7 +336,7 @@ def _ch09_ex2(rng):
         v[0] = 0.5
     ref = np.linalg.pinv(Jv) @ v
     mistakes = [
-        Mistake("transpose", Jv.T @ v, "You used J\u1d40 instead of the pseudoinverse: J\u1d40 maps forces to torques; "
+        Mistake("transpose", Jv.T @ v, "You used Jᵀ instead of the pseudoinverse: Jᵀ maps forces to torques; "
                 "it does not invert the velocity map."),
         degrees_mistake(np.linalg.pinv(_pos_jac_planar(ls, th_deg)) @ v),
         Mistake("dls", Jv.T @ np.linalg.solve(Jv @ Jv.T + 0.01 * np.eye(2), v),
@@ -340,7 +350,7 @@ def _ch09_ex2(rng):
 
 
 @register("ch09_ex3")
-def _ch09_ex3(rng):
+def _ch09_ex3(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     th_deg = angles_deg(rng, 2, step=15, low=-165, high=165)
     while abs(np.sin(th_deg[1] * DEG)) < 0.2:
@@ -349,7 +359,7 @@ def _ch09_ex3(rng):
     ref = np.sqrt(np.linalg.det(Jv @ Jv.T))
     Jd = _pos_jac_planar(ls, th_deg)
     mistakes = [
-        Mistake("no_sqrt", np.linalg.det(Jv @ Jv.T), "You gave det(J J\u1d40); the manipulability is its square root."),
+        Mistake("no_sqrt", np.linalg.det(Jv @ Jv.T), "You gave det(J Jᵀ); the manipulability is its square root."),
         degrees_mistake(np.sqrt(abs(np.linalg.det(Jd @ Jd.T)))),
         Mistake("trace", np.sqrt(np.trace(Jv @ Jv.T)), "You used the trace; the manipulability uses the determinant."),
     ]
@@ -359,12 +369,13 @@ def _ch09_ex3(rng):
                     mistakes, what="manipulability")
 
 
-def ref_dls_rates(J, V, lam):
+def ref_dls_rates(J: ArrayLike, V: ArrayLike, lam: float) -> Array:
+    """Damped least squares: J^T (J J^T + lam^2 I)^-1 V."""
     J = np.asarray(J, float)
     return J.T @ np.linalg.solve(J @ J.T + lam ** 2 * np.eye(J.shape[0]), np.asarray(V, float))
 
 
-def _dls_case(rng):
+def _dls_case(rng: Generator) -> Case:
     m = int(rng.integers(2, 7))
     n = int(rng.integers(2, 8))
     J = rng.normal(size=(m, n))
@@ -377,23 +388,22 @@ def _dls_case(rng):
         Mistake("no_damping", np.linalg.pinv(J) @ V, "Your function returns the pseudoinverse solution: the "
                 "damping term is missing."),
         Mistake("lambda_not_squared", ref_dls_rates(J, V, np.sqrt(lam)),
-                "The damping enters squared: J\u1d40(J J\u1d40 + \u03bb\u00b2 I)\u207b\u00b9V."),
-        Mistake("transpose_only", J.T @ V, "Your function returns J\u1d40V, without the inverse."),
+                "The damping enters squared: Jᵀ(J Jᵀ + λ² I)⁻¹V."),
+        Mistake("transpose_only", J.T @ V, "Your function returns JᵀV, without the inverse."),
     ]
-    return (J, V, lam), ref, mistakes, f"a random {m}x{n} J, lambda = {lam}"
+    return Case((J, V, lam), ref, mistakes, f"a random {m}x{n} J, lambda = {lam}")
 
 
-@register("ch09_ex4")
-def _ch09_ex4(rng):
-    st = ("Write `my_dls_rates(J, V, lam)` returning the damped least-squares joint rates "
-          "$\\dot\\theta = J^T(JJ^T + \\lambda^2 I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ `V` and "
-          "damping `lam` > 0. Set `answer = my_dls_rates`.")
-    return Exercise("", "Code: damped least squares", st, {}, "function", reference=ref_dls_rates,
-                    make_case=_dls_case, fn_name="my_dls_rates", what="joint rates")
+register_code(
+    "ch09_ex4", "Code: damped least squares",
+    "Write `my_dls_rates(J, V, lam)` returning the damped least-squares joint rates "
+    "$\\dot\\theta = J^T(JJ^T + \\lambda^2 I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ `V` and "
+    "damping `lam` > 0. Set `answer = my_dls_rates`.",
+    reference=ref_dls_rates, make_case=_dls_case, fn_name="my_dls_rates", what="joint rates")
 
 
 @register("ch09_ex5")
-def _ch09_ex5(rng):
+def _ch09_ex5(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     th_deg = angles_deg(rng, 2, step=15, low=-165, high=165)
     while abs(np.sin(th_deg[1] * DEG)) < 0.2:
@@ -402,10 +412,10 @@ def _ch09_ex5(rng):
     sv = np.linalg.svd(Jv, compute_uv=False)
     ref = sv
     mistakes = [
-        Mistake("squared", sv ** 2, "These are the eigenvalues of J J\u1d40; the semi-axes are their square roots."),
+        Mistake("squared", sv ** 2, "These are the eigenvalues of J Jᵀ; the semi-axes are their square roots."),
         Mistake("ascending", sv[::-1], "Give the semi-axes from the longest to the shortest."),
-        Mistake("inverse", 1 / sv, "These are the semi-axes of the force ellipsoid (1/\u03c3); the velocity ellipsoid's "
-                "are the singular values \u03c3."),
+        Mistake("inverse", 1 / sv, "These are the semi-axes of the force ellipsoid (1/σ); the velocity ellipsoid's "
+                "are the singular values σ."),
         degrees_mistake(np.linalg.svd(_pos_jac_planar(ls, th_deg), compute_uv=False)),
     ]
     st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Unit-norm joint rates map to "
@@ -415,27 +425,27 @@ def _ch09_ex5(rng):
 
 
 @register("ch09_ex6")
-def _ch09_ex6(rng):
+def _ch09_ex6(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     th1 = float(angles_deg(rng, 1)[0])
 
-    def predicate(arr):
+    def predicate(arr: Array) -> Feedback:
         if arr.size != 1:
-            return Feedback(False, f"Give one number, \u03b8\u2082 in radians; you gave {arr.size} values.",
+            return Feedback(False, f"Give one number, θ₂ in radians; you gave {arr.size} values.",
                             mistake="wrong_shape")
         x = float(arr.ravel()[0])
         s = abs(np.sin(x))
         if s < 1e-3 and abs(np.cos(x) - 1) < 1e-3:
-            return Feedback(False, "\u03b8\u2082 = 0 (arm stretched) is singular, but the exercise asks for the other "
-                            "one in (0, 2\u03c0).", mistake="excluded_zero")
+            return Feedback(False, "θ₂ = 0 (arm stretched) is singular, but the exercise asks for the other "
+                            "one in (0, 2π).", mistake="excluded_zero")
         if s < 1e-3:
-            return Feedback(True, "Right: with \u03b8\u2082 = \u03c0 the arm is folded back and det J_v = l1 l2 sin \u03b8\u2082 = 0.",
+            return Feedback(True, "Right: with θ₂ = π the arm is folded back and det J_v = l1 l2 sin θ₂ = 0.",
                             "correct")
         if abs(x) > 2 * np.pi + 0.01 and abs(np.sin(x * DEG)) < 1e-3:
             return Feedback(False, "This looks like an angle in degrees; give it in radians.",
                             mistake="degrees_for_radians")
-        return Feedback(False, f"At \u03b8\u2082 = {x:.4g} rad det J_v is not zero: write det J_v as a function of "
-                        "\u03b8\u2082 and find where it vanishes.", mistake="not_singular")
+        return Feedback(False, f"At θ₂ = {x:.4g} rad det J_v is not zero: write det J_v as a function of "
+                        "θ₂ and find where it vanishes.", mistake="not_singular")
 
     st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ has $\\theta_1 = {int(th1)}^\\circ$. Apart from $\\theta_2 = 0$, "
           "give the value of $\\theta_2$ in radians, between 0 and $2\\pi$, at which its position Jacobian is "

@@ -1,0 +1,71 @@
+"""How a verdict is shown: :class:`Feedback`, as text and as a coloured HTML box.
+
+>>> fb = verdict(False, "Check column 2.", mistake="sign_column_2")
+>>> fb.exercise_id = "ch02_ex1"
+>>> str(fb)
+'[ch02_ex1] Not yet: Check column 2.'
+>>> bool(fb), fb.kind, fb.mistake
+(False, 'wrong', 'sign_column_2')
+"""
+
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass
+
+__all__ = ["Feedback", "verdict"]
+
+#: Heading of the text form, by kind.
+_HEADS = {"correct": "Correct", "empty": "No answer yet", "invalid": "Cannot grade this"}
+
+#: Border colour, background and heading of the HTML box, by kind (Okabe-Ito colours).
+_BOXES = {
+    "correct": ("#009E73", "#e6f5f0", "&#10004; Correct"),
+    "wrong": ("#D55E00", "#fbece3", "&#10008; Not yet"),
+    "empty": ("#0072B2", "#e6f0f8", "&#8230; No answer yet"),
+    "invalid": ("#E69F00", "#fdf4e3", "? Cannot grade this"),
+}
+
+
+@dataclass
+class Feedback:
+    """The checker's verdict: ``.correct`` (bool), ``.message`` (str), ``.kind``.
+
+    ``kind`` is one of ``"correct"``, ``"wrong"`` (a gradable but wrong
+    answer), ``"empty"`` (no answer yet), ``"invalid"`` (not something the
+    checker can grade, such as text), and ``mistake`` names the catalogued
+    mistake that was recognised (``None`` if none).
+    """
+
+    correct: bool
+    message: str
+    kind: str = "wrong"
+    exercise_id: str = ""
+    mistake: str | None = None
+
+    def __bool__(self) -> bool:
+        return self.correct
+
+    def __str__(self) -> str:
+        head = "Correct" if self.correct else _HEADS.get(self.kind, "Not yet")
+        tag = f"[{self.exercise_id}] " if self.exercise_id else ""
+        return f"{tag}{head}: {self.message}"
+
+    def __repr__(self) -> str:
+        return str(self)
+
+    def _repr_html_(self) -> str:
+        border, bg, head = _BOXES.get(self.kind, _BOXES["wrong"])
+        msg = html.escape(self.message).replace("\n", "<br>")
+        ident = html.escape(self.exercise_id)
+        return (
+            f'<div class="jacobians-feedback jacobians-feedback-{self.kind}" role="status" '
+            f'style="border-left:6px solid {border};background:{bg};color:#1a1a1a;'
+            f'padding:0.6em 0.9em;margin:0.4em 0;border-radius:4px;font-family:sans-serif">'
+            f'<strong>{head}</strong> <span style="color:#555">({ident})</span><br>{msg}</div>'
+        )
+
+
+def verdict(ok: bool, message: str, kind: str | None = None, mistake: str | None = None) -> Feedback:
+    """A :class:`Feedback` whose kind defaults to ``"correct"`` or ``"wrong"`` from ``ok``."""
+    return Feedback(bool(ok), message, kind or ("correct" if ok else "wrong"), mistake=mistake)
