@@ -63,15 +63,14 @@ def _explorer_frames(sweep):
     arm = jac.robots.planar_2r(1.0, 1.0)
     anim = widgets.planar_arm_explorer_animation(arm, theta=[0.0, 1.2], rates=[0.5, 0.5], kind="space",
                                                  sweep=sweep, frames=9, dpi=40)
-    ex = anim._explorer
-    frame, n = anim._jac_frames
+    ex = anim.explorer
+    frame, n = anim.draw, anim.n_frames
     J, sig = [], []
     for k in range(n):
         frame(k)
         J.append(ex.jacobian.copy())
         sig.append(ex.sigma.copy())
     ex.close_figure()
-    anim._draw_was_started = True          # the frames were computed on purpose, without rendering
     return arm, np.array(J), np.array(sig)
 
 

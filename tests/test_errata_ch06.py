@@ -123,19 +123,19 @@ def test_new_gimbal_figure_stays_away_from_it(text):
     call = re.search(r"widgets\.gimbal_lock_animation\((.*?)\)\n", text, flags=re.S).group(1)
     assert "theta2_deg=(45.0, 135.0)" in call and "theta1_deg=30.0" in call and "theta3_deg=0.0" in call
     anim = Wd.gimbal_lock_animation(frames=11, dpi=30, theta1_deg=30.0, theta3_deg=0.0, theta2_deg=(45.0, 135.0))
-    zyz = anim._explorer.chain
-    for path in (anim.path, anim._explorer.grid_theta):
+    zyz = anim.explorer.chain
+    for path in (anim.path, anim.explorer.grid_theta):
         assert _sigma_min_angular(zyz, path).min() >= 0.54
     phi = jac.pose_coordinates(zyz.fk(anim.path), "zyx")[:, :3]
     det_B = np.linalg.det(reps.rate_to_angular_velocity(phi, "zyx"))
     assert np.abs(det_B).min() < 1e-12                   # the coordinates lock on the path ...
     assert np.isnan(jac.analytic_jacobian(zyz, anim.path, "zyx", on_singularity="nan")).any()
     # ... and the figure shows what the text promises: B(phi), det B, sigma_min
-    assert anim._explorer.matrix_artist is not None
-    np.testing.assert_allclose(anim._explorer.curve_det.get_ydata(), np.linalg.det(
-        reps.rate_to_angular_velocity(jac.pose_coordinates(zyz.fk(anim._explorer.grid_theta), "zyx")[:, :3], "zyx")),
+    assert anim.explorer.matrix_artist is not None
+    np.testing.assert_allclose(anim.explorer.curve_det.get_ydata(), np.linalg.det(
+        reps.rate_to_angular_velocity(jac.pose_coordinates(zyz.fk(anim.explorer.grid_theta), "zyx")[:, :3], "zyx")),
         atol=1e-12)
-    np.testing.assert_allclose(anim._explorer.curve_s.get_ydata(), _sigma_min_angular(zyz, anim._explorer.grid_theta),
+    np.testing.assert_allclose(anim.explorer.curve_s.get_ydata(), _sigma_min_angular(zyz, anim.explorer.grid_theta),
                                atol=1e-12)
 
 

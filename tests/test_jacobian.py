@@ -337,3 +337,44 @@ def test_no_index_or_linalg_errors_on_odd_shapes():
             jac.space_jacobian(ARM, bad)
         except (ValueError, TypeError):
             pass
+
+
+# ---------------------------------------------------------------- one entry point: jacobian(chain, theta, frame)
+
+@pytest.mark.parametrize("frame", jac.FRAMES)
+def test_jacobian_of_a_frame_is_the_named_function(frame):
+    chain = random_chain(3, dof=4)
+    theta = random_theta(chain, 4, (5,))
+    named = {"space": jac.space_jacobian, "body": jac.body_jacobian, "geometric": jac.geometric_jacobian,
+             "analytic": lambda c, t: jac.analytic_jacobian(c, t, "zyx", on_singularity="nan")}[frame]
+    np.testing.assert_allclose(jac.jacobian(chain, theta, frame, on_singularity="nan"), named(chain, theta),
+                               atol=1e-12)
+
+
+def test_jacobian_passes_the_analytic_options_on():
+    wrist = jac.robots.zyx_wrist()
+    lock = [0.3, np.pi / 2, 0.2]
+    with pytest.raises(jac.RepresentationSingularityError):
+        jac.jacobian(wrist, lock, "analytic")
+    assert np.isnan(jac.jacobian(wrist, lock, "analytic", on_singularity="nan")).all()
+    np.testing.assert_allclose(jac.jacobian(wrist, [0.3, 0.4, 0.2], "analytic", "zyz"),
+                               jac.analytic_jacobian(wrist, [0.3, 0.4, 0.2], "zyz"), atol=1e-12)
+
+
+@pytest.mark.parametrize("call", [
+    lambda: jac.jacobian(jac.robots.planar_2r(), [0, 0], "world"),
+    lambda: jac.jacobian(jac.robots.planar_2r(), [0, 0], None),
+    lambda: jac.frames.check_frame(3),
+])
+def test_jacobian_rejects_an_unknown_frame_with_the_one_message(call):
+    with pytest.raises(ValueError, match=r"^Expected frame 'space', 'body', 'geometric' or 'analytic', got "):
+        call()
+
+
+def test_every_frame_check_uses_the_one_message():
+    arm = jac.robots.planar_2r()
+    with pytest.raises(ValueError, match=r"^Expected frame 'space', 'body' or 'geometric', got 'analytic'$"):
+        jac.link_jacobians(arm, [0, 0], frame="analytic")
+    with pytest.raises(ValueError, match=r"^Expected frame 'space' or 'body', got 'geometric'$"):
+        jac.statics.joint_torques_from_wrench(arm, [0, 0], np.zeros(6), frame="geometric")
+    assert jac.FRAMES == ("space", "body", "geometric", "analytic")

@@ -16,7 +16,7 @@ def test_import_loads_numpy_only():
 def test_public_api_names():
     for name in ["SerialChain", "space_jacobian", "body_jacobian", "geometric_jacobian", "analytic_jacobian",
                  "pose_coordinates", "space_to_body", "body_to_space", "body_to_geometric", "geometric_to_body",
-                 "adjoint", "robots"]:
+                 "adjoint", "robots", "jacobian", "Frame", "FRAMES", "frames"]:
         assert hasattr(jac, name), name
     for name in ["planar_2r", "planar_3r", "ur5"]:
         assert callable(getattr(jac.robots, name))

@@ -92,13 +92,13 @@ def test_ellipse_points_lie_on_the_ellipse():
     assert np.all(np.isfinite(e.line.get_xydata()))
 
 
-@pytest.mark.parametrize("kind", ["space", "body", "geometric"])
-def test_column_arrows_match_jacobian(kind):
+@pytest.mark.parametrize("frame", ["space", "body", "geometric"])
+def test_column_arrows_match_jacobian(frame):
     arm = jac.robots.planar_3r()
     theta = np.array([0.3, -0.4, 1.0])
-    P_, V = P.column_arrows(arm, theta, kind)
+    P_, V = P.column_arrows(arm, theta, frame)
     T = arm.fk(theta)
-    if kind == "space":
+    if frame == "space":
         np.testing.assert_allclose(V, jac.space_jacobian(arm, theta)[3:5].T, atol=1e-12)
         np.testing.assert_allclose(P_, 0.0)
     else:
@@ -111,8 +111,10 @@ def test_animation_moves_arm_and_columns_and_html_has_no_cdn():
     arm = jac.robots.planar_2r()
     t = np.linspace(0, 1, 4)
     thetas = np.column_stack([t, 1 - t])
-    anim = P.planar_arm_animation(arm, thetas, jacobian="space", show_velocity=[1.0, 0.5], dpi=40)
-    fig = anim._fig
+    anim = P.planar_arm_animation(arm, thetas, frame="space", show_velocity=[1.0, 0.5], dpi=40)
+    assert isinstance(anim, P.FrameSource) and anim.n_frames == 4
+    np.testing.assert_allclose(anim.path, thetas)
+    fig = anim.fig
     ax = fig.axes[0]
     assert ax.get_xlabel() == "x (m)" and ax.get_title()
     html = P.animation_html(anim).data
@@ -126,20 +128,30 @@ def test_animation_moves_arm_and_columns_and_html_has_no_cdn():
 def test_animation_last_frame_state_matches_library():
     arm = jac.robots.planar_3r()
     thetas = np.array([[0.0, 0.0, 0.0], [0.5, -0.3, 0.8]])
-    anim = P.planar_arm_animation(arm, thetas, jacobian="body", dpi=40)
-    anim._func(1)
-    line = [ln for ln in anim._fig.axes[0].lines if ln.get_label() == arm.name][0]
+    anim = P.planar_arm_animation(arm, thetas, frame="body", dpi=40)
+    anim.draw(1)
+    line = [ln for ln in anim.fig.axes[0].lines if ln.get_label() == arm.name][0]
     np.testing.assert_allclose(line.get_xydata(), arm.joint_positions(thetas[1])[:, :2])
-    plt.close(anim._fig)
-    anim._draw_was_started = True  # checked by hand above: no "deleted without rendering" warning at GC
+    plt.close(anim.fig)
+
+
+def test_animation_accepts_the_former_parameter_name_jacobian():
+    arm = jac.robots.planar_2r()
+    thetas = np.array([[0.0, 0.0], [0.5, -0.3]])
+    anim = P.planar_arm_animation(arm, thetas, jacobian="space", dpi=30)
+    arrows = [c for c in anim.fig.axes[0].collections if "column 1" in str(c.get_label())]
+    assert len(arrows) == 1
+    plt.close(anim.fig)
+    with pytest.raises(ValueError, match="frame"):
+        P.planar_arm_animation(arm, thetas, frame="space", jacobian="body")
 
 
 def test_animation_rejects_bad_input():
     arm = jac.robots.planar_2r()
     with pytest.raises(ValueError, match=r"\(T, 2\)"):
         P.planar_arm_animation(arm, [0.1, 0.2])
-    with pytest.raises(ValueError, match="jacobian"):
-        P.planar_arm_animation(arm, np.zeros((2, 2)), jacobian="analytic")
+    with pytest.raises(ValueError, match="Expected frame 'space', 'body' or 'geometric', got 'analytic'"):
+        P.planar_arm_animation(arm, np.zeros((2, 2)), frame="analytic")
     with pytest.raises(TypeError, match="Animation"):
         P.animation_html("not an animation")
 
@@ -232,11 +244,23 @@ def test_blit_frames_gives_the_same_frames_as_a_full_redraw():
         fig.canvas.draw()
         full.append(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
     plt.close(fig)
+    # the interface: a FrameSource blitting the moving artists
     fig, art, update, anim = make()
-    plotting.blit_frames(anim, update, len(thetas), art.artists)
+    source = plotting.FrameSource(fig, update, len(thetas), moving=art.artists)
+    for k in range(len(thetas)):
+        blitted = source.frame(k)
+        assert np.mean(np.abs(blitted.astype(int) - full[k].astype(int))) < 1.0
+    html = plotting.animation_html(source).data
+    assert html.count("frames[") >= len(thetas) and "http" not in html.split("<script")[0]
+    with pytest.raises(ValueError):
+        plotting.FrameSource(fig, update, 0, moving=art.artists)
+    # the former interface: blit_frames on a FuncAnimation, then animation_html of that animation
+    fig, art, update, anim = make()
+    legacy = plotting.blit_frames(anim, update, len(thetas), art.artists)
+    assert legacy.fig is fig and legacy.n_frames == len(thetas)
     for k in range(len(thetas)):
         update(k)
-        blitted = fig._jac_render_rgba()
+        blitted = legacy.rgba()
         assert np.mean(np.abs(blitted.astype(int) - full[k].astype(int))) < 1.0
     html = plotting.animation_html(anim).data
     assert html.count("frames[") >= len(thetas) and "http" not in html.split("<script")[0]

@@ -130,27 +130,27 @@ def explorer3():
     return Wd.planar_arm_explorer(jac.robots.planar_3r(1.0, 0.8, 0.5))
 
 
-@pytest.mark.parametrize("kind", ["space", "body", "geometric", "analytic"])
-def test_explorer_shows_library_jacobian(explorer3, kind):
+@pytest.mark.parametrize("frame", ["space", "body", "geometric", "analytic"])
+def test_explorer_shows_library_jacobian(explorer3, frame):
     w = explorer3
     arm = w.chain
     th, rates = np.array([0.4, -0.9, 1.3]), np.array([0.5, -1.0, 0.25])
     before = w.render_count
-    w.set(theta=th, rates=rates, kind=kind)
+    w.set(theta=th, rates=rates, frame=frame)
     assert w.render_count == before + 1  # one redraw for three changes
     ref = {"space": jac.space_jacobian, "body": jac.body_jacobian, "geometric": jac.geometric_jacobian,
-           "analytic": lambda c, t: jac.analytic_jacobian(c, t, "zyx")}[kind](arm, th)
+           "analytic": lambda c, t: jac.analytic_jacobian(c, t, "zyx")}[frame](arm, th)
     np.testing.assert_allclose(w.jacobian, ref, atol=1e-12)
     np.testing.assert_allclose(parse_bmatrix(w.matrix_latex), ref.round(3), atol=1.1e-3)
     assert parse_bmatrix(w.matrix_latex).shape == (6, 3)
     np.testing.assert_allclose(w.twist, ref @ rates, atol=1e-12)
-    assert "$$" in w.matrix_html.value and Wd.JACOBIAN_SYMBOLS[kind] in w.matrix_html.value
+    assert "$$" in w.matrix_html.value and Wd.JACOBIAN_SYMBOLS[frame] in w.matrix_html.value
     # drawn arm and tool-velocity arrow
     np.testing.assert_allclose(w.arm.link_line.get_xydata(), arm.joint_positions(th)[:, :2], atol=1e-12)
     pdot = (jac.geometric_jacobian(arm, th) @ rates)[3:5]
     np.testing.assert_allclose(w.pdot_arrow.vectors[0], pdot * w.vel_scale, atol=1e-12)
     np.testing.assert_allclose(w.pdot_arrow.points[0], arm.fk(th)[:2, 3], atol=1e-12)
-    if kind == "space":
+    if frame == "space":
         V_s = jac.space_jacobian(arm, th) @ rates
         np.testing.assert_allclose(w.vs_arrow.vectors[0], V_s[3:5] * w.vel_scale, atol=1e-12)
     assert w.png[:8] == b"\x89PNG\r\n\x1a\n" and w.image.value == w.png
@@ -158,7 +158,7 @@ def test_explorer_shows_library_jacobian(explorer3, kind):
 
 def test_explorer_slider_drives_redraw_and_ellipse(explorer3):
     w = explorer3
-    w.set(theta=[0.2, 0.5, 0.5], rates=[1, 1, 1], kind="geometric")
+    w.set(theta=[0.2, 0.5, 0.5], rates=[1, 1, 1], frame="geometric")
     png0 = w.png
     w.angle_sliders[1].value = -0.7
     th = w.theta
@@ -181,14 +181,27 @@ def test_explorer_singular_and_extreme_values_do_not_raise():
     assert w.sigma_min < 1e-12 and w.level == "bad"
     assert "SINGULAR" in w.status.value
     assert np.all(np.isfinite(w.force_ellipse.line.get_xydata()))
-    w.set(theta=[np.pi, -np.pi], kind="analytic")
+    w.set(theta=[np.pi, -np.pi], frame="analytic")
     assert np.all(np.isfinite(w.jacobian))  # planar arm: ZYX pitch stays 0
     w.set(theta=[0.3, 0.05])
     assert w.level == "warn"
     w.set(theta=[0.3, 1.5])
     assert w.level == "ok"
     assert w.arm.link_line.get_color() == Wd.PALETTE["link"]
-    with pytest.raises(ValueError, match="kind"):
+    with pytest.raises(ValueError, match="Expected frame 'space', 'body', 'geometric' or 'analytic', got 'spatial'"):
+        w.set(frame="spatial")
+
+
+def test_explorer_accepts_the_former_parameter_name_kind():
+    w = Wd.planar_arm_explorer(jac.robots.planar_2r(1.0, 1.0), kind="body")
+    assert w.frame == "body" and w.kind == "body"
+    np.testing.assert_allclose(w.jacobian, jac.body_jacobian(w.chain, w.theta), atol=1e-12)
+    w.set(kind="geometric")
+    assert w.frame == "geometric"
+    np.testing.assert_allclose(w.jacobian, jac.geometric_jacobian(w.chain, w.theta), atol=1e-12)
+    with pytest.raises(ValueError, match="frame"):
+        w.set(frame="space", kind="body")
+    with pytest.raises(ValueError, match="got 'spatial'"):
         w.set(kind="spatial")
 
 
@@ -295,14 +308,14 @@ def test_gimbal_lock_zyz_wrist_own_singularity_is_at_theta2_zero():
 
 def test_gimbal_lock_animation_path_avoids_the_wrist_singularity():
     anim = Wd.gimbal_lock_animation(frames=15, dpi=40)
-    w = anim._explorer
+    w = anim.explorer
     path = anim.path
     assert path.shape == (15, 3)
     np.testing.assert_allclose(np.degrees(path[:, 1]), np.linspace(45.0, 135.0, 15))
     np.testing.assert_allclose(path[:, [0, 2]], np.radians([[30.0, 0.0]] * 15))
     # the frames: the library's geometric Jacobian of the ZYZ wrist, never near its singularity theta2 = 0
     for k in range(15):
-        anim._jac_frames[0](k)
+        anim.draw(k)
         np.testing.assert_allclose(np.radians(w.angles_deg), path[k], atol=1e-12)
         np.testing.assert_allclose(w.J, jac.geometric_jacobian(w.chain, path[k]), atol=1e-12)
         assert w.sigma_min_omega >= 0.54
@@ -318,7 +331,7 @@ def test_gimbal_lock_animation_path_avoids_the_wrist_singularity():
     np.testing.assert_allclose(w.curve_det.get_ydata(), det_B, atol=1e-12)
     np.testing.assert_allclose(det_B, -np.cos(phi[:, 1]), atol=1e-12)
     # ... while det B reaches 0 (the ZYX lock) on the middle frame, where J_a does not exist
-    anim._jac_frames[0](7)
+    anim.draw(7)
     assert w.angles_deg[1] == pytest.approx(90.0) and w.det_B == 0.0 and w.singular
     assert np.abs(det_B).min() < 1e-12 and det_B.max() <= 1e-12
     Ja = jac.analytic_jacobian(w.chain, w.grid_theta, "zyx", on_singularity="nan")
@@ -412,20 +425,21 @@ def test_static_animations_embed_without_cdn(make):
     from jacobians.plotting import animation_html
 
     anim = make()
-    n_frames = anim._save_count if hasattr(anim, "_save_count") else None
+    n_frames = anim.n_frames
+    assert anim.explorer.fig is anim.fig and len(anim.path) == n_frames
     html = animation_html(anim).data
     assert "http://" not in html and "https://" not in html
     assert html.count("data:image/png;base64") >= 3
-    if n_frames:
-        assert html.count("data:image/png;base64") == n_frames
+    assert html.count("data:image/png;base64") == n_frames
 
 
 def test_static_explorer_animation_panel_shows_jacobian():
-    anim = Wd.planar_arm_explorer_animation(kind="body", frames=4, dpi=40, sweep=1)
-    w = anim._explorer
-    anim._func(2)
+    anim = Wd.planar_arm_explorer_animation(frame="body", frames=4, dpi=40, sweep=1)
+    w = anim.explorer
+    anim.draw(2)
     np.testing.assert_allclose(w.matrix_artist.values, jac.body_jacobian(w.chain, w.theta), atol=1e-12)
     assert w.theta[0] == pytest.approx(np.linspace(-np.pi, np.pi, 4)[2])
+    np.testing.assert_allclose(anim.path[2], w.theta, atol=1e-12)
     with pytest.raises(ValueError, match="sweep"):
         Wd.planar_arm_explorer_animation(sweep=3)
-    anim._draw_was_started = True  # silence "deleted without rendering"
+    assert Wd.planar_arm_explorer_animation(kind="geometric", frames=2, dpi=30).explorer.frame == "geometric"

@@ -13,11 +13,18 @@ matplotlib and ipywidgets when they are imported.
 >>> J_b = jac.body_jacobian(arm, [0.3, 0.4])
 >>> np.allclose(jac.space_to_body(J_s, arm.fk([0.3, 0.4])), J_b)
 True
+>>> np.allclose(jac.jacobian(arm, [0.3, 0.4], "body"), J_b)   # the frame as a parameter
+True
+
+The submodule :mod:`jacobians.jacobian` is shadowed by the function
+``jacobians.jacobian``; import from it by name (``from jacobians.jacobian import
+space_to_body``).
 """
 
 from . import analysis, interop, lie, representations, robots
-from . import statics, velocity
+from . import frames, statics, velocity
 from .chain import SerialChain
+from .frames import FRAMES, Frame
 from .jacobian import (
     analytic_jacobian,
     body_jacobian,
@@ -27,6 +34,7 @@ from .jacobian import (
     geometric_to_analytic,
     geometric_to_body,
     geometric_to_space,
+    jacobian,
     link_jacobians,
     numerical_jacobian,
     pose_coordinates,
@@ -41,6 +49,9 @@ __version__ = "0.1.0"
 
 __all__ = [
     "SerialChain",
+    "Frame",
+    "FRAMES",
+    "jacobian",
     "space_jacobian",
     "body_jacobian",
     "geometric_jacobian",
@@ -61,6 +72,7 @@ __all__ = [
     "representations",
     "robots",
     "analysis",
+    "frames",
     "interop",
     "statics",
     "velocity",

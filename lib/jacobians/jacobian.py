@@ -27,7 +27,10 @@ array([[ 0.,  0.],
 
 from __future__ import annotations
 
+from typing import Any, Callable
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import _kernels as K
 from ._validation import (
@@ -38,6 +41,7 @@ from ._validation import (
     transform_array,
 )
 from .chain import SerialChain, _as_chain
+from .frames import FRAMES, Frame, check_frame
 from .representations import (
     RepresentationSingularityError,
     _Binv,
@@ -47,6 +51,7 @@ from .representations import (
 )
 
 __all__ = [
+    "jacobian",
     "space_jacobian",
     "body_jacobian",
     "geometric_jacobian",
@@ -66,13 +71,13 @@ __all__ = [
 
 # ---------------------------------------------------------------- core evaluation
 
-def _core_convert(kind, J, R, p):
-    """Convert space columns J (6, n, ...) to ``kind`` with T_sb = (R, p), core axes first.
+def _core_convert(frame: str, J, R, p):
+    """Convert space columns J (6, n, ...) to ``frame`` with T_sb = (R, p), core axes first.
 
     R has shape (3, 3, ...) and p (3, ...), batch axes last; J's column axis is
     second, so p[k] (shape (...)) broadcasts against J[k] (shape (n, ...)).
     """
-    if kind == "space":
+    if frame == "space":
         return J
     w, v = J[:3], J[3:]
     # ṗ-type linear part: v_s + ω_s × p = v_s - p × ω_s
@@ -80,7 +85,7 @@ def _core_convert(kind, J, R, p):
     lin[0] = v[0] - (p[1] * w[2] - p[2] * w[1])
     lin[1] = v[1] - (p[2] * w[0] - p[0] * w[2])
     lin[2] = v[2] - (p[0] * w[1] - p[1] * w[0])
-    if kind == "geometric":
+    if frame == "geometric":
         out = np.empty_like(J)
         out[:3] = w
         out[3:] = lin
@@ -93,8 +98,8 @@ def _core_convert(kind, J, R, p):
     return out
 
 
-def _evaluate(chain: SerialChain, theta, kind: str, with_pose: bool = False):
-    """J of ``kind`` (space/body/geometric) with shape (..., 6, n), and optionally T_sb."""
+def _evaluate(chain: SerialChain, theta, frame: str, with_pose: bool = False):
+    """J in ``frame`` (space/body/geometric, already checked) with shape (..., 6, n), and optionally T_sb."""
     chain = _as_chain(chain)
     C = chain._C
     n = chain.dof
@@ -105,11 +110,11 @@ def _evaluate(chain: SerialChain, theta, kind: str, with_pose: bool = False):
         J = K.space_columns_single(C, Rs, ps)
         R = Rs[-1] @ M[:3, :3]
         p = Rs[-1] @ M[:3, 3] + ps[-1]
-        if kind != "space":
+        if frame != "space":
             # v - p x w = v + [w] p ... written as a 3x3 product on all columns at once
             P = np.array([[0.0, -p[2], p[1]], [p[2], 0.0, -p[0]], [-p[1], p[0], 0.0]])
             lin = J[3:] - P @ J[:3]
-            if kind == "geometric":
+            if frame == "geometric":
                 J[3:] = lin
             else:
                 Rt = R.T
@@ -131,18 +136,18 @@ def _evaluate(chain: SerialChain, theta, kind: str, with_pose: bool = False):
         T[:, 3, 3] = 1.0
     for a in range(0, N, K.CHUNK):
         b = min(a + K.CHUNK, N)
-        if kind == "body" and not with_pose:
+        if frame == "body" and not with_pose:
             # reversed sweep over -B_n..-B_1: no conversion needed
             thT = np.ascontiguousarray(flat[a:b, ::-1].T)
             J, _, _, _ = K.sweep_batch(chain._C_rev, thT, want_columns=True, want_final=False)
             np.negative(J[:, ::-1].transpose(2, 0, 1), out=out[a:b])
             continue
         thT = np.ascontiguousarray(flat[a:b].T)
-        need_pose = kind != "space" or with_pose
+        need_pose = frame != "space" or with_pose
         J, R, p, _ = K.sweep_batch(C, thT, want_columns=True, want_final=need_pose)
         if need_pose:
             R, p = K.times_home(R, p, M)
-        out[a:b] = _core_convert(kind, J, R, p).transpose(2, 0, 1)
+        out[a:b] = _core_convert(frame, J, R, p).transpose(2, 0, 1)
         if with_pose:
             T[a:b, :3, :3] = R.transpose(2, 0, 1)
             T[a:b, :3, 3] = p.T
@@ -152,7 +157,39 @@ def _evaluate(chain: SerialChain, theta, kind: str, with_pose: bool = False):
     return out
 
 
-def space_jacobian(chain, theta) -> np.ndarray:
+def jacobian(chain: SerialChain, theta: ArrayLike, frame: Frame, representation: str = "zyx",
+             on_singularity: str = "raise", tol: float = 1e-9) -> NDArray[np.float64]:
+    r"""The Jacobian of ``chain`` at ``theta`` in ``frame``: the one entry point for "which Jacobian".
+
+    ``frame`` is ``"space"`` (:func:`space_jacobian`), ``"body"``
+    (:func:`body_jacobian`), ``"geometric"`` (:func:`geometric_jacobian`) or
+    ``"analytic"`` (:func:`analytic_jacobian`, which alone uses
+    ``representation``, ``on_singularity`` and ``tol``); see
+    :mod:`jacobians.frames`.
+
+    Returns
+    -------
+    ndarray, shape (..., 6, n)
+
+    >>> import numpy as np
+    >>> import jacobians as jac
+    >>> arm = jac.robots.planar_2r()
+    >>> all(np.allclose(jac.jacobian(arm, [0.3, 0.4], f), g(arm, [0.3, 0.4]))
+    ...     for f, g in [("space", jac.space_jacobian), ("body", jac.body_jacobian),
+    ...                  ("geometric", jac.geometric_jacobian), ("analytic", jac.analytic_jacobian)])
+    True
+    >>> jac.jacobian(arm, [0.3, 0.4], "world")
+    Traceback (most recent call last):
+    ...
+    ValueError: Expected frame 'space', 'body', 'geometric' or 'analytic', got 'world'
+    """
+    frame = check_frame(frame, FRAMES)
+    if frame == "analytic":
+        return analytic_jacobian(chain, theta, representation, on_singularity=on_singularity, tol=tol)
+    return _evaluate(chain, theta, frame)
+
+
+def space_jacobian(chain: SerialChain, theta: ArrayLike) -> NDArray[np.float64]:
     r"""Space Jacobian :math:`J_s(\theta)`, with :math:`\mathcal V_s = J_s(\theta)\dot\theta`.
 
     Column i is the screw axis of joint i carried to its current place by the
@@ -176,7 +213,7 @@ def space_jacobian(chain, theta) -> np.ndarray:
     return _evaluate(chain, theta, "space")
 
 
-def body_jacobian(chain, theta) -> np.ndarray:
+def body_jacobian(chain: SerialChain, theta: ArrayLike) -> NDArray[np.float64]:
     r"""Body Jacobian :math:`J_b(\theta)`, with :math:`\mathcal V_b = J_b(\theta)\dot\theta`.
 
     Column i is the screw axis of joint i seen from {b}, moved by the joints
@@ -195,7 +232,7 @@ def body_jacobian(chain, theta) -> np.ndarray:
     return _evaluate(chain, theta, "body")
 
 
-def geometric_jacobian(chain, theta) -> np.ndarray:
+def geometric_jacobian(chain: SerialChain, theta: ArrayLike) -> NDArray[np.float64]:
     r"""Geometric Jacobian :math:`J(\theta)`, with :math:`(\omega_s, \dot p) = J(\theta)\dot\theta`.
 
     :math:`\omega_s` is the angular velocity of {b} in {s}, :math:`\dot p` the
@@ -217,7 +254,7 @@ def geometric_jacobian(chain, theta) -> np.ndarray:
     return _evaluate(chain, theta, "geometric")
 
 
-def pose_coordinates(T, representation: str = "zyx") -> np.ndarray:
+def pose_coordinates(T: ArrayLike, representation: str = "zyx") -> NDArray[np.float64]:
     r"""Minimal pose coordinates :math:`x = (\phi, p)` of a transform, shape (..., 6).
 
     ``representation`` is ``"zyx"``, ``"zyz"`` or ``"exp"`` (see
@@ -255,8 +292,8 @@ def _analytic_from_geometric(J, T, representation, on_singularity, tol):
     return out
 
 
-def analytic_jacobian(chain, theta, representation: str = "zyx", on_singularity: str = "raise",
-                      tol: float = 1e-9) -> np.ndarray:
+def analytic_jacobian(chain: SerialChain, theta: ArrayLike, representation: str = "zyx",
+                      on_singularity: str = "raise", tol: float = 1e-9) -> NDArray[np.float64]:
     r"""Analytic Jacobian :math:`J_a(\theta) = \partial x / \partial\theta` for :math:`x = (\phi, p)`.
 
     :math:`J_a = \begin{bmatrix}B(\phi)^{-1} & 0\\ 0 & I\end{bmatrix} J`
@@ -314,7 +351,7 @@ def _cross_cols(p, w):
          p[..., 0, :] * w[..., 1, :] - p[..., 1, :] * w[..., 0, :]], -2)
 
 
-def space_to_body(J_s, T_sb) -> np.ndarray:
+def space_to_body(J_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J_b = [\mathrm{Ad}_{T_{bs}}] J_s = [\mathrm{Ad}_{T_{sb}^{-1}}] J_s`.
 
     Parameters
@@ -333,7 +370,7 @@ def space_to_body(J_s, T_sb) -> np.ndarray:
     return _rotate_blocks(R, out, transpose=True)
 
 
-def body_to_space(J_b, T_sb) -> np.ndarray:
+def body_to_space(J_b: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J_s = [\mathrm{Ad}_{T_{sb}}] J_b`: rows :math:`(R\omega_b,\ R v_b + p \times R\omega_b)`."""
     J_b, T = _pair(J_b, T_sb, ("J_b", "T_sb"))
     R, p = T[..., :3, :3], T[..., :3, 3]
@@ -342,19 +379,19 @@ def body_to_space(J_b, T_sb) -> np.ndarray:
     return out
 
 
-def body_to_geometric(J_b, T_sb) -> np.ndarray:
+def body_to_geometric(J_b: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J = \mathrm{diag}(R_{sb}, R_{sb})\, J_b`."""
     J_b, T = _pair(J_b, T_sb, ("J_b", "T_sb"))
     return _rotate_blocks(T[..., :3, :3], J_b)
 
 
-def geometric_to_body(J, T_sb) -> np.ndarray:
+def geometric_to_body(J: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J_b = \mathrm{diag}(R_{sb}^T, R_{sb}^T)\, J`."""
     J, T = _pair(J, T_sb, ("J", "T_sb"))
     return _rotate_blocks(T[..., :3, :3], J, transpose=True)
 
 
-def space_to_geometric(J_s, T_sb) -> np.ndarray:
+def space_to_geometric(J_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J = \begin{bmatrix} I & 0\\ -[p] & I\end{bmatrix} J_s`: rows :math:`(\omega_s,\ v_s + \omega_s\times p)`."""
     J_s, T = _pair(J_s, T_sb, ("J_s", "T_sb"))
     p = T[..., :3, 3]
@@ -362,7 +399,7 @@ def space_to_geometric(J_s, T_sb) -> np.ndarray:
     return np.concatenate(np.broadcast_arrays(J_s[..., :3, :], lin), axis=-2)
 
 
-def geometric_to_space(J, T_sb) -> np.ndarray:
+def geometric_to_space(J: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J_s = \begin{bmatrix} I & 0\\ [p] & I\end{bmatrix} J`: rows :math:`(\omega_s,\ \dot p + p\times\omega_s)`."""
     J, T = _pair(J, T_sb, ("J", "T_sb"))
     p = T[..., :3, 3]
@@ -370,8 +407,8 @@ def geometric_to_space(J, T_sb) -> np.ndarray:
     return np.concatenate(np.broadcast_arrays(J[..., :3, :], lin), axis=-2)
 
 
-def geometric_to_analytic(J, T_sb, representation: str = "zyx", on_singularity: str = "raise",
-                          tol: float = 1e-9) -> np.ndarray:
+def geometric_to_analytic(J: ArrayLike, T_sb: ArrayLike, representation: str = "zyx",
+                          on_singularity: str = "raise", tol: float = 1e-9) -> NDArray[np.float64]:
     r""":math:`J_a = \mathrm{diag}(B(\phi)^{-1}, I)\, J` with :math:`\phi` the coordinates of :math:`R_{sb}`."""
     representation = check_representation(representation)
     if on_singularity not in ("raise", "nan"):
@@ -385,7 +422,7 @@ def geometric_to_analytic(J, T_sb, representation: str = "zyx", on_singularity: 
 
 # ---------------------------------------------------------------- link Jacobians
 
-def link_jacobians(chain, theta, frame: str = "space") -> np.ndarray:
+def link_jacobians(chain: SerialChain, theta: ArrayLike, frame: Frame = "space") -> NDArray[np.float64]:
     r"""The Jacobian of every link frame, shape (..., n, 6, n).
 
     Entry i (0-based) is the Jacobian of the frame of link i + 1, whose pose is
@@ -403,8 +440,7 @@ def link_jacobians(chain, theta, frame: str = "space") -> np.ndarray:
         ``"geometric"``: :math:`(\omega_s, \dot p_i)` of the link frame's origin.
     """
     chain = _as_chain(chain)
-    if frame not in ("space", "body", "geometric"):
-        raise ValueError(f"Expected frame 'space', 'body' or 'geometric', got {frame!r}")
+    frame = check_frame(frame, ("space", "body", "geometric"))
     n = chain.dof
     th = theta_array(theta, n)
     J_s = space_jacobian(chain, th)  # (..., 6, n)
@@ -420,7 +456,7 @@ def link_jacobians(chain, theta, frame: str = "space") -> np.ndarray:
 
 # ---------------------------------------------------------------- finite differences
 
-def numerical_jacobian(f, x, eps: float = 1e-6) -> np.ndarray:
+def numerical_jacobian(f: Callable[[NDArray[np.float64]], Any], x: ArrayLike, eps: float = 1e-6) -> NDArray[np.float64]:
     """Central finite differences of ``f`` at ``x``: shape f(x).shape + x.shape[-1:].
 
     The oracle used by the tests and the chapters' checks. ``f`` maps an

@@ -20,10 +20,12 @@ array([2., 1.])
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validation import as_float_array, check_finite, transform_array
-from .chain import _as_chain
-from .jacobian import _evaluate
+from .chain import SerialChain, _as_chain
+from .frames import TWIST_FRAMES, Frame, check_frame
+from .jacobian import jacobian
 from .lie import _adjoint, _inverse_transform
 
 __all__ = ["joint_torques", "joint_torques_from_wrench", "wrench_body_to_space", "wrench_space_to_body"]
@@ -73,7 +75,8 @@ def joint_torques(J, wrench) -> np.ndarray:
     return (np.swapaxes(A, -1, -2) @ F[..., :, None])[..., 0]
 
 
-def joint_torques_from_wrench(chain, theta, wrench, frame: str = "space") -> np.ndarray:
+def joint_torques_from_wrench(chain: SerialChain, theta: ArrayLike, wrench: ArrayLike,
+                              frame: Frame = "space") -> NDArray[np.float64]:
     r"""Joint torques that hold the wrench :math:`\mathcal F = (m, f)` at configuration theta.
 
     Parameters
@@ -106,9 +109,8 @@ def joint_torques_from_wrench(chain, theta, wrench, frame: str = "space") -> np.
     >>> joint_torques_from_wrench(arm, [0.0, 0.0], F_s, frame="space")
     array([-19.62,  -9.81])
     """
-    if frame not in ("space", "body"):
-        raise ValueError(f"Expected frame 'space' (wrench F_s in {{s}}) or 'body' (F_b in {{b}}), got {frame!r}")
-    J = _evaluate(_as_chain(chain), theta, frame)
+    frame = check_frame(frame, TWIST_FRAMES)
+    J = jacobian(_as_chain(chain), theta, frame)
     return joint_torques(J, _wrench(wrench, 6))
 
 

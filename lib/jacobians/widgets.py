@@ -27,7 +27,11 @@ Jupyter with a kernel and is easy to test: every widget has a ``set(...)``
 method and exposes what it drew.
 
 Static book: each widget has a ``*_animation`` function returning a
-``FuncAnimation`` of the same view, for :func:`jacobians.plotting.animation_html`.
+:class:`jacobians.plotting.FrameSource` of the same view (its ``explorer`` is
+the widget that draws the frames), for :func:`jacobians.plotting.animation_html`.
+
+Which Jacobian a widget shows is a ``frame`` (:mod:`jacobians.frames`); the
+former parameter name ``kind`` is still accepted.
 
 The numbers come from the library: the ellipses from
 :func:`jacobians.analysis.velocity_ellipsoid` and
@@ -44,11 +48,11 @@ import io
 import numpy as np
 
 import ipywidgets as W
-from matplotlib import animation as _animation
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from . import jacobian as _jac
+from .frames import FRAMES, JACOBIAN_SYMBOLS, Frame, check_frame
+from .jacobian import analytic_jacobian, body_jacobian, geometric_jacobian, jacobian, pose_coordinates, space_jacobian
 from . import robots
 from . import velocity as _velocity
 from .analysis import force_ellipsoid, velocity_ellipsoid
@@ -57,6 +61,7 @@ from .plotting import (
     COLUMN_COLORS,
     PALETTE,
     EllipseArtist,
+    FrameSource,
     PlanarArmArtist,
     TwistArtist,
     MatrixArtist,
@@ -152,9 +157,8 @@ class _Explorer(W.VBox):
     def _setup(self, fig: Figure, static: bool):
         self.static = bool(static)
         self.fig = fig
-        # static (book) figures blit too: animation_html grabs frames through fig._jac_render_rgba
+        # static (book) figures blit too: their FrameSource renders frames with self.blitter.render_rgba
         self.blitter = _Blitter(fig, live=True)
-        fig._jac_render_rgba = self.blitter.render_rgba
         self.image = W.Image(format="png", layout=W.Layout(width=f"{int(fig.get_figwidth() * fig.dpi)}px"))
         self.render_count = 0
         self._hold = 0
@@ -239,39 +243,35 @@ FORCE_LABELS = {
     "inf": (r"force ellipse, $\|\tau\|=1$ (dotted: clipped)",
             r"force semi-axis $\infty$ (singular direction), clipped at %.2f m"),
 }
-JACOBIAN_SYMBOLS = {"space": "J_s", "body": "J_b", "geometric": "J", "analytic": "J_a"}
 TWIST_SYMBOLS = {"space": r"\mathcal V_s", "body": r"\mathcal V_b", "geometric": r"(\omega_s, \dot p)",
                  "analytic": r"(\dot\phi, \dot p)"}
 
 
-def jacobian_of_kind(chain, theta, kind):
-    """The Jacobian the explorer shows: space, body, geometric or analytic (ZYX, NaN at gimbal lock)."""
-    if kind == "space":
-        return _jac.space_jacobian(chain, theta)
-    if kind == "body":
-        return _jac.body_jacobian(chain, theta)
-    if kind == "geometric":
-        return _jac.geometric_jacobian(chain, theta)
-    if kind == "analytic":
-        return _jac.analytic_jacobian(chain, theta, "zyx", on_singularity="nan")
-    raise ValueError(f"Expected kind 'space', 'body', 'geometric' or 'analytic', got {kind!r}")
+def _frame_or_kind(frame: Frame | None, kind: Frame | None, default: Frame | None = None) -> Frame | None:
+    """``frame``, or ``kind`` (its former name), checked; ``default`` if neither is given."""
+    if kind is not None:
+        if frame is not None and frame != kind:
+            raise ValueError(f"Expected one of frame and its former name kind, got frame={frame!r} and kind={kind!r}")
+        frame = kind
+    if frame is None:
+        return default
+    return check_frame(frame, FRAMES)
 
 
 class PlanarArmExplorer(_Explorer):
     """Planar arm explorer; see :func:`planar_arm_explorer`."""
 
-    KINDS = ("space", "body", "geometric", "analytic")
+    FRAMES = FRAMES
 
-    def __init__(self, chain=None, theta=None, rates=None, kind="space", *, static=False, show_ellipses=True,
-                 figsize=(5.6, 5.4), dpi=80, matrix_panel=None):
+    def __init__(self, chain=None, theta=None, rates=None, frame: Frame | None = None, *, static=False,
+                 show_ellipses=True, figsize=(5.6, 5.4), dpi=80, matrix_panel=None, kind: Frame | None = None):
         super().__init__()
         chain = robots.planar_2r() if chain is None else chain
         self.chain = check_planar(chain, "the planar arm explorer")
         n = self.chain.dof
         theta = _planar_theta(self.chain, theta, [0.5, 1.2, -0.8])
         rates = np.ones(n) * 0.5 if rates is None else theta_array(rates, n, "rates")
-        if kind not in self.KINDS:
-            raise ValueError(f"Expected kind 'space', 'body', 'geometric' or 'analytic', got {kind!r}")
+        frame = _frame_or_kind(frame, kind, "space")
         self.reach = arm_reach(self.chain)
         self.vel_scale = 0.35  # drawn metres per m/s
         self.force_scale = 0.1 * self.reach ** 2  # drawn metres per (N per N m)
@@ -285,7 +285,7 @@ class PlanarArmExplorer(_Explorer):
                               for i in range(n)]
         self.rate_sliders = [_slider(f"θ̇{i + 1} (rad/s)", rates[i], -2.0, 2.0, 0.05, COLUMN_COLORS[i % 7])
                              for i in range(n)]
-        self.kind_dropdown = W.Dropdown(options=[(f"{k} Jacobian", k) for k in self.KINDS], value=kind,
+        self.frame_dropdown = W.Dropdown(options=[(f"{k} Jacobian", k) for k in FRAMES], value=frame,
                                         description="show", layout=W.Layout(width="260px"))
         self.ellipse_checkbox = W.Checkbox(value=show_ellipses, description="velocity and force ellipses",
                                            indent=False)
@@ -336,7 +336,7 @@ class PlanarArmExplorer(_Explorer):
         if axm is not None:
             self.matrix_artist = MatrixArtist(axm, np.zeros((6, n)), digits=2, row_labels=ROW_LABELS,
                                               col_labels=[f"col {i + 1}" for i in range(n)],
-                                              title=JACOBIAN_SYMBOLS[kind], fontsize=11)
+                                              title=JACOBIAN_SYMBOLS[frame], fontsize=11)
             self.matrix_title = axm.title
         self.blitter.add(self.arm.artists, self.axis_dots, self.joint_labels, self.pdot_arrow.artists,
                          self.vs_arrow.artists, self.vel_ellipse.artists, self.force_ellipse.artists,
@@ -346,12 +346,12 @@ class PlanarArmExplorer(_Explorer):
 
         for s in self.angle_sliders + self.rate_sliders:
             s.observe(self._changed, names="value")
-        self.kind_dropdown.observe(self._changed, names="value")
+        self.frame_dropdown.observe(self._changed, names="value")
         self.ellipse_checkbox.observe(self._changed, names="value")
         self.play.observe(self._on_play, names="value")
 
         controls = W.VBox([W.HTML("<b>joint angles</b>"), *self.angle_sliders, W.HTML("<b>joint rates</b>"),
-                           *self.rate_sliders, self.kind_dropdown, self.ellipse_checkbox,
+                           *self.rate_sliders, self.frame_dropdown, self.ellipse_checkbox,
                            W.HBox([self.play, self.sweep_dropdown])])
         self.children = [W.HBox([controls, self.image]), self.status, self.matrix_html]
         self.refresh()
@@ -366,11 +366,21 @@ class PlanarArmExplorer(_Explorer):
         return np.array([s.value for s in self.rate_sliders])
 
     @property
-    def kind(self) -> str:
-        return self.kind_dropdown.value
+    def frame(self) -> Frame:
+        """The frame of the Jacobian shown."""
+        return self.frame_dropdown.value
 
-    def set(self, theta=None, rates=None, kind=None):
-        """Set joint angles (rad), joint rates (rad/s) and/or the Jacobian shown; redraw once."""
+    @property
+    def kind(self) -> Frame:
+        """Former name of :attr:`frame`."""
+        return self.frame
+
+    def set(self, theta=None, rates=None, frame: Frame | None = None, *, kind: Frame | None = None):
+        """Set joint angles (rad), joint rates (rad/s) and/or the frame of the Jacobian shown; redraw once.
+
+        ``kind`` is the former name of ``frame``.
+        """
+        frame = _frame_or_kind(frame, kind)
         with self.hold_updates():
             if theta is not None:
                 th = theta_array(theta, self.chain.dof)
@@ -380,10 +390,8 @@ class PlanarArmExplorer(_Explorer):
                 r = theta_array(rates, self.chain.dof, "rates")
                 for s, v in zip(self.rate_sliders, r):
                     s.value = float(np.clip(v, s.min, s.max))
-            if kind is not None:
-                if kind not in self.KINDS:
-                    raise ValueError(f"Expected kind 'space', 'body', 'geometric' or 'analytic', got {kind!r}")
-                self.kind_dropdown.value = kind
+            if frame is not None:
+                self.frame_dropdown.value = frame
         return self
 
     def _on_play(self, change):
@@ -393,11 +401,11 @@ class PlanarArmExplorer(_Explorer):
 
     # ---- drawing
     def _compute_and_update(self):
-        th, rates, kind = self.theta, self.rates, self.kind
+        th, rates, frame = self.theta, self.rates, self.frame
         chain = self.chain
-        J = jacobian_of_kind(chain, th, kind)
-        J_g = _jac.geometric_jacobian(chain, th)
-        J_s = _jac.space_jacobian(chain, th)
+        J = jacobian(chain, th, frame, "zyx", on_singularity="nan")  # analytic: NaN at gimbal lock
+        J_g = geometric_jacobian(chain, th)
+        J_s = space_jacobian(chain, th)
         self.jacobian = J
         self.twist = J @ rates
         self.pdot = J_g[3:5] @ rates
@@ -410,8 +418,8 @@ class PlanarArmExplorer(_Explorer):
             t.set_position((pts[i, 0] + off, pts[i, 1] - 1.6 * off))
         self.pdot_arrow.update(tip, self.pdot)
         V_s = J_s @ rates
-        self.vs_arrow.update([0.0, 0.0], V_s[3:5] if kind == "space" else [0.0, 0.0])
-        self.vs_arrow.quiver.set_visible(kind == "space")
+        self.vs_arrow.update([0.0, 0.0], V_s[3:5] if frame == "space" else [0.0, 0.0])
+        self.vs_arrow.quiver.set_visible(frame == "space")
         show = self.ellipse_checkbox.value
         J_v = J_g[3:5]
         sigma, U = velocity_ellipsoid(J_v)
@@ -453,9 +461,9 @@ class PlanarArmExplorer(_Explorer):
         self.arm.link_line.set_color(PALETTE["link"] if level == "ok" else colour)
         # legend entries are copies made when the legend is built (arm colour, force line style):
         # rebuild it when what they show changes
-        legend_key = (kind, show, force_state, level)
+        legend_key = (frame, show, force_state, level)
         if legend_key != self._legend_kind:  # the v_s arrow and the clip mark are listed only when drawn
-            handles = [self.arm.link_line, self.pdot_arrow.quiver] + ([self.vs_arrow.quiver] if kind == "space" else [])
+            handles = [self.arm.link_line, self.pdot_arrow.quiver] + ([self.vs_arrow.quiver] if frame == "space" else [])
             handles += [self.vel_ellipse.line, self.force_ellipse.line]
             ell_label, clip_label = FORCE_LABELS[force_state]
             self.force_ellipse.line.set_label(ell_label)
@@ -468,16 +476,16 @@ class PlanarArmExplorer(_Explorer):
         self.status.value = _status_html(
             f"σ<sub>min</sub>(J<sub>v</sub>) = {s:.4f} m (J<sub>v</sub>: the x, y rows of ṗ) — <b>{word}</b>; "
             f"manipulability √det(J<sub>v</sub>J<sub>v</sub><sup>T</sup>) = {np.prod(sigma):.4f} m²", level)
-        sym = JACOBIAN_SYMBOLS[kind]
+        sym = JACOBIAN_SYMBOLS[frame]
         th_txt = ", ".join(f"{v:.2f}" for v in th)
         self.matrix_latex = matrix_latex(J, f"{sym}(\\theta)", digits=3)
-        twist_tex = matrix_latex(self.twist[:, None], f"{TWIST_SYMBOLS[kind]} = {sym}\\dot\\theta", digits=3)
+        twist_tex = matrix_latex(self.twist[:, None], f"{TWIST_SYMBOLS[frame]} = {sym}\\dot\\theta", digits=3)
         shown = _latex_block(self.matrix_latex + r"\qquad " + twist_tex)
         self.matrix_html.value = (
-            f"<div style='font-size:14px'>Formula: {_latex_block(JACOBIAN_FORMULAS[kind])}"
+            f"<div style='font-size:14px'>Formula: {_latex_block(JACOBIAN_FORMULAS[frame])}"
             f"At θ = ({th_txt}) rad, rows (ω<sub>x</sub>, ω<sub>y</sub>, ω<sub>z</sub>, v<sub>x</sub>, "
             f"v<sub>y</sub>, v<sub>z</sub>)"
-            f"{' (first three rows: ZYX angle rates)' if kind == 'analytic' else ''}:"
+            f"{' (first three rows: ZYX angle rates)' if frame == 'analytic' else ''}:"
             f"{shown}</div>"
         )
         if self.matrix_artist is not None:
@@ -485,7 +493,7 @@ class PlanarArmExplorer(_Explorer):
             self.matrix_title.set_text(f"${sym}(\\theta)$, columns per joint")
 
 
-def planar_arm_explorer(chain=None, theta=None, rates=None, kind="space", **kw) -> PlanarArmExplorer:
+def planar_arm_explorer(chain=None, theta=None, rates=None, frame: Frame | None = None, **kw) -> PlanarArmExplorer:
     r"""A live explorer of a planar arm's Jacobians (chapters 2 and 5).
 
     Parameters
@@ -495,13 +503,13 @@ def planar_arm_explorer(chain=None, theta=None, rates=None, kind="space", **kw) 
         chain raises ``ValueError``.
     theta, rates : array_like, shape (n,), optional
         Initial joint angles (rad) and rates (rad/s).
-    kind : {"space", "body", "geometric", "analytic"}
-        The Jacobian shown as a matrix.
+    frame : {"space", "body", "geometric", "analytic"}, default "space"
+        The Jacobian shown as a matrix (``kind=`` is its former name).
 
     Returns
     -------
     PlanarArmExplorer
-        An ``ipywidgets.VBox``. ``.set(theta=, rates=, kind=)`` drives it;
+        An ``ipywidgets.VBox``. ``.set(theta=, rates=, frame=)`` drives it;
         ``.jacobian``, ``.twist``, ``.pdot``, ``.sigma_min``, ``.matrix_latex``,
         ``.arm`` (the drawn artists) and ``.png`` hold what it shows.
 
@@ -513,18 +521,21 @@ def planar_arm_explorer(chain=None, theta=None, rates=None, kind="space", **kw) 
     dotted, a dash-dot line marks the clipped direction, and the legend says so
     (``.force_clipped``, ``.force_state``: None, ``"clipped"`` or ``"inf"``).
     """
-    return PlanarArmExplorer(chain, theta, rates, kind, **kw)
+    return PlanarArmExplorer(chain, theta, rates, frame, **kw)
 
 
-def planar_arm_explorer_animation(chain=None, theta=None, rates=None, kind="space", sweep=None, frames=36,
-                                  dpi=72, interval=150):
-    r"""The explorer's view as a FuncAnimation, sweeping joint ``sweep`` (1-based; default the last) over [-π, π].
+def planar_arm_explorer_animation(chain=None, theta=None, rates=None, frame: Frame | None = None, sweep=None,
+                                  frames=36, dpi=72, interval=150, *, kind: Frame | None = None) -> FrameSource:
+    r"""The explorer's view as a :class:`~jacobians.plotting.FrameSource`, sweeping joint ``sweep``
+    (1-based; default the last) over [-π, π].
 
     Shows the arm, :math:`\dot p`, both ellipses, the singularity indicator and
     the chosen Jacobian's numbers in a panel; embed with
-    :func:`jacobians.plotting.animation_html`.
+    :func:`jacobians.plotting.animation_html`. ``.explorer`` is the
+    :class:`PlanarArmExplorer` that draws the frames, ``.path`` the (frames, n)
+    joint angles of the frames; ``kind=`` is the former name of ``frame``.
     """
-    w = PlanarArmExplorer(chain, theta, rates, kind, static=True, dpi=dpi)
+    w = PlanarArmExplorer(chain, theta, rates, _frame_or_kind(frame, kind, "space"), static=True, dpi=dpi)
     n = w.chain.dof
     j = n - 1 if sweep is None else int(sweep) - 1
     if not 0 <= j < n:
@@ -532,18 +543,17 @@ def planar_arm_explorer_animation(chain=None, theta=None, rates=None, kind="spac
     th0 = w.theta
     angles = np.linspace(-np.pi, np.pi, int(frames))
 
-    def frame(k):
+    def draw(k: int) -> list:
         th = th0.copy()
         th[j] = angles[k]
         w.set(theta=th)
         return []
 
-    frame(0)
-    anim = _animation.FuncAnimation(w.fig, frame, frames=len(angles), interval=interval, blit=False)
-    anim._fig = w.fig
-    anim._explorer = w
-    anim._jac_frames = (frame, len(angles))
-    return anim
+    draw(0)
+    path = np.tile(th0, (len(angles), 1))
+    path[:, j] = angles
+    return FrameSource(w.fig, draw, len(angles), interval=interval, render=w.blitter.render_rgba, explorer=w,
+                       path=path)
 
 
 # ---------------------------------------------------------------- 2. space vs body columns
@@ -659,8 +669,8 @@ class ColumnsExplorer(_Explorer):
         chain = self.chain
         n = chain.dof
         i = self.column
-        J_s = _jac.space_jacobian(chain, th)
-        J_b = _jac.body_jacobian(chain, th)
+        J_s = space_jacobian(chain, th)
+        J_b = body_jacobian(chain, th)
         if self._last_J is not None:
             dS = np.abs(J_s - self._last_J[0]).max(axis=0) > 1e-12
             dB = np.abs(J_b - self._last_J[1]).max(axis=0) > 1e-12
@@ -725,11 +735,12 @@ def columns_explorer(chain=None, column=3, theta=None, **kw) -> ColumnsExplorer:
     return ColumnsExplorer(chain, column, theta, **kw)
 
 
-def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval=150):
-    """The columns view as a FuncAnimation: each joint in turn swings by ±0.8 rad while column ``column`` is watched.
+def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval=150) -> FrameSource:
+    """The columns view as a :class:`~jacobians.plotting.FrameSource`: each joint in turn swings by ±0.8 rad while column ``column`` is watched.
 
     A panel lists the values of column i of J_s and of J_b, so a reader sees
-    which swings change which.
+    which swings change which. ``.explorer`` is the :class:`ColumnsExplorer`,
+    ``.path`` the joint angles of the frames.
     """
     w = ColumnsExplorer(chain, column, static=True, dpi=dpi, figsize=(8.6, 5.0))
     chain = w.chain
@@ -751,7 +762,7 @@ def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval
             th[j] += 0.8 * np.sin(t)
             seq.append((j, th))
 
-    def frame(k):
+    def draw(k: int) -> list:
         j, th = seq[k]
         w.set(theta=th)
         colours = [PALETTE["space"], PALETTE["body"]]
@@ -762,12 +773,9 @@ def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval
         note.set_text(f"moving $\\theta_{j + 1}$: {changes}")
         return []
 
-    frame(0)
-    anim = _animation.FuncAnimation(fig, frame, frames=len(seq), interval=interval, blit=False)
-    anim._fig = fig
-    anim._explorer = w
-    anim._jac_frames = (frame, len(seq))
-    return anim
+    draw(0)
+    return FrameSource(fig, draw, len(seq), interval=interval, render=w.blitter.render_rgba, explorer=w,
+                       path=np.array([th for _, th in seq]))
 
 
 # ---------------------------------------------------------------- 3. gimbal lock
@@ -907,9 +915,9 @@ class GimbalLockExplorer(_Explorer):
         """det B, sigma_min of J's omega rows, ||J_a|| and ||J|| along theta2_grid with theta1, theta3 fixed."""
         g = np.radians(self.theta2_grid)
         grid = np.column_stack([np.full_like(g, th[0]), g, np.full_like(g, th[2])])
-        phi = _jac.pose_coordinates(self.chain.fk(grid), "zyx")[:, :3]
-        Jg = _jac.geometric_jacobian(self.chain, grid)
-        Ja = _jac.analytic_jacobian(self.chain, grid, "zyx", on_singularity="nan")
+        phi = pose_coordinates(self.chain.fk(grid), "zyx")[:, :3]
+        Jg = geometric_jacobian(self.chain, grid)
+        Ja = analytic_jacobian(self.chain, grid, "zyx", on_singularity="nan")
         self.grid_theta = grid
         self.det_B_grid = np.linalg.det(rate_to_angular_velocity(phi, "zyx"))
         self.sigma_min_grid = _sigma_min_angular(Jg)
@@ -926,7 +934,7 @@ class GimbalLockExplorer(_Explorer):
         chain = self.chain
         self.arm.update(th)
         T = chain.fk(th)
-        phi = _jac.pose_coordinates(T, "zyx")[:3]
+        phi = pose_coordinates(T, "zyx")[:3]
         self.phi = phi
         B = rate_to_angular_velocity(phi, "zyx")
         self.B = B
@@ -934,8 +942,8 @@ class GimbalLockExplorer(_Explorer):
         if abs(self.det_B) < 5e-13:
             self.det_B = 0.0  # shown as 0.0000, not -0.0000
         self.margin = float(representation_singularity_margin(phi, "zyx"))
-        self.J = _jac.geometric_jacobian(chain, th)
-        self.J_a = _jac.analytic_jacobian(chain, th, "zyx", on_singularity="nan")
+        self.J = geometric_jacobian(chain, th)
+        self.J_a = analytic_jacobian(chain, th, "zyx", on_singularity="nan")
         self.singular = bool(np.isnan(self.J_a).any())
         self.sigma_min_omega = float(_sigma_min_angular(self.J))
         key = (self.wrist, a[0], a[2])
@@ -1012,8 +1020,8 @@ def gimbal_lock_explorer(angles_deg=(30.0, 60.0, 0.0), wrist="zyz", tool=0.3, **
 
 
 def gimbal_lock_animation(frames=15, dpi=80, interval=250, wrist="zyz", theta1_deg=30.0, theta3_deg=0.0,
-                          theta2_deg=(45.0, 135.0)):
-    r"""The gimbal-lock view as a FuncAnimation along a path of the wrist.
+                          theta2_deg=(45.0, 135.0)) -> FrameSource:
+    r"""The gimbal-lock view as a :class:`~jacobians.plotting.FrameSource` along a path of the wrist.
 
     θ2 runs once from ``theta2_deg[0]`` to ``theta2_deg[1]`` (both included, ``frames``
     equal steps) with θ1 and θ3 fixed; the curves are drawn over the same θ2 interval.
@@ -1021,7 +1029,7 @@ def gimbal_lock_animation(frames=15, dpi=80, interval=250, wrist="zyz", theta1_d
     frames puts a frame on it) and nowhere near the wrist's own singularity at 0° and 180°.
     Play it back and forth with ``animation_html(anim, default_mode="reflect")``.
     ``anim.path`` is the (frames, 3) array of joint angles (radians) of the frames;
-    ``anim._explorer`` the explorer that drew them.
+    ``anim.explorer`` the :class:`GimbalLockExplorer` that draws them.
     """
     lo, hi = (float(v) for v in as_float_array(theta2_deg, "theta2_deg"))
     n = int(frames)
@@ -1030,17 +1038,13 @@ def gimbal_lock_animation(frames=15, dpi=80, interval=250, wrist="zyz", theta1_d
     w = GimbalLockExplorer((theta1_deg, lo, theta3_deg), wrist, static=True, dpi=dpi, theta2_range=(lo, hi))
     angles = np.linspace(lo, hi, n)
 
-    def frame(k):
+    def draw(k: int) -> list:
         w.set(theta2_deg=angles[k])
         return []
 
-    frame(0)
-    anim = _animation.FuncAnimation(w.fig, frame, frames=n, interval=interval, blit=False)
-    anim._fig = w.fig
-    anim._explorer = w
-    anim._jac_frames = (frame, n)
-    anim.path = np.radians(np.column_stack([np.full(n, theta1_deg), angles, np.full(n, theta3_deg)]))
-    return anim
+    draw(0)
+    path = np.radians(np.column_stack([np.full(n, theta1_deg), angles, np.full(n, theta3_deg)]))
+    return FrameSource(w.fig, draw, n, interval=interval, render=w.blitter.render_rgba, explorer=w, path=path)
 
 
 # ---------------------------------------------------------------- 4. resolved-rate motion
@@ -1169,7 +1173,7 @@ class ResolvedRateExplorer(_Explorer):
         n = self.chain.dof
         th = np.array([0.3] + [0.9] * (n - 1))[:n]
         for _ in range(200):  # Newton steps with a little damping (1 mm)
-            J = _jac.geometric_jacobian(self.chain, th)[3:5]
+            J = geometric_jacobian(self.chain, th)[3:5]
             e = x0 - self.chain.fk(th)[:2, 3]
             if np.linalg.norm(e) < 1e-12:
                 break
@@ -1226,18 +1230,18 @@ def resolved_rate_explorer(chain=None, path="close past the base", method="pinv"
 
 
 def resolved_rate_animation(chain=None, path="close past the base", method="pinv", damping=0.1, frames=36, dpi=72,
-                            interval=120):
-    """The resolved-rate view as a FuncAnimation over the run."""
+                            interval=120) -> FrameSource:
+    """The resolved-rate view as a :class:`~jacobians.plotting.FrameSource` over the run.
+
+    ``.explorer`` is the :class:`ResolvedRateExplorer`, ``.path`` the joint angles of the frames.
+    """
     w = ResolvedRateExplorer(chain, path, method, damping, static=True, dpi=dpi)
     steps = np.linspace(0, w.n_steps - 1, int(frames)).round().astype(int)
 
-    def frame(k):
+    def draw(k: int) -> list:
         w.set(step=steps[k])
         return []
 
-    frame(0)
-    anim = _animation.FuncAnimation(w.fig, frame, frames=len(steps), interval=interval, blit=False)
-    anim._fig = w.fig
-    anim._explorer = w
-    anim._jac_frames = (frame, len(steps))
-    return anim
+    draw(0)
+    return FrameSource(w.fig, draw, len(steps), interval=interval, render=w.blitter.render_rgba, explorer=w,
+                       path=w.thetas[steps].copy())

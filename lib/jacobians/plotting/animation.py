@@ -1,0 +1,307 @@
+"""Animations for the book: a :class:`FrameSource` and its offline HTML player.
+
+A :class:`FrameSource` is everything needed to make the frames of an
+animation: a figure, a number of frames, a ``draw(k)`` that moves the artists
+to frame ``k``, the time between frames, and how to render a frame (a full
+redraw, blitting only the ``moving`` artists over a kept background, or a
+renderer of its own, as the explorers of :mod:`jacobians.widgets` have).
+:func:`animation_html` turns it into HTML and JavaScript that load nothing
+from the internet, with palette PNG frames (:func:`compact_png`).
+
+>>> import matplotlib
+>>> matplotlib.use("Agg")
+>>> import matplotlib.pyplot as plt
+>>> fig, ax = plt.subplots(figsize=(2, 2), dpi=30)
+>>> (dot,) = ax.plot([0.0], [0.0], "o")
+>>> source = FrameSource(fig, lambda k: dot.set_data([0.1 * k], [0.0]), 3, interval=200, moving=[dot])
+>>> html = animation_html(source).data
+>>> html.count("data:image/png;base64"), "https://" in html
+(3, False)
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+import re
+import tempfile
+import warnings
+import weakref
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+import matplotlib
+import matplotlib.pyplot as plt
+from matplotlib import animation as _animation
+from matplotlib.artist import Artist
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+__all__ = ["FrameSource", "animation_html", "blit_frames", "compact_png"]
+
+
+@dataclass(eq=False)
+class FrameSource:
+    """The frames of an animation, for :func:`animation_html`.
+
+    Parameters
+    ----------
+    fig : matplotlib Figure
+    draw : callable
+        ``draw(k)`` moves the artists to frame ``k`` (``0 <= k < n_frames``).
+        Like matplotlib's ``FuncAnimation``, it may return the artists it
+        changed; the return value is not used.
+    n_frames : int
+    interval : float
+        Milliseconds between frames.
+    moving : list of artists, optional
+        If given, the fixed part of the figure is drawn once and kept as a
+        bitmap, and each frame draws only these artists over it (several times
+        faster than a full redraw). Every artist that ``draw`` changes must be
+        listed; anything else keeps the state it had at the first render.
+    render : callable, optional
+        ``render()`` returns the current frame as an (h, w, 3 or 4) array;
+        replaces the two ways above (the explorers pass their own blitter).
+    explorer : object, optional
+        The widget that draws the frames, if any (its fields hold what it shows).
+    path : ndarray, optional
+        The configurations of the frames, if the maker records them.
+    """
+
+    fig: Figure
+    draw: Callable[[int], Any]
+    n_frames: int
+    interval: float = 100.0
+    moving: Sequence[Artist] | None = None
+    render: Callable[[], ArrayLike] | None = None
+    explorer: Any = None
+    path: NDArray[np.float64] | None = None
+    _background: Any = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.fig, Figure):
+            raise TypeError(f"Expected a matplotlib Figure for fig, got {type(self.fig).__name__}")
+        if not callable(self.draw):
+            raise TypeError(f"Expected a callable draw(k), got {type(self.draw).__name__}")
+        n = self.n_frames
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ValueError(f"Expected a positive number of frames, got {n!r}")
+        self.n_frames = int(n)
+        interval = float(self.interval)
+        if not np.isfinite(interval) or interval <= 0:
+            raise ValueError(f"Expected a positive interval in milliseconds, got {self.interval!r}")
+        self.interval = interval
+        if self.render is not None and not callable(self.render):
+            raise TypeError(f"Expected a callable render(), got {type(self.render).__name__}")
+        if self.moving is not None:
+            self.moving = list(self.moving)
+            for a in self.moving:
+                if not isinstance(a, Artist):
+                    raise TypeError(f"Expected matplotlib artists in moving, got {type(a).__name__}")
+                a.set_animated(True)
+
+    def _canvas(self) -> FigureCanvasAgg:
+        canvas = self.fig.canvas
+        if not isinstance(canvas, FigureCanvasAgg):  # e.g. a Figure() made without pyplot
+            canvas = FigureCanvasAgg(self.fig)
+        return canvas
+
+    def rgba(self) -> NDArray[np.uint8]:
+        """The figure as it is now, rendered as this source renders frames: an (h, w, 3) array."""
+        if self.render is not None:
+            return np.asarray(self.render())[..., :3].copy()
+        canvas = self._canvas()
+        if self.moving is None:
+            canvas.draw()
+        else:
+            if self._background is None:
+                canvas.draw()  # the animated (moving) artists are left out of this one
+                self._background = canvas.copy_from_bbox(self.fig.bbox)
+            else:
+                canvas.restore_region(self._background)
+            for a in self.moving:
+                self.fig.draw_artist(a)
+        return np.asarray(canvas.buffer_rgba())[..., :3].copy()
+
+    def frame(self, k: int) -> NDArray[np.uint8]:
+        """Frame ``k`` as an (h, w, 3) array: ``draw(k)``, then render."""
+        if not 0 <= int(k) < self.n_frames:
+            raise ValueError(f"Expected a frame index between 0 and {self.n_frames - 1}, got {k!r}")
+        self.draw(int(k))
+        return self.rgba()
+
+    def invalidate(self) -> None:
+        """Forget the kept background (call after changing a fixed part of the figure)."""
+        self._background = None
+
+
+# FuncAnimations given to blit_frames (the interface before FrameSource), and their sources
+_LEGACY: weakref.WeakKeyDictionary[_animation.Animation, FrameSource] = weakref.WeakKeyDictionary()
+
+
+def blit_frames(anim: _animation.Animation, update: Callable[[int], Any], n_frames: int,
+                artists: Iterable[Artist]) -> FrameSource:
+    """Make :func:`animation_html` render ``anim`` by blitting only the moving ``artists``.
+
+    The interface before :class:`FrameSource`, kept so that existing notebooks
+    run: returns ``FrameSource(fig, update, n_frames, interval=..., moving=artists)``
+    (the figure is that of the artists, the interval that of ``anim``), and
+    ``animation_html(anim)`` then renders that source. New code makes the
+    :class:`FrameSource` directly and needs no ``FuncAnimation``.
+    """
+    if not isinstance(anim, _animation.Animation):
+        raise TypeError(f"Expected a matplotlib Animation, got {type(anim).__name__}")
+    if not callable(update):
+        raise TypeError(f"Expected a callable update(k), got {type(update).__name__}")
+    if isinstance(n_frames, bool) or not isinstance(n_frames, (int, np.integer)) or n_frames < 1:
+        raise ValueError(f"Expected a positive number of frames, got {n_frames!r}")
+    artists = list(artists)
+    if not artists:
+        raise ValueError("Expected at least one moving artist, got none")
+    fig = artists[0].get_figure(root=True)
+    if not isinstance(fig, Figure):
+        raise ValueError(f"Expected artists drawn on a figure, got {artists[0]!r} on none")
+    source = FrameSource(fig, update, int(n_frames), interval=anim.event_source.interval, moving=artists)
+    source.rgba()  # the background now, as before (this draw also counts as the animation's first)
+    _LEGACY[anim] = source
+    return source
+
+
+def compact_png(image: ArrayLike | bytes, colors: int = 96) -> bytes:
+    """PNG bytes of an RGB(A) array or of PNG bytes, reduced to an adaptive palette of ``colors`` colours.
+
+    Line drawings on white need few colours; a palette PNG is 3 to 5 times
+    smaller than matplotlib's RGBA PNG and looks the same (no dithering).
+    """
+    from PIL import Image
+
+    if isinstance(image, (bytes, bytearray)):
+        im = Image.open(io.BytesIO(image)).convert("RGB")
+    else:
+        im = Image.fromarray(np.asarray(image)[..., :3])
+    q = im.quantize(colors=int(colors), method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+    buf = io.BytesIO()
+    q.save(buf, format="png", optimize=True)
+    return buf.getvalue()
+
+
+# ---------------------------------------------------------------- the HTML player
+
+_ICONS = {
+    "fa-minus": "&#8722;",  # minus
+    "fa-fast-backward": "&#10074;&#9664;&#9664;",  # ❚◀◀ (⏮ is missing from common fonts)
+    "fa-step-backward": "&#10074;&#9664;",  # ❚◀
+    "fa-play fa-flip-horizontal": "&#9664;",  # ◀
+    "fa-pause": "&#10074;&#10074;",  # ❚❚
+    "fa-play": "&#9654;",  # ▶
+    "fa-step-forward": "&#9654;&#10074;",  # ▶❚
+    "fa-fast-forward": "&#9654;&#9654;&#10074;",  # ▶▶❚
+    "fa-plus": "+",
+}
+
+# one embedded frame of matplotlib's HTMLWriter (base64 lines joined by "\" + newline)
+_FRAME = re.compile(r'frames\[(\d+)\] = "data:image/png;base64,([^"]*)"')
+
+
+def _strip_cdn(html: str) -> str:
+    html = re.sub(r"<link[^>]*font-awesome[^>]*>", "", html, flags=re.S)
+
+    def icon(m: re.Match[str]) -> str:
+        cls = m.group(1).replace("fa ", "", 1).strip()
+        sym = _ICONS.get(cls)
+        if sym is None:
+            return m.group(0)
+        return f'<span class="jac-anim-icon" aria-hidden="true">{sym}</span>'
+
+    html = re.sub(r'<i class="(fa [^"]*)"></i>', icon, html)
+    style = ("<style>.animation .anim-buttons button{min-width:2.4em;font-size:1.05em;line-height:1.4;"
+             "font-family:'DejaVu Sans',system-ui,sans-serif;}.jac-anim-icon{font-style:normal;}</style>")
+    return style + html
+
+
+def _swap_frames(html: str, frames: Sequence[str]) -> str:
+    """Put ``frames`` (base64 PNGs) in place of the frames embedded in matplotlib's player."""
+    found = _FRAME.findall(html)
+    if len(found) != len(frames):  # matplotlib changed how HTMLWriter embeds frames
+        raise RuntimeError(f"Expected {len(frames)} embedded frames in matplotlib's HTML player, "
+                           f"found {len(found)} (matplotlib {matplotlib.__version__})")
+    return _FRAME.sub(lambda m: f'frames[{m.group(1)}] = "data:image/png;base64,{frames[int(m.group(1))]}"', html)
+
+
+def _player(frames: Sequence[str], interval: float, default_mode: str) -> str:
+    """matplotlib's JavaScript player (HTMLWriter) around the given base64 PNG frames.
+
+    The player is written for a tiny stand-in figure, one grab per frame,
+    and the stand-in frames are then replaced by ours: HTMLWriter's public
+    interface, no full redraw of the real figure.
+    """
+    stand_in = Figure(figsize=(1, 1), dpi=2)  # 2 x 2 pixels
+    FigureCanvasAgg(stand_in)
+    writer = _animation.HTMLWriter(fps=1000.0 / interval, embed_frames=True, default_mode=default_mode)
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp, "anim.html")
+        with writer.saving(stand_in, str(out), 2):
+            for _ in frames:
+                writer.grab_frame()
+        return _swap_frames(out.read_text(), frames)
+
+
+def _plain_animation_frames(anim: _animation.Animation, default_mode: str, colors: int) -> tuple[str, list[str]]:
+    """A matplotlib Animation not made by us: its own HTML, frames reduced to palette PNGs."""
+    with matplotlib.rc_context({"animation.embed_limit": 1e4}):
+        html = anim.to_jshtml(embed_frames=True, default_mode=default_mode)
+    frames = [base64.b64encode(compact_png(base64.b64decode(b.replace("\\\n", "")), colors)).decode("ascii")
+              for _, b in _FRAME.findall(html)]
+    return html, frames
+
+
+def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: str = "loop",
+                   embed_limit_mb: float = 3.0, colors: int = 96) -> Any:
+    """Embed an animation as inline HTML/JS that loads nothing from the internet.
+
+    ``anim`` is a :class:`FrameSource` (what the course's animation makers
+    return), or a matplotlib ``Animation`` (rendered by a full redraw of each
+    frame, unless :func:`blit_frames` was called on it). The player is
+    matplotlib's, whose control buttons link the font-awesome icon font from a
+    CDN: that ``<link>`` goes and the buttons are written as Unicode symbols
+    (▶, ❚❚, ...). Frames are palette PNGs (``colors`` colours, see
+    :func:`compact_png`), about 4x lighter than matplotlib's; frames beyond
+    ``embed_limit_mb`` are dropped with a warning. The figure of a
+    :class:`FrameSource` is closed, so no stray static copy of it follows the
+    animation in a notebook.
+
+    Returns
+    -------
+    IPython.display.HTML
+    """
+    from IPython.display import HTML
+
+    if default_mode not in ("loop", "once", "reflect"):
+        raise ValueError(f"Expected default_mode 'loop', 'once' or 'reflect', got {default_mode!r}")
+    if isinstance(anim, _animation.Animation) and anim in _LEGACY:
+        anim = _LEGACY[anim]
+    if isinstance(anim, _animation.Animation):
+        html, frames = _plain_animation_frames(anim, default_mode, colors)
+        return HTML(_strip_cdn(_swap_frames(html, frames)))
+    if not isinstance(anim, FrameSource):
+        raise TypeError(f"Expected a FrameSource (or a matplotlib Animation), got {type(anim).__name__}")
+    limit = float(embed_limit_mb) * 1024 * 1024
+    frames: list[str] = []
+    total = 0
+    try:
+        for k in range(anim.n_frames):
+            data = base64.b64encode(compact_png(anim.frame(k), colors)).decode("ascii")
+            total += len(data)
+            if total >= limit:
+                warnings.warn(f"animation_html: frames beyond {limit / 1e6:.1f} MB were dropped; "
+                              "use fewer frames or a lower dpi", stacklevel=2)
+                break
+            frames.append(data)
+    finally:
+        plt.close(anim.fig)
+    return HTML(_strip_cdn(_player(frames, anim.interval, default_mode)))
