@@ -1,11 +1,11 @@
 """Build one reveal.js lecture deck per chapter from the chapter sources.
 
-Usage: python tools/build_slides.py DEST [--only NAME ...] [--jobs N]
+Usage: python -m tools.build_slides DEST [--only NAME ...] [--jobs N]
                                          [--cache DIR] [--no-book-cache]
 
-For every page of ``chapters/`` listed in ``_toc.yml`` that is a MyST
-Markdown notebook (it has a jupytext header; the plain-Markdown root page and
-the exercise notebooks in ``exercises/`` have no deck):
+For every page listed in ``_toc.yml`` that gets a deck
+(``_ext/notebook_pages.py``: a notebook in ``chapters/``; the plain-Markdown
+root page and the exercise notebooks in ``exercises/`` have none):
 
 1. read it with jupytext;
 2. take its executed outputs from a cache when the code and the library are
@@ -17,9 +17,11 @@ the exercise notebooks in ``exercises/`` have no deck):
 3. convert it with nbconvert's SlidesExporter, the preprocessor
    ``tools/slides/preprocess.py`` (MyST directives as boxes, code hidden unless
    tagged ``slide-show-code``, solutions dropped) and the template
-   ``tools/slides/templates/course`` (no CDN: reveal.js, MathJax 2, jQuery,
-   require.js and font-awesome are linked from ``DEST/vendor``, copied there
-   from node_modules by ``tools/vendor.py``);
+   ``tools/slides/templates/course`` (no CDN: reveal.js and require.js are
+   copied from node_modules into ``DEST/vendor`` by
+   ``tools/vendor.py``; MathJax 3 runs through reveal.js's ``RevealMath.MathJax3``
+   plugin from the book's copy in ``DEST/../_static`` when the decks are built
+   into the book, else from its own copy in ``DEST/vendor``);
 4. write ``DEST/<name>.slides.html`` and an index page ``DEST/index.html``.
 
 Exit status 1 if any deck failed; the others are still written.
@@ -37,18 +39,17 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
+import yaml
+from _ext.notebook_pages import has_deck, read
+
+from tools import vendor
+from tools.slides import myst
+from tools.slides.preprocess import MystSlidesPreprocessor
+
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tools"))
-
-import yaml  # noqa: E402
-
-from slides import myst  # noqa: E402
-
 TEMPLATES = ROOT / "tools" / "slides" / "templates"
 DEFAULT_CACHE = ROOT / "_build" / ".slides_cache"
 BOOK_CACHE = ROOT / "_build" / ".jupyter_cache"
-VENDOR = "vendor"
-MATHJAX = f"{VENDOR}/mathjax2/MathJax.js?config=TeX-AMS_CHTML-full"
 EXEC_TIMEOUT = 180
 
 
@@ -82,22 +83,9 @@ def toc_files(root: Path = ROOT) -> list[Path]:
     return paths
 
 
-def is_notebook(path: Path) -> bool:
-    """True for a MyST Markdown notebook (jupytext header with a kernelspec)."""
-    if path.suffix != ".md":
-        return False
-    head = path.read_text(encoding="utf-8")[:600]
-    return head.startswith("---") and "jupytext:" in head and "kernelspec:" in head
-
-
-#: only pages in these folders are lectures (exercises/ holds student notebooks)
-DECK_FOLDERS = ("chapters",)
-
-
 def deck_sources(root: Path = ROOT) -> list[Path]:
-    """The chapter sources that get a deck (same rule as _ext/slides_link.py)."""
-    return [p for p in toc_files(root)
-            if is_notebook(p) and p.relative_to(root).parts[0] in DECK_FOLDERS]
+    """The chapter sources that get a deck (``_ext/notebook_pages.py``, as for the book's link)."""
+    return [p for p in toc_files(root) if has_deck(p, root)]
 
 
 def deck_name(source: Path) -> str:
@@ -121,7 +109,7 @@ def all_labels(root: Path = ROOT) -> dict:
 
 
 def mathjax_macros(root: Path = ROOT) -> dict:
-    """The book's MathJax 3 macros (_config.yml), in MathJax 2's format (same shape)."""
+    """The book's MathJax 3 macros (_config.yml), given to the decks' MathJax 3 as they are."""
     cfg = yaml.safe_load((root / "_config.yml").read_text(encoding="utf-8"))
     try:
         return dict(cfg["sphinx"]["config"]["mathjax3_config"]["tex"]["macros"])
@@ -164,10 +152,9 @@ def _from_book_cache(nb):
 
 def executed(source: Path, cache_dir: Path, use_book_cache: bool, log) -> tuple:
     """The chapter as an executed notebook, and where its outputs came from."""
-    import jupytext
     import nbformat
 
-    nb = jupytext.read(source)
+    nb = read(source)
     key = hashlib.sha256((_code_hash(nb) + _lib_hash()).encode()).hexdigest()[:20]
     cached = cache_dir / f"{source.stem}-{key}.ipynb"
     if cached.exists():
@@ -216,26 +203,23 @@ def _merge_outputs(nb, done):
 # ---------------------------------------------------------------- conversion
 
 
-def exporter(labels: dict, source: Path, stem: str, macros: dict):
+def exporter(labels: dict, source: Path, stem: str, urls: dict[str, str]):
     from nbconvert.exporters import SlidesExporter
     from traitlets.config import Config
 
     c = Config()
     c.SlidesExporter.template_name = "course"
     c.SlidesExporter.extra_template_basedirs = [str(TEMPLATES)]
-    c.SlidesExporter.reveal_url_prefix = f"{VENDOR}/reveal.js"
+    c.SlidesExporter.reveal_url_prefix = urls["reveal.js"].removesuffix("/" + vendor.REVEAL.entry)
     c.SlidesExporter.reveal_theme = "white"
     c.SlidesExporter.reveal_transition = "fade"
     c.SlidesExporter.reveal_width = "1280"
     c.SlidesExporter.reveal_height = "720"
-    c.SlidesExporter.mathjax_url = MATHJAX
-    c.SlidesExporter.require_js_url = f"{VENDOR}/require.js"
-    c.SlidesExporter.jquery_url = f"{VENDOR}/jquery.min.js"
-    c.SlidesExporter.widget_renderer_url = f"{VENDOR}/html-manager/embed-amd.js"
-    c.SlidesExporter.font_awesome_url = f"{VENDOR}/font-awesome/css/font-awesome.min.css"
+    c.SlidesExporter.mathjax_url = urls["mathjax"]
+    c.SlidesExporter.require_js_url = urls["requirejs"]
     c.SlidesExporter.exclude_input_prompt = True
     c.SlidesExporter.exclude_output_prompt = True
-    c.SlidesExporter.preprocessors = ["slides.preprocess.MystSlidesPreprocessor"]
+    c.SlidesExporter.preprocessors = [MystSlidesPreprocessor]
     c.MystSlidesPreprocessor.labels = labels
     c.MystSlidesPreprocessor.source_dir = str(source.parent)
     c.MystSlidesPreprocessor.asset_prefix = f"{stem}_files/"
@@ -243,16 +227,17 @@ def exporter(labels: dict, source: Path, stem: str, macros: dict):
     return ex
 
 
-def build_deck(source: Path, dest: Path, labels: dict, macros: dict, cache_dir: Path, use_book_cache: bool) -> dict:
-    """Build one deck; returns a small report (name, title, seconds, where outputs came from)."""
+def build_deck(source: Path, dest: Path, labels: dict, course: dict, cache_dir: Path, use_book_cache: bool) -> dict:
+    """Build one deck; ``course`` holds the template's ``urls`` (:func:`tools.vendor.deck_urls`) and ``macros``."""
+    # returns a small report (name, title, seconds, where outputs came from)
     lines: list[str] = []
     t0 = time.perf_counter()
     nb, origin = executed(source, cache_dir, use_book_cache, lines.append)
     t_exec = time.perf_counter() - t0
-    ex = exporter(labels, source, source.stem, macros)
+    ex = exporter(labels, source, source.stem, course["urls"])
     resources = {
         "metadata": {"name": source.stem, "path": str(source.parent)},
-        "course": {"vendor": VENDOR, "macros": macros},
+        "course": course,
     }
     title = myst.index_labels(source).get(source.stem, source.stem)
     nb.metadata["title"] = title
@@ -277,23 +262,11 @@ def build_deck(source: Path, dest: Path, labels: dict, macros: dict, cache_dir: 
 
 
 def _build_one(args):
-    source, dest, labels, macros, cache_dir, use_book_cache = args
+    source, dest, labels, course, cache_dir, use_book_cache = args
     try:
-        return build_deck(source, dest, labels, macros, cache_dir, use_book_cache)
+        return build_deck(source, dest, labels, course, cache_dir, use_book_cache)
     except Exception as exc:  # report and continue with the other decks
         return {"name": source.stem, "error": f"{type(exc).__name__}: {exc}"}
-
-
-def vendor(dest: Path) -> None:
-    """Copy the front-end files next to the decks, unless the same lockfile was copied already."""
-    import vendor as vendor_mod  # tools/vendor.py
-
-    stamp = dest / VENDOR / ".lock-hash"
-    lock = hashlib.sha256((ROOT / "package-lock.json").read_bytes()).hexdigest()
-    if stamp.exists() and stamp.read_text() == lock:
-        return
-    vendor_mod.slides(dest / VENDOR)
-    stamp.write_text(lock)
 
 
 def write_index(dest: Path, reports: list[dict]) -> None:
@@ -328,7 +301,7 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     dest = args.dest.resolve()
     dest.mkdir(parents=True, exist_ok=True)
-    vendor(dest)
+    urls = vendor.deck_urls(dest)
     root = args.root.resolve()
     sources = deck_sources(root)
     if args.only:
@@ -338,8 +311,8 @@ def main(argv=None) -> int:
             return 2
         sources = [s for s in sources if s.stem in args.only]
     labels = all_labels(root)
-    macros = mathjax_macros(root)
-    jobs = [(s, dest, labels, macros, args.cache.resolve(), not args.no_book_cache) for s in sources]
+    course = {"urls": urls, "macros": mathjax_macros(root)}
+    jobs = [(s, dest, labels, course, args.cache.resolve(), not args.no_book_cache) for s in sources]
     if args.jobs > 1 and len(jobs) > 1:
         with ProcessPoolExecutor(max_workers=args.jobs) as pool:
             reports = list(pool.map(_build_one, jobs))

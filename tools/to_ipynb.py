@@ -1,25 +1,27 @@
 """Convert every MyST Markdown notebook of the course to .ipynb for nbval.
 
 nbval reads .ipynb only, and the sources are MyST Markdown with a jupytext
-header. Usage: python tools/to_ipynb.py DEST  (writes DEST/<folder>__<name>.ipynb)
+header. Usage: python -m tools.to_ipynb DEST  (writes DEST/<folder>__<name>.ipynb)
 """
 
 from __future__ import annotations
 
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import jupytext
+from _ext.notebook_pages import is_notebook, read
 
 ROOT = Path(__file__).resolve().parent.parent
 FOLDERS = ("chapters", "exercises")
 
 
-def sources():
+def sources(root: Path = ROOT) -> Iterator[tuple[str, Path]]:
+    """(folder, path) of every notebook in :data:`FOLDERS`, in name order."""
     for folder in FOLDERS:
-        for path in sorted((ROOT / folder).glob("*.md")):
-            head = path.read_text(encoding="utf-8")[:400]
-            if "jupytext:" in head and "kernelspec:" in head:
+        for path in sorted((root / folder).glob("*.md")):
+            if is_notebook(path):
                 yield folder, path
 
 
@@ -27,8 +29,7 @@ def main(dest: Path) -> int:
     dest.mkdir(parents=True, exist_ok=True)
     count = 0
     for folder, path in sources():
-        nb = jupytext.read(path)
-        jupytext.write(nb, dest / f"{folder}__{path.stem}.ipynb")
+        jupytext.write(read(path), dest / f"{folder}__{path.stem}.ipynb")
         count += 1
     print(f"to_ipynb: wrote {count} notebooks to {dest}")
     if count == 0:

@@ -11,8 +11,8 @@ _build/test-artifacts/slides/ (not committed).
 from __future__ import annotations
 
 import functools
-import json
 import http.server
+import json
 import re
 import shutil
 import tempfile
@@ -20,9 +20,8 @@ import threading
 from pathlib import Path
 
 import pytest
-
-import build_slides
-from slides import myst
+from tools import build_slides
+from tools.slides import myst
 
 ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
@@ -139,9 +138,10 @@ def walk(browser, source):
     page.on("console", lambda m: console_errors.append(m.text) if m.type == "error" else None)
     page.on("pageerror", lambda e: console_errors.append(f"page error: {e}"))
     page.goto(host + build_slides.deck_name(source) + "?transition=none", wait_until="load")
-    page.wait_for_function("window.Reveal && Reveal.isReady && Reveal.isReady() && window.MathJax && MathJax.isReady",
+    # MathJax 3 (reveal.js's math plugin) sets courseMathReady once it has typeset the deck
+    page.wait_for_function("window.Reveal && Reveal.isReady && Reveal.isReady() && window.courseMathReady === true",
                            timeout=30000)
-    idle = "MathJax.Hub.queue.pending === 0 && !MathJax.Hub.queue.running && Reveal.getCurrentSlide().getAttribute('data-fitted') === '1'"
+    idle = "Reveal.getCurrentSlide().getAttribute('data-fitted') === '1'"
     all_slides = page.evaluate("Reveal.getSlides().map(s => { const i = Reveal.getIndices(s); return [i.h, i.v || 0]; })")
     n_fragments = page.evaluate("document.querySelectorAll('.reveal .slides .fragment').length")
     total = page.evaluate("Reveal.getTotalSlides()")
@@ -174,8 +174,8 @@ def walk(browser, source):
         page.keyboard.press(keys[step % 2])
         step += 1
     counts = page.evaluate("""({
-        chtml: document.querySelectorAll('.MathJax_CHTML').length,
-        errors: document.querySelectorAll('.mjx-merror, .MathJax_Error').length,
+        chtml: document.querySelectorAll('mjx-container.MathJax[jax="CHTML"]').length,
+        errors: document.querySelectorAll('mjx-merror').length,
         notesVisible: [...document.querySelectorAll('aside.notes')].some(a => a.offsetParent !== null),
     })""")
     page.close()

@@ -6,10 +6,9 @@ import re
 
 import nbformat
 import pytest
-
-import build_slides
-from slides import myst
-from slides.preprocess import LIVE_DEMO_HTML, MystSlidesPreprocessor, auto_slide_type
+from tools import build_slides
+from tools.slides import myst
+from tools.slides.preprocess import LIVE_DEMO_HTML, MystSlidesPreprocessor, auto_slide_type
 
 LABELS = {
     "ch02-def-sj": "Definition (Space Jacobian)",
@@ -203,7 +202,7 @@ def test_every_chapter_converts_without_raw_myst_left(source):
 
 
 def test_skipped_prose_keeps_its_definition_results_and_warnings():
-    from slides.preprocess import piece_slide_type
+    from tools.slides.preprocess import piece_slide_type
 
     cell = ("Long prose the author skipped.\n\n```{prf:definition} D\n:label: d\nBody.\n```\n\n"
             "More prose.\n\n```{prf:proof}\nBecause.\n```\n\n```{tip}\nA tip.\n```\n\n## Next section\ntext")

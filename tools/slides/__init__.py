@@ -4,5 +4,5 @@
                 Markdown + HTML that nbconvert renders, with styled boxes;
 ``preprocess``  the nbconvert preprocessor that applies it to a notebook and
                 decides what each cell shows on a slide;
-``templates/``  the nbconvert template ``course`` (reveal.js, no CDN).
+``templates/``  the nbconvert template ``course`` (reveal.js and MathJax 3, no CDN).
 """

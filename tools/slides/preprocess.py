@@ -20,7 +20,8 @@ Runs before nbconvert's own reveal metadata preprocessor. For each cell:
   ``hide-output`` drop the outputs; stderr streams (warnings) are dropped; a
   cell left with nothing to show is dropped.
 * Widget views cannot run without a kernel (a dead slider on a slide is a
-  bug), so they are replaced by a pointer to the live version.
+  bug), so they are replaced by a pointer to the live version, and the saved
+  widget state is dropped (the deck then loads no widget manager).
 * Any ``<link>`` or ``<script src>`` to another host left in an HTML output
   (e.g. matplotlib's jshtml font-awesome link) is removed: the deck links its
   local font-awesome copy instead.
@@ -143,6 +144,7 @@ class MystSlidesPreprocessor(Preprocessor):
         if not any(_explicit_type(c) not in ("skip", "notes") for c in cells):
             raise ValueError("no cell is left to show on a slide")
         nb.cells = cells
+        nb.metadata.pop("widgets", None)  # no widget view is left to render
         resources.setdefault("slides", {})
         resources["slides"]["images"] = ctx.images
         resources["slides"]["warnings"] = ctx.warnings
