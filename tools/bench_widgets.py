@@ -19,10 +19,10 @@ import time
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
-import numpy as np  # noqa: E402
+import numpy as np
 
-import jacobians as jac  # noqa: E402
-from jacobians import widgets as Wd  # noqa: E402
+import jacobians as jac
+from jacobians import widgets as Wd
 
 
 def timed(fn, reps, cpu=None):
@@ -67,16 +67,16 @@ def main():
         w = make()
         change(w, 0)  # warm up
         cpu = []
-        upd = timed(lambda k: change(w, k + 1), args.n, cpu)
+        upd = timed(lambda k, w=w, change=change: change(w, k + 1), args.n, cpu)
 
-        def full(k):
+        def full(k, w=w, change=change):
             w.blitter.invalidate()
             change(w, k + 1)
 
         # full redraw: the same change, with the kept background thrown away first
         fullt = timed(full, max(args.n // 4, 3))
         w.blitter.invalidate()
-        rebuild = timed(lambda k: make(), args.builds)
+        rebuild = timed(lambda k, make=make: make(), args.builds)
         med = float(np.median(upd))
         print(f"{name:40s} {1000 * med:8.1f}ms {1000 * upd.max():6.1f}ms {1000 * np.median(fullt):9.1f}ms "
               f"{1000 * np.median(rebuild):6.0f}ms {np.median(rebuild) / med:13.1f}x {1 / med:9.1f} "

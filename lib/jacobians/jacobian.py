@@ -27,7 +27,8 @@ array([[ 0.,  0.],
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -392,7 +393,10 @@ def geometric_to_body(J: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
 
 
 def space_to_geometric(J_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
-    r""":math:`J = \begin{bmatrix} I & 0\\ -[p] & I\end{bmatrix} J_s`: rows :math:`(\omega_s,\ v_s + \omega_s\times p)`."""
+    r""":math:`J = \begin{bmatrix} I & 0\\ -[p] & I\end{bmatrix} J_s`.
+
+    Rows :math:`(\omega_s,\ v_s + \omega_s\times p)`.
+    """
     J_s, T = _pair(J_s, T_sb, ("J_s", "T_sb"))
     p = T[..., :3, 3]
     lin = J_s[..., 3:, :] - _cross_cols(p, J_s[..., :3, :])
@@ -400,7 +404,10 @@ def space_to_geometric(J_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
 
 
 def geometric_to_space(J: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
-    r""":math:`J_s = \begin{bmatrix} I & 0\\ [p] & I\end{bmatrix} J`: rows :math:`(\omega_s,\ \dot p + p\times\omega_s)`."""
+    r""":math:`J_s = \begin{bmatrix} I & 0\\ [p] & I\end{bmatrix} J`.
+
+    Rows :math:`(\omega_s,\ \dot p + p\times\omega_s)`.
+    """
     J, T = _pair(J, T_sb, ("J", "T_sb"))
     p = T[..., :3, 3]
     lin = J[..., 3:, :] + _cross_cols(p, J[..., :3, :])

@@ -212,7 +212,8 @@ def resolved_rate(chain, theta0, target_path, dt: float, method: str = "pinv", d
     P = as_float_array(target_path, "target_path")
     if P.ndim != 2 or P.shape[1] not in (2, 3) or P.shape[0] < 2:
         raise ValueError(
-            f"Expected target_path with shape (N, 2) for (x, y) points or (N, 3) for (x, y, z), N >= 2; got shape {P.shape}"
+            "Expected target_path with shape (N, 2) for (x, y) points or (N, 3) for (x, y, z), N >= 2; "
+            f"got shape {P.shape}"
         )
     check_finite(P, "target_path")
     N, d = P.shape

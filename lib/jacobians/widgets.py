@@ -45,27 +45,27 @@ from __future__ import annotations
 import contextlib
 import io
 
-import numpy as np
-
 import ipywidgets as W
+import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from .frames import FRAMES, JACOBIAN_SYMBOLS, Frame, check_frame
-from .jacobian import analytic_jacobian, body_jacobian, geometric_jacobian, jacobian, pose_coordinates, space_jacobian
 from . import robots
 from . import velocity as _velocity
+from ._validation import as_float_array, theta_array
 from .analysis import force_ellipsoid, velocity_ellipsoid
 from .chain import _as_chain
+from .frames import FRAMES, JACOBIAN_SYMBOLS, Frame, check_frame
+from .jacobian import analytic_jacobian, body_jacobian, geometric_jacobian, jacobian, pose_coordinates, space_jacobian
 from .plotting import (
     COLUMN_COLORS,
     PALETTE,
     EllipseArtist,
     FrameSource,
-    PlanarArmArtist,
-    TwistArtist,
     MatrixArtist,
+    PlanarArmArtist,
     SpatialChainArtist,
+    TwistArtist,
     arm_reach,
     check_planar,
     matrix_latex,
@@ -73,7 +73,6 @@ from .plotting import (
     setup_planar_axes,
 )
 from .representations import rate_to_angular_velocity, representation_singularity_margin
-from ._validation import as_float_array, theta_array
 
 __all__ = [
     "PlanarArmExplorer",
@@ -226,7 +225,8 @@ JACOBIAN_FORMULAS = {
     "space": (r"J_s(\theta) = \begin{bmatrix} \mathcal S_1 & [\mathrm{Ad}_{e^{[\mathcal S_1]\theta_1}}]\mathcal S_2"
               r" & \cdots & [\mathrm{Ad}_{e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_{n-1}]\theta_{n-1}}}]"
               r"\mathcal S_n \end{bmatrix}, \quad \mathcal V_s = J_s(\theta)\dot\theta"),
-    "body": (r"J_b(\theta) = \begin{bmatrix} [\mathrm{Ad}_{e^{-[\mathcal B_n]\theta_n}\cdots e^{-[\mathcal B_2]\theta_2}}]"
+    "body": (r"J_b(\theta) = \begin{bmatrix} "
+             r"[\mathrm{Ad}_{e^{-[\mathcal B_n]\theta_n}\cdots e^{-[\mathcal B_2]\theta_2}}]"
              r"\mathcal B_1 & \cdots & [\mathrm{Ad}_{e^{-[\mathcal B_n]\theta_n}}]\mathcal B_{n-1} & \mathcal B_n"
              r"\end{bmatrix}, \quad \mathcal V_b = J_b(\theta)\dot\theta"),
     "geometric": (r"J(\theta) = \begin{bmatrix} R_{sb} & 0 \\ 0 & R_{sb} \end{bmatrix} J_b(\theta), \quad"
@@ -315,10 +315,10 @@ class PlanarArmExplorer(_Explorer):
         self.joint_labels = [ax.text(0, 0, f"{i + 1}", fontsize=FONT - 1, color="black", zorder=6)
                              for i in range(n)]
         self.pdot_arrow = TwistArtist(ax, pts[-1], [0, 0], color=PALETTE["velocity"],
-                                      label=r"$\dot p$, tool velocity (×%.2f s)" % self.vel_scale,
+                                      label=rf"$\dot p$, tool velocity (×{self.vel_scale:.2f} s)",
                                       scale=self.vel_scale)
         self.vs_arrow = TwistArtist(ax, [0, 0], [0, 0], color=PALETTE["space"],
-                                    label=r"$v_s$ at {s}, from $\mathcal{V}_s$ (×%.2f s)" % self.vel_scale,
+                                    label=rf"$v_s$ at {{s}}, from $\mathcal{{V}}_s$ (×{self.vel_scale:.2f} s)",
                                     scale=self.vel_scale)
         eye2 = np.eye(2)
         self.vel_ellipse = EllipseArtist(ax, pts[-1], [0, 0], eye2, color=PALETTE["velocity"], lw=1.8,
@@ -384,11 +384,11 @@ class PlanarArmExplorer(_Explorer):
         with self.hold_updates():
             if theta is not None:
                 th = theta_array(theta, self.chain.dof)
-                for s, v in zip(self.angle_sliders, th):
+                for s, v in zip(self.angle_sliders, th, strict=True):
                     s.value = float(np.clip(v, s.min, s.max))
             if rates is not None:
                 r = theta_array(rates, self.chain.dof, "rates")
-                for s, v in zip(self.rate_sliders, r):
+                for s, v in zip(self.rate_sliders, r, strict=True):
                     s.value = float(np.clip(v, s.min, s.max))
             if frame is not None:
                 self.frame_dropdown.value = frame
@@ -463,7 +463,8 @@ class PlanarArmExplorer(_Explorer):
         # rebuild it when what they show changes
         legend_key = (frame, show, force_state, level)
         if legend_key != self._legend_kind:  # the v_s arrow and the clip mark are listed only when drawn
-            handles = [self.arm.link_line, self.pdot_arrow.quiver] + ([self.vs_arrow.quiver] if frame == "space" else [])
+            handles = [self.arm.link_line, self.pdot_arrow.quiver]
+            handles += [self.vs_arrow.quiver] if frame == "space" else []
             handles += [self.vel_ellipse.line, self.force_ellipse.line]
             ell_label, clip_label = FORCE_LABELS[force_state]
             self.force_ellipse.line.set_label(ell_label)
@@ -644,7 +645,7 @@ class ColumnsExplorer(_Explorer):
             if theta is not None:
                 th = theta_array(theta, self.chain.dof)
                 moved = [k for k in range(self.chain.dof) if abs(self.angle_sliders[k].value - th[k]) > 0]
-                for s, v in zip(self.angle_sliders, th):
+                for s, v in zip(self.angle_sliders, th, strict=True):
                     s.value = float(np.clip(v, s.min, s.max))
                 self.last_moved_joint = moved[0] + 1 if len(moved) == 1 else None
         return self
@@ -736,7 +737,8 @@ def columns_explorer(chain=None, column=3, theta=None, **kw) -> ColumnsExplorer:
 
 
 def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval=150) -> FrameSource:
-    """The columns view as a :class:`~jacobians.plotting.FrameSource`: each joint in turn swings by ±0.8 rad while column ``column`` is watched.
+    """The columns view as a :class:`~jacobians.plotting.FrameSource`: each joint in turn swings by ±0.8 rad
+    while column ``column`` is watched.
 
     A panel lists the values of column i of J_s and of J_b, so a reader sees
     which swings change which. ``.explorer`` is the :class:`ColumnsExplorer`,
@@ -904,7 +906,7 @@ class GimbalLockExplorer(_Explorer):
                 a = as_float_array(angles_deg, "angles_deg")
                 if a.shape != (3,):
                     raise ValueError(f"Expected angles_deg with shape (3,), got shape {a.shape}")
-                for s_, v in zip(self.angle_sliders, a):
+                for s_, v in zip(self.angle_sliders, a, strict=True):
                     s_.value = float(np.clip(v, s_.min, s_.max))
             if theta2_deg is not None:
                 s2 = self.angle_sliders[1]
@@ -1211,7 +1213,8 @@ class ResolvedRateExplorer(_Explorer):
             level)
 
 
-def resolved_rate_explorer(chain=None, path="close past the base", method="pinv", damping=0.1, **kw) -> ResolvedRateExplorer:
+def resolved_rate_explorer(chain=None, path="close past the base", method="pinv", damping=0.1,
+                           **kw) -> ResolvedRateExplorer:
     r"""Resolved-rate motion of a planar arm along a path (chapter 9).
 
     Paths: ``"circle"`` (well inside the workspace), ``"to full reach"`` (ends

@@ -32,15 +32,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
-
 import matplotlib
 import matplotlib.pyplot as plt
+import numpy as np
 from matplotlib import animation as _animation
 from matplotlib.artist import Artist
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["FrameSource", "animation_html", "blit_frames", "compact_png"]
 
@@ -166,7 +165,8 @@ def blit_frames(anim: _animation.Animation, update: Callable[[int], Any], n_fram
     fig = artists[0].get_figure(root=True)
     if not isinstance(fig, Figure):
         raise ValueError(f"Expected artists drawn on a figure, got {artists[0]!r} on none")
-    source = FrameSource(fig, update, int(n_frames), interval=anim.event_source.interval, moving=artists)
+    timer: Any = anim.event_source  # a TimerBase: its interval is public
+    source = FrameSource(fig, update, int(n_frames), interval=timer.interval, moving=artists)
     source.rgba()  # the background now, as before (this draw also counts as the animation's first)
     _LEGACY[anim] = source
     return source
@@ -242,7 +242,8 @@ def _player(frames: Sequence[str], interval: float, default_mode: str) -> str:
     """
     stand_in = Figure(figsize=(1, 1), dpi=2)  # 2 x 2 pixels
     FigureCanvasAgg(stand_in)
-    writer = _animation.HTMLWriter(fps=1000.0 / interval, embed_frames=True, default_mode=default_mode)
+    fps: Any = 1000.0 / interval  # a float, as matplotlib uses it (its stubs say int)
+    writer = _animation.HTMLWriter(fps=fps, embed_frames=True, default_mode=default_mode)
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp, "anim.html")
         with writer.saving(stand_in, str(out), 2):
@@ -286,8 +287,8 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
     if isinstance(anim, _animation.Animation) and anim in _LEGACY:
         anim = _LEGACY[anim]
     if isinstance(anim, _animation.Animation):
-        html, frames = _plain_animation_frames(anim, default_mode, colors)
-        return HTML(_strip_cdn(_swap_frames(html, frames)))
+        html, reduced = _plain_animation_frames(anim, default_mode, colors)
+        return HTML(_strip_cdn(_swap_frames(html, reduced)))
     if not isinstance(anim, FrameSource):
         raise TypeError(f"Expected a FrameSource (or a matplotlib Animation), got {type(anim).__name__}")
     limit = float(embed_limit_mb) * 1024 * 1024

@@ -8,10 +8,11 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
-
 import matplotlib
+import numpy as np
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array
 from ..chain import SerialChain, _as_chain
@@ -21,7 +22,7 @@ __all__ = ["check_planar", "arm_reach", "TwistArtist", "draw_twist", "FrameArtis
            "draw_ellipse"]
 
 
-def check_planar(chain, what: str = "this figure"):
+def check_planar(chain: SerialChain, what: str = "this figure") -> SerialChain:
     """Return ``chain`` if it moves in the x–y plane of {s}, else raise ``ValueError``.
 
     Planar means: every revolute axis is parallel to z, every prismatic
@@ -48,7 +49,7 @@ def check_planar(chain, what: str = "this figure"):
     return chain
 
 
-def arm_reach(chain) -> float:
+def arm_reach(chain: SerialChain) -> float:
     """How far the joints and tool get from the origin of {s}, for axis limits.
 
     The largest distance over the home pose and 64 fixed pseudo-random
@@ -63,13 +64,13 @@ def arm_reach(chain) -> float:
     return max(r, 1e-3)
 
 
-def _clean(v):
+def _clean(v: ArrayLike) -> NDArray[np.float64]:
     v = np.array(v, dtype=float)
     v[~np.isfinite(v)] = 0.0
     return v
 
 
-def _is_3d(ax) -> bool:
+def _is_3d(ax: Any) -> bool:
     return getattr(ax, "name", "") == "3d"
 
 
@@ -78,7 +79,8 @@ def _is_3d(ax) -> bool:
 class TwistArtist:
     """Arrows (a quiver in data units) drawn at points; ``update(points, vectors)`` moves them."""
 
-    def __init__(self, ax, points, vectors, *, color=None, label=None, width=0.012, zorder=5, scale=1.0):
+    def __init__(self, ax: Axes, points: ArrayLike, vectors: ArrayLike, *, color: str | None = None,
+                 label: str | None = None, width: float = 0.012, zorder: float = 5, scale: float = 1.0) -> None:
         P = np.atleast_2d(_clean(points))[:, :2]
         V = np.atleast_2d(_clean(vectors))[:, :2] * scale
         if color is None:
@@ -90,7 +92,7 @@ class TwistArtist:
             color=color, width=width, zorder=zorder, label=label,
         )
 
-    def update(self, points, vectors):
+    def update(self, points: ArrayLike, vectors: ArrayLike) -> TwistArtist:
         P = np.atleast_2d(_clean(points))[:, :2]
         V = np.atleast_2d(_clean(vectors))[:, :2] * self.scale
         self.quiver.set_offsets(P)
@@ -98,20 +100,23 @@ class TwistArtist:
         return self
 
     @property
-    def vectors(self) -> np.ndarray:
+    def vectors(self) -> NDArray[np.float64]:
         """The drawn vectors (already multiplied by ``scale``), shape (k, 2)."""
         return np.column_stack([self.quiver.U, self.quiver.V])
 
     @property
-    def points(self) -> np.ndarray:
+    def points(self) -> NDArray[np.float64]:
+        """The arrows' start points, shape (k, 2)."""
         return np.asarray(self.quiver.get_offsets())
 
     @property
-    def artists(self):
+    def artists(self) -> list[Artist]:
+        """The artists that :meth:`update` moves."""
         return [self.quiver]
 
 
-def draw_twist(ax, point, vector, *, color=None, label=None, scale=1.0, width=0.012, zorder=5) -> TwistArtist:
+def draw_twist(ax: Axes, point: ArrayLike, vector: ArrayLike, *, color: str | None = None, label: str | None = None,
+               scale: float = 1.0, width: float = 0.012, zorder: float = 5) -> TwistArtist:
     """Arrow(s) of ``vector`` (x, y parts used) starting at ``point``, in data units.
 
     ``point`` and ``vector`` have shape (2,) / (3,) for one arrow or (k, 2) / (k, 3)
@@ -123,7 +128,8 @@ def draw_twist(ax, point, vector, *, color=None, label=None, scale=1.0, width=0.
 class FrameArtist:
     """A coordinate frame drawn as its x, y (and z in 3-D) axes, with labels; ``update(T)`` moves it."""
 
-    def __init__(self, ax, T, label, length, fontsize=None, alpha=1.0, lw=2.5):
+    def __init__(self, ax: Any, T: ArrayLike, label: str | None, length: float, fontsize: float | None = None,
+                 alpha: float = 1.0, lw: float = 2.5) -> None:
         self.ax = ax
         self.length = float(length)
         self.label = label
@@ -150,11 +156,11 @@ class FrameArtist:
             self.name_text = ax.text(0, 0, "", fontsize=fs, color="black", ha="right", va="top", zorder=6)
         self.update(T)
 
-    def update(self, T):
+    def update(self, T: ArrayLike) -> FrameArtist:
         T = np.asarray(T, dtype=float)
         o = T[:3, 3]
         L = self.length
-        for j, (ln, tx) in enumerate(zip(self.axis_lines, self.axis_texts)):
+        for j, (ln, tx) in enumerate(zip(self.axis_lines, self.axis_texts, strict=True)):
             tip = o + L * T[:3, j]
             lab = f"$\\mathbf{{{'xyz'[j]}}}_{{{self._sub}}}$" if self._sub else ""
             tip_t = o + 1.22 * L * T[:3, j]
@@ -178,11 +184,12 @@ class FrameArtist:
         return self
 
     @property
-    def artists(self):
+    def artists(self) -> list[Artist]:
+        """The artists that :meth:`update` moves."""
         return self.axis_lines + self.axis_texts + [self.name_text]
 
 
-def draw_frame(ax, T, label="{s}", length=0.3, **kw) -> FrameArtist:
+def draw_frame(ax: Any, T: ArrayLike, label: str | None = "{s}", length: float = 0.3, **kw: Any) -> FrameArtist:
     """Draw frame ``T`` (4x4) on ``ax``: x red-orange, y green, z blue; named ``label``.
 
     On a 2-D axes only the x and y axes are drawn (projected on the x–y plane);
@@ -197,7 +204,8 @@ def draw_frame(ax, T, label="{s}", length=0.3, **kw) -> FrameArtist:
 class EllipseArtist:
     """An ellipse drawn as a closed line; ``update(center, semi_axes, directions)``."""
 
-    def __init__(self, ax, center, semi_axes, directions, n_points=90, **kw):
+    def __init__(self, ax: Axes, center: ArrayLike, semi_axes: ArrayLike, directions: ArrayLike, n_points: int = 90,
+                 **kw: Any) -> None:
         self.ax = ax
         self._t = np.linspace(0, 2 * np.pi, n_points)
         kw.setdefault("color", PALETTE["velocity"])
@@ -205,24 +213,27 @@ class EllipseArtist:
         (self.line,) = ax.plot([], [], **kw)
         self.update(center, semi_axes, directions)
 
-    def points(self, center, semi_axes, directions) -> np.ndarray:
+    def points(self, center: ArrayLike, semi_axes: ArrayLike, directions: ArrayLike) -> NDArray[np.float64]:
+        """Points of the ellipse, shape (n_points, 2)."""
         c = _clean(center)[:2]
         s = _clean(semi_axes)[:2]
         D = _clean(directions)[:2, :2]
         circ = np.stack([np.cos(self._t), np.sin(self._t)])
-        return (c[:, None] + D @ (s[:, None] * circ)).T
+        out: NDArray[np.float64] = (c[:, None] + D @ (s[:, None] * circ)).T
+        return out
 
-    def update(self, center, semi_axes, directions):
+    def update(self, center: ArrayLike, semi_axes: ArrayLike, directions: ArrayLike) -> EllipseArtist:
         P = self.points(center, semi_axes, directions)
         self.line.set_data(P[:, 0], P[:, 1])
         return self
 
     @property
-    def artists(self):
+    def artists(self) -> list[Artist]:
+        """The artists that :meth:`update` moves."""
         return [self.line]
 
 
-def draw_ellipse(ax, center, semi_axes, directions, **kw) -> EllipseArtist:
+def draw_ellipse(ax: Axes, center: ArrayLike, semi_axes: ArrayLike, directions: ArrayLike, **kw: Any) -> EllipseArtist:
     r"""Draw the ellipse :math:`\{c + D\,\mathrm{diag}(s)\,u : \|u\| = 1\}` on a 2-D axes.
 
     ``semi_axes`` (2,) are the half-lengths s, ``directions`` (2, 2) holds the

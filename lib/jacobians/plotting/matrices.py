@@ -6,6 +6,7 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 import numpy as np
+from matplotlib.axes import Axes
 from numpy.typing import ArrayLike
 
 from .._validation import as_float_array
@@ -13,7 +14,7 @@ from .._validation import as_float_array
 __all__ = ["matrix_latex", "MatrixArtist", "draw_matrix"]
 
 
-def _fmt(x, digits):
+def _fmt(x: float, digits: int) -> str:
     if not np.isfinite(x):
         return r"\text{undef.}"
     if abs(x) < 0.5 * 10.0 ** (-digits):
@@ -24,7 +25,8 @@ def _fmt(x, digits):
     return s
 
 
-def matrix_latex(J, name: str | None = None, digits: int = 3, highlight_columns=(), highlight_color="orange") -> str:
+def matrix_latex(J: ArrayLike, name: str | None = None, digits: int = 3, highlight_columns: Iterable[int] = (),
+                 highlight_color: str = "orange") -> str:
     r"""A LaTeX ``bmatrix`` of a numeric matrix, optionally preceded by ``name =``.
 
     Entries are rounded to ``digits`` decimals; ``-0`` is shown as ``0``; NaN and
@@ -56,7 +58,8 @@ def matrix_latex(J, name: str | None = None, digits: int = 3, highlight_columns=
 class MatrixArtist:
     """A numeric matrix drawn as a grid of text on an axes; ``update(J)`` changes the numbers."""
 
-    def __init__(self, ax, J, *, digits=2, row_labels=None, col_labels=None, title=None, fontsize=12):
+    def __init__(self, ax: Axes, J: ArrayLike, *, digits: int = 2, row_labels: Sequence[str] | None = None,
+                 col_labels: Sequence[str] | None = None, title: str | None = None, fontsize: float = 12) -> None:
         A = np.atleast_2d(as_float_array(J, "J"))
         self.ax = ax
         self.digits = digits
@@ -78,21 +81,25 @@ class MatrixArtist:
                        for j in range(n)] for i in range(m)]
         self.update(A)
 
-    def update(self, J, colors=None):
+    def update(self, J: ArrayLike, colors: Any = None) -> MatrixArtist:
+        """Show the numbers of ``J`` (same shape); ``colors``: one per column, or one per entry."""
         A = np.atleast_2d(as_float_array(J, "J"))
         if A.shape != self.shape:
             raise ValueError(f"Expected J with shape {self.shape}, got shape {A.shape}")
         for i in range(self.shape[0]):
             for j in range(self.shape[1]):
                 x = A[i, j]
-                self.texts[i][j].set_text("undef." if not np.isfinite(x) else f"{(0.0 if abs(x) < 0.5 * 10 ** -self.digits else x):.{self.digits}f}")
+                shown = 0.0 if abs(x) < 0.5 * 10 ** -self.digits else x
+                self.texts[i][j].set_text("undef." if not np.isfinite(x) else f"{shown:.{self.digits}f}")
                 if colors is not None:
                     self.texts[i][j].set_color(colors[j] if np.ndim(colors) == 1 else colors[i][j])
         self.values = A
         return self
 
 
-def draw_matrix(ax, J, *, digits=2, row_labels=None, col_labels=None, title=None, fontsize=12) -> MatrixArtist:
+def draw_matrix(ax: Axes, J: ArrayLike, *, digits: int = 2, row_labels: Sequence[str] | None = None,
+                col_labels: Sequence[str] | None = None, title: str | None = None,
+                fontsize: float = 12) -> MatrixArtist:
     """Draw a numeric matrix as text on ``ax`` (no image). Returns a :class:`MatrixArtist`.
 
     Rows of a Jacobian are usually labelled ``["ωx", "ωy", "ωz", "vx", "vy", "vz"]``.

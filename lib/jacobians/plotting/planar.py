@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
-
 import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array, theta_array
 from ..chain import SerialChain
@@ -24,8 +25,10 @@ __all__ = ["PlanarArmArtist", "setup_planar_axes", "draw_planar_arm", "column_ar
 class PlanarArmArtist:
     """What :func:`draw_planar_arm` drew; ``update(theta, twist=None)`` moves it in place."""
 
-    def __init__(self, ax, chain, theta, *, show_frames=True, show_joints=True, color=None, alpha=1.0,
-                 label=None, twist=None, frame_length=None, twist_scale=1.0, show_base=True):
+    def __init__(self, ax: Axes, chain: SerialChain, theta: ArrayLike, *, show_frames: bool = True,
+                 show_joints: bool = True, color: str | None = None, alpha: float = 1.0, label: str | None = None,
+                 twist: ArrayLike | None = None, frame_length: float | None = None, twist_scale: float = 1.0,
+                 show_base: bool = True) -> None:
         self.ax = ax
         self.chain = chain
         self.alpha = alpha
@@ -50,12 +53,12 @@ class PlanarArmArtist:
             self.base_frame = FrameArtist(ax, np.eye(4), "{s}", L, alpha=alpha)
             self.tool_frame = FrameArtist(ax, chain.home, "{b}", 0.8 * L, alpha=alpha)
             self.frames = [self.base_frame, self.tool_frame]
-        self.twist_artist = None
+        self.twist_artist: TwistArtist | None = None
         self.twist_scale = float(twist_scale)
         self._want_twist = twist is not None
         self.update(theta, twist=twist)
 
-    def update(self, theta, twist=None):
+    def update(self, theta: ArrayLike, twist: ArrayLike | None = None) -> PlanarArmArtist:
         """Move the arm to ``theta``; if given, draw ``twist`` (a space twist V_s, 6-vector) at the tool.
 
         The arrow is the velocity of the origin of {b},
@@ -85,8 +88,9 @@ class PlanarArmArtist:
         return self
 
     @property
-    def artists(self):
-        out = [self.link_line, self.tool_marker]
+    def artists(self) -> list[Artist]:
+        """The artists that :meth:`update` moves."""
+        out: list[Artist] = [self.link_line, self.tool_marker]
         if self.joint_markers is not None:
             out.append(self.joint_markers)
         if self.base is not None:
@@ -98,7 +102,7 @@ class PlanarArmArtist:
         return out
 
 
-def setup_planar_axes(ax, chain, *, title=None, margin=0.25):
+def setup_planar_axes(ax: Axes, chain: SerialChain, *, title: str | None = None, margin: float = 0.25) -> Axes:
     """Equal-aspect axes around the arm's reach, labelled x (m), y (m)."""
     r = arm_reach(chain) * (1 + margin)
     ax.set_xlim(-r, r)
@@ -111,9 +115,10 @@ def setup_planar_axes(ax, chain, *, title=None, margin=0.25):
     return ax
 
 
-def draw_planar_arm(ax, chain, theta, *, show_frames=True, show_joints=True, color=None, alpha=1.0, label=None,
-                    twist=None, frame_length=None, twist_scale=1.0, show_base=True, setup_axes=False,
-                    title=None) -> PlanarArmArtist:
+def draw_planar_arm(ax: Axes, chain: SerialChain, theta: ArrayLike, *, show_frames: bool = True,
+                    show_joints: bool = True, color: str | None = None, alpha: float = 1.0, label: str | None = None,
+                    twist: ArrayLike | None = None, frame_length: float | None = None, twist_scale: float = 1.0,
+                    show_base: bool = True, setup_axes: bool = False, title: str | None = None) -> PlanarArmArtist:
     r"""Draw a planar arm at ``theta``: links, joints (circles), frames {s} and {b}.
 
     Parameters

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import Any, cast
 
 import numpy as np
+from matplotlib.artist import Artist
+from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
 from .._validation import theta_array
@@ -15,7 +18,7 @@ from .style import COLUMN_COLORS, PALETTE
 __all__ = ["SpatialChainArtist", "setup_3d_axes", "draw_spatial_chain"]
 
 
-def _agg_renderer(fig, draw=True):
+def _agg_renderer(fig: Figure, draw: bool = True) -> Any:
     """A renderer for measuring ``fig``'s texts (an Agg canvas is attached if the figure has none
     that can render, e.g. after ``plt.show()`` closed it in a notebook). With ``draw``, or when a
     layout engine only places the axes at draw time, the figure is drawn first."""
@@ -25,7 +28,7 @@ def _agg_renderer(fig, draw=True):
         FigureCanvasAgg(fig)
     if draw or fig.get_layout_engine() is not None:
         fig.canvas.draw()
-    return fig.canvas.get_renderer()
+    return cast(Any, fig.canvas).get_renderer()
 
 
 class SpatialChainArtist:
@@ -41,8 +44,10 @@ class SpatialChainArtist:
     each other and of the other axes.
     """
 
-    def __init__(self, ax, chain, theta, *, show_axes=True, show_frames=True, color=None, axis_length=None,
-                 frame_length=None, label=None, highlight=None, fontsize=None, label_at=None, label_box=False):
+    def __init__(self, ax: Any, chain: SerialChain, theta: ArrayLike, *, show_axes: bool = True,
+                 show_frames: bool = True, color: str | None = None, axis_length: float | None = None,
+                 frame_length: float | None = None, label: str | None = None, highlight: Any = None,
+                 fontsize: float | None = None, label_at: ArrayLike | None = None, label_box: bool = False) -> None:
         self.ax = ax
         self.chain = chain
         reach = arm_reach(chain)
@@ -63,7 +68,7 @@ class SpatialChainArtist:
                 col = COLUMN_COLORS[i % len(COLUMN_COLORS)]
                 (ln,) = ax.plot([], [], [], "-", color=col, lw=3)
                 (ld,) = ax.plot([], [], [], ":", color=col, lw=1.6)
-                kw = {}
+                kw: dict[str, Any] = {}
                 if self._centred:
                     kw.update(ha="center", va="center")
                 if label_box:
@@ -81,20 +86,20 @@ class SpatialChainArtist:
         self.update(theta)
 
     @staticmethod
-    def _label_positions(label_at, n):
+    def _label_positions(label_at: ArrayLike, n: int) -> NDArray[np.float64]:
         t = np.broadcast_to(np.asarray(label_at, dtype=float), (n,)).copy() if np.ndim(label_at) == 0 else \
             np.asarray(label_at, dtype=float)
         if t.shape != (n,) or not np.all(np.isfinite(t)):
             raise ValueError(f"Expected label_at as one finite number or {n} of them (one per joint), got {label_at!r}")
         return t
 
-    def _axis_direction(self, P, i):
+    def _axis_direction(self, P: NDArray[np.float64], i: int) -> NDArray[np.float64]:
         S = self.chain.screw_axes
         if self.chain.joint_types[i] == "R":
             return P[i, :3, :3] @ S[:3, i]
         return P[i, :3, :3] @ S[3:, i]
 
-    def update(self, theta):
+    def update(self, theta: ArrayLike) -> SpatialChainArtist:
         th = theta_array(theta, self.chain.dof)
         P = self.chain.prefix_transforms(th)
         pts = self.chain.joint_positions(th)
@@ -102,7 +107,7 @@ class SpatialChainArtist:
         self.link_line.set_data_3d(pts[:, 0], pts[:, 1], pts[:, 2])
         self.joint_markers.set_data_3d(pts[:-1, 0], pts[:-1, 1], pts[:-1, 2])
         h = self.axis_length
-        for i, (ln, tx, ld) in enumerate(zip(self.axis_lines, self.axis_texts, self.leader_lines)):
+        for i, (ln, tx, ld) in enumerate(zip(self.axis_lines, self.axis_texts, self.leader_lines, strict=True)):
             d = self._axis_direction(P, i)
             a, b = pts[i] - h * d, pts[i] + h * d
             ln.set_data_3d([a[0], b[0]], [a[1], b[1]], [a[2], b[2]])
@@ -120,7 +125,7 @@ class SpatialChainArtist:
         return self
 
     @property
-    def artists(self):
+    def artists(self) -> list[Artist]:
         """The artists that :meth:`update` moves (for :func:`blit_frames`)."""
         out = [self.link_line, self.joint_markers, *self.axis_lines, *self.leader_lines, *self.axis_texts]
         if self.frames:
@@ -128,7 +133,7 @@ class SpatialChainArtist:
         return out
 
     @property
-    def axis_directions(self) -> np.ndarray:
+    def axis_directions(self) -> NDArray[np.float64]:
         """(n, 3) current unit directions of the drawn joint axes."""
         out = []
         for ln in self.axis_lines:
@@ -138,19 +143,21 @@ class SpatialChainArtist:
         return np.array(out)
 
     @property
-    def label_points(self) -> np.ndarray:
+    def label_points(self) -> NDArray[np.float64]:
         """(n, 3) where the axis numbers sit, in the coordinates of {s}."""
         return np.array([t.get_position_3d() for t in self.axis_texts], dtype=float).reshape(-1, 3)
 
-    def _display(self, pts3) -> np.ndarray:
+    def _display(self, pts3: ArrayLike) -> NDArray[np.float64]:
         """Pixel coordinates of 3-D points in the axes' current view."""
         from mpl_toolkits.mplot3d import proj3d
 
         pts3 = np.asarray(pts3, dtype=float).reshape(-1, 3)
         x, y, _ = proj3d.proj_transform(pts3[:, 0], pts3[:, 1], pts3[:, 2], self.ax.get_proj())
-        return self.ax.transData.transform(np.column_stack([x, y]))
+        out: NDArray[np.float64] = self.ax.transData.transform(np.column_stack([x, y]))
+        return out
 
-    def place_labels(self, candidates=(1.5, -1.5, 1.8, -1.8, 2.1, -2.1, 2.5, -2.5, 2.9, -2.9, 3.3, -3.3, 3.8, -3.8)):
+    def place_labels(self, candidates: Sequence[float] = (1.5, -1.5, 1.8, -1.8, 2.1, -2.1, 2.5, -2.5, 2.9, -2.9, 3.3,
+                                                         -3.3, 3.8, -3.8)) -> NDArray[np.float64]:
         """Move each axis number along its own axis to where it is clearest, for the current view.
 
         Call after the view (``view_init``), the limits and the figure layout
@@ -181,9 +188,10 @@ class SpatialChainArtist:
         dirs = np.array([self._axis_direction(P, i) for i in range(n)])
         s = np.linspace(0.0, 1.0, 60)[:, None]
 
-        def sampled(a, b):
-            a, b = self._display(np.array([a, b]))
-            return a + s * (b - a)
+        def sampled(a: ArrayLike, b: ArrayLike) -> NDArray[np.float64]:
+            da, db = self._display(np.array([a, b]))
+            out: NDArray[np.float64] = da + s * (db - da)
+            return out
 
         segs = [sampled(pts[i] - h * dirs[i], pts[i] + h * dirs[i]) for i in range(n)]
         link = self._display(pts)
@@ -203,24 +211,26 @@ class SpatialChainArtist:
             half.append((b.width / 2, b.height / 2))
         lims = np.array([self.ax.get_xlim3d(), self.ax.get_ylim3d(), self.ax.get_zlim3d()])
 
-        def point_clearance(c, hw, q):  # signed distance from points q to the box (negative inside)
+        def point_clearance(c: Any, hw: Any, q: NDArray[np.float64]) -> float:
+            """Signed distance from the points q to the box (negative inside)."""
             dx = np.abs(q[:, 0] - c[0]) - hw[0]
             dy = np.abs(q[:, 1] - c[1]) - hw[1]
             outside = np.hypot(np.maximum(dx, 0), np.maximum(dy, 0))
             inside = np.minimum(np.maximum(dx, dy), 0)
             return float(np.min(outside + inside))
 
-        def rect_clearance(c, hw, r):
+        def rect_clearance(c: Any, hw: Any, r: Any) -> float:
             dx = abs(c[0] - r[0]) - hw[0] - r[2]
             dy = abs(c[1] - r[1]) - hw[1] - r[3]
             return float(np.hypot(max(dx, 0), max(dy, 0)) + min(max(dx, dy), 0))
 
-        def leader(i, t):  # sampled dotted leader from the segment's tip to the number (none within the tip)
+        def leader(i: int, t: float) -> NDArray[np.float64] | None:
+            """The sampled dotted leader from the segment's tip to the number (none within the tip)."""
             if abs(t) <= 1.0:
                 return None
             return sampled(pts[i] + np.sign(t) * h * dirs[i], pts[i] + t * h * dirs[i])
 
-        def score(i, t, placed):
+        def score(i: int, t: float, placed: dict[int, Any]) -> float:
             c3 = pts[i] + t * h * dirs[i]
             if np.any(c3 < lims[:, 0]) or np.any(c3 > lims[:, 1]):
                 return -np.inf
@@ -242,7 +252,7 @@ class SpatialChainArtist:
             return min(d) - 0.5 * abs(t)  # on a tie, the shorter leader
 
         chosen = self.label_at.copy()
-        placed = {}
+        placed: dict[int, Any] = {}
         for _ in range(4):  # a few sweeps: each number moves to its best spot given the others
             for i in range(n):
                 best = max(cands, key=lambda t: score(i, t, placed))
@@ -252,7 +262,7 @@ class SpatialChainArtist:
         self.update(self.theta)
         return chosen
 
-    def _text_box(self, tx, renderer):
+    def _text_box(self, tx: Any, renderer: Any) -> Any:
         """Pixel bounding box of a 3-D text (and of its background box) as drawn in the current view."""
         from matplotlib.transforms import Bbox
 
@@ -294,7 +304,7 @@ class SpatialChainArtist:
                 if boxes[i].overlaps(bb):
                     out.append(f"number {i + 1} overlaps the label {name!r}")
         s = np.linspace(0.0, 1.0, 60)[:, None]
-        for j, (ln, ld) in enumerate(zip(self.axis_lines, self.leader_lines)):
+        for j, (ln, ld) in enumerate(zip(self.axis_lines, self.leader_lines, strict=True)):
             for line in (ln, ld):
                 x, y, z = line.get_data_3d()
                 if len(x) < 2:
@@ -327,7 +337,8 @@ class SpatialChainArtist:
         return out
 
 
-def setup_3d_axes(ax, chain, *, title=None, margin=0.1, fontsize=None):
+def setup_3d_axes(ax: Any, chain: SerialChain, *, title: str | None = None, margin: float = 0.1,
+                  fontsize: float | None = None) -> Any:
     """Equal-scale 3-D axes around the chain's reach, labelled in metres.
 
     ``fontsize`` (points), when given, sizes the tick labels, the axis labels
@@ -352,9 +363,11 @@ def setup_3d_axes(ax, chain, *, title=None, margin=0.1, fontsize=None):
     return ax
 
 
-def draw_spatial_chain(ax3d, chain, theta, *, show_axes=True, show_frames=True, color=None, axis_length=None,
-                       frame_length=None, label=None, setup_axes=False, title=None, fontsize=None, label_at=None,
-                       label_box=False, place_labels=False) -> SpatialChainArtist:
+def draw_spatial_chain(ax3d: Any, chain: SerialChain, theta: ArrayLike, *, show_axes: bool = True,
+                       show_frames: bool = True, color: str | None = None, axis_length: float | None = None,
+                       frame_length: float | None = None, label: str | None = None, setup_axes: bool = False,
+                       title: str | None = None, fontsize: float | None = None, label_at: ArrayLike | None = None,
+                       label_box: bool = False, place_labels: bool = False) -> SpatialChainArtist:
     """Draw a spatial chain on a 3-D axes: links through the joint points, each joint axis
     as a short numbered segment (in the column colours), frames {s} and {b}.
 
