@@ -1,383 +1,292 @@
-"""Fixes for the known browser-console errors of the book's stack.
+"""Fixes for known problems of the book's stack, one small handler per problem.
 
 A local Sphinx extension (``_config.yml``: ``sphinx: local_extensions:
-{offline_fixes: _ext}``). Each fix below names the error it removes; the
-browser tests in ``tests/browser`` check that a built page shows none of them.
+{offline_fixes: _ext}``). Each handler's docstring names the problem and the
+package version it was seen in; the browser tests in ``tests/browser`` check
+that a built page shows none of the problems, tests/test_offline_fixes.py
+tests each handler.
 
-1. ``Identifier 'THEBE_JS_URL' has already been declared`` (a page error on
-   every page). Sphinx 7.4 registers an inline script added by an extension
-   once with filename ``None`` and once with filename ``''``, so the
-   ``<script>`` of sphinx-thebe (and of sphinx-togglebutton) appears twice.
-   We drop duplicate scripts, and drop sphinx-thebe's scripts altogether when
-   the thebe launch button is off (it is: thebe needs a remote kernel, which
-   an offline book cannot have; its script names a CDN URL).
-2. ``Got invalid theme mode: . Resetting to auto.`` (console error on a first
-   visit): pydata-sphinx-theme writes ``localStorage.mode || default_mode`` and
-   ``default_mode`` is empty unless set in ``html_context``. We default it to
-   ``"auto"`` (follow the reader's system setting), which is what the theme
-   falls back to anyway.
-3. ``GET /favicon.ico 404``: browsers ask for a favicon when the page names
-   none. We give the book one (``_ext/favicon.svg``) unless the config sets
-   ``html_favicon``.
-4. ``Cannot read properties of undefined (reading 'Queue')``: the widget HTML
-   manager typesets widget labels with the MathJax 2 API
-   (``MathJax.Hub.Queue``) but the book runs MathJax 3. On pages with widgets
-   we add a shim ``MathJax.Hub.Queue`` that calls MathJax 3's
-   ``typesetPromise``.
-5. 404s for the widget manager's fonts (``chapters/@jupyter-widgets/
-   html-manager/dist/<hash>.woff2``): the manager computes its public path
-   from its AMD module id, which require.js resolves against the page's
-   folder. A ``require.config`` ``paths`` entry maps that id to the vendored
-   copy in ``_static/html-manager``, where the fonts are.
-6. Images without alt text: myst-nb renders a matplotlib output as ``<img>``
-   whose alt is the file path (``../_images/3f2a...png``), and matplotlib's
-   JS animation has an ``<img>`` with no alt at all. We fill in the alt text
-   from, in this order: an explicit ``mystnb: image: alt:`` (kept as is), the
-   figure caption, the titles the cell's code sets on the figure
-   (``set_title``/``suptitle``/``plt.title``), else the section the output
-   sits in. Authors who want better alt text set ``mystnb: image: alt:``.
-7. Page weight: a page whose notebook saved widget state but shows no
-   widget does not load require.js and the 4.3 MB widget manager.
-8. Page weight: the theme's ``fontawesome.js`` (1.4 MB, only needed for
-   custom icons, which the book has none of) is not loaded; see
-   :func:`_drop_fontawesome_js`.
+Each handler also fails the build loudly (:class:`ProblemGone`, a Sphinx
+``ExtensionError``) when the problem it fixes has gone away upstream, so that a
+fix never outlives its problem:
+
+* fixes of the configuration check the upstream file they work around;
+* fixes applied page by page count the pages they changed; a full build (every
+  page written) in which one of them changed nothing fails at the end
+  (incremental builds, which write a few pages, skip this check).
+
+Handlers (see each one's docstring): :func:`drop_duplicate_scripts`,
+:func:`drop_thebe_assets`, :func:`drop_unused_widget_assets`,
+:func:`default_theme_mode`, :func:`default_favicon`,
+:func:`drop_fontawesome_js`, :func:`remove_unloaded_theme_files`,
+:func:`fill_alt_text`.
 """
 
 from __future__ import annotations
 
-import ast
-import html
-import json
 import re
+import shutil
+from collections import Counter
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+# (titles_from_code, plain and add_alt_to_html are re-exported for tests/browser)
+from alt_text import add_alt_to_html, describe_image, plain, titles_from_code
 from docutils import nodes
+from sphinx.application import Sphinx
+from sphinx.config import Config
+from sphinx.errors import ExtensionError
+
+__all__ = ["ProblemGone", "add_alt_to_html", "plain", "setup", "titles_from_code"]
 
 HERE = Path(__file__).resolve().parent
-
-# ---------------------------------------------------------------- scripts
-_MATHJAX2_SHIM = r"""
-(function () {
-  /* offline_fixes: the widget manager calls MathJax.Hub.Queue (MathJax 2);
-     the book runs MathJax 3. Forward to typesetPromise once MathJax is up. */
-  function queue(cmd) {
-    var el = Array.isArray(cmd) ? cmd[2] : undefined;
-    dollarsToParens(el);
-    var tries = 0;
-    (function go() {
-      var MJ = window.MathJax;
-      if (MJ && MJ.typesetPromise && MJ.startup && MJ.startup.promise) {
-        MJ.startup.promise.then(function () {
-          return MJ.typesetPromise(el ? [el] : undefined);
-        }).catch(function (e) { console.warn("MathJax typeset failed", e); });
-      } else if (tries++ < 100) {
-        setTimeout(go, 100);
-      }
-    })();
-  }
-  function dollarsToParens(el) {
-    /* widget descriptions use $...$; the book's MathJax 3 knows only \(...\) */
-    if (!el || !document.createTreeWalker) { return; }
-    var walker = document.createTreeWalker(el, NodeFilter.SHOW_TEXT), node, nodes = [];
-    while ((node = walker.nextNode())) { nodes.push(node); }
-    nodes.forEach(function (t) {
-      if (t.nodeValue.indexOf("$") >= 0) {
-        t.nodeValue = t.nodeValue.replace(/\$([^$]+)\$/g, "\\($1\\)");
-      }
-    });
-  }
-  function install() {
-    var MJ = window.MathJax;
-    if (MJ && !MJ.Hub) { MJ.Hub = {Queue: queue}; }
-  }
-  install();
-  document.addEventListener("DOMContentLoaded", install);
-  window.addEventListener("load", install);
-})();
-"""
+WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
+WIDGET_STATE = "application/vnd.jupyter.widget-state+json"
 
 
-def _require_paths_config(html_manager_url: str) -> str:
-    # The bundle defines these AMD modules by name; each computes webpack's
-    # public path (where its fonts and chunks are) from its own module URI.
-    base = html_manager_url.rstrip("/")
-    paths = {
-        "@jupyter-widgets/html-manager/dist": base,
-        "@jupyter-widgets/html-manager": base + "/html-manager",
-        "@jupyter-widgets/base": base + "/base",
-        "@jupyter-widgets/controls": base + "/controls",
-        "@jupyter-widgets/output": base + "/output",
-    }
-    return (
-        "/* offline_fixes: serve the widget manager (and its fonts) from _static */\n"
-        f"require.config({{paths: {json.dumps(paths)}}});"
-    )
+class ProblemGone(ExtensionError):
+    """A fix of this extension found nothing to fix: the upstream problem is gone."""
+
+    def __init__(self, handler: str, what: str) -> None:
+        super().__init__(f"offline_fixes.{handler}: {what}. The upstream problem it fixes seems gone: "
+                         f"check, then delete the handler (and its test) from _ext/offline_fixes.py.")
 
 
-def _script_key(js: Any) -> tuple:
-    filename = getattr(js, "filename", js) or ""
-    attrs = getattr(js, "attributes", {}) or {}
-    return (str(filename), tuple(sorted((k, str(v)) for k, v in attrs.items())))
+# ---------------------------------------------------------------- page tallies
+
+#: pages written in this build, and pages each per-page handler changed
+_TALLY: Counter[str] = Counter()
+_PER_PAGE = ("drop_duplicate_scripts", "drop_thebe_assets", "drop_unused_widget_assets", "fill_alt_text")
 
 
-def _is_thebe(js: Any) -> bool:
-    filename = str(getattr(js, "filename", js) or "")
-    body = str((getattr(js, "attributes", {}) or {}).get("body", ""))
-    return filename.endswith("sphinx-thebe.js") or "THEBE_JS_URL" in body
+def _reset_tally(app: Sphinx) -> None:
+    _TALLY.clear()
+
+
+def _count_page(app: Sphinx, pagename: str, templatename: str, context: dict[str, Any], doctree: Any) -> None:
+    if pagename in app.env.found_docs:  # not genindex, search, ... (written by every build)
+        _TALLY["pages"] += 1
+
+
+def check_tally(app: Sphinx, exception: Exception | None) -> None:
+    """After a full build, fail for each per-page handler that changed no page."""
+    full = app.parallel <= 1 and _TALLY["pages"] >= len(app.env.found_docs) > 0
+    if exception is not None or not full:
+        return
+    for handler in _PER_PAGE:
+        if _TALLY[handler] == 0:
+            raise ProblemGone(handler, f"changed none of the {_TALLY['pages']} pages of a full build")
+
+
+# ---------------------------------------------------------------- scripts and styles
+
+
+def _filename(asset: Any) -> str:
+    return str(getattr(asset, "filename", asset) or "")
+
+
+def _attributes(asset: Any) -> dict[str, Any]:
+    return dict(getattr(asset, "attributes", {}) or {})
+
+
+def drop_duplicate_scripts(app: Sphinx, pagename: str, templatename: str, context: dict[str, Any],
+                           doctree: Any) -> None:
+    """Each inline script of an extension appears twice on every page (Sphinx 7.4.7).
+
+    Sphinx registers an inline script added with ``app.add_js_file(None,
+    body=...)`` once with filename ``None`` and once with ``''``, so the
+    page runs it twice: ``Identifier 'THEBE_JS_URL' has already been declared``
+    (sphinx-thebe 0.3.1, sphinx-togglebutton 0.4.5). The second copy is dropped.
+    """
+    scripts = context.get("script_files")
+    if not isinstance(scripts, list):
+        return
+    seen: set[tuple[str, tuple[tuple[str, str], ...]]] = set()
+    kept = []
+    for js in scripts:
+        key = (_filename(js), tuple(sorted((k, str(v)) for k, v in _attributes(js).items())))
+        if key not in seen:
+            seen.add(key)
+            kept.append(js)
+    if len(kept) < len(scripts):
+        _TALLY["drop_duplicate_scripts"] += 1
+        context["script_files"] = kept
+
+
+def _thebe_enabled(config: Config) -> bool:
+    launch = (config.html_theme_options or {}).get("launch_buttons") or {}
+    return bool(launch.get("thebe")) or bool(getattr(config, "use_thebe", False))
+
+
+def drop_thebe_assets(app: Sphinx, pagename: str, templatename: str, context: dict[str, Any],
+                      doctree: Any) -> None:
+    """sphinx-thebe 0.3.1 loads its script and style sheet on every page, even with thebe off.
+
+    Thebe needs a remote kernel, which an offline book cannot have (its
+    launch button is off in _config.yml), and its script names a CDN URL. With
+    thebe off, the page loads neither.
+    """
+    if _thebe_enabled(app.config):
+        return
+    scripts, css = context.get("script_files"), context.get("css_files")
+    changed = False
+    if isinstance(scripts, list):
+        kept = [js for js in scripts if not (_filename(js).endswith("sphinx-thebe.js")
+                                            or "THEBE_JS_URL" in str(_attributes(js).get("body", "")))]
+        changed |= len(kept) < len(scripts)
+        context["script_files"] = kept
+    if isinstance(css, list):
+        kept_css = [c for c in css if not _filename(c).endswith("sphinx-thebe.css")]
+        changed |= len(kept_css) < len(css)
+        context["css_files"] = kept_css
+    if changed:
+        _TALLY["drop_thebe_assets"] += 1
 
 
 def _is_widget_asset(js: Any) -> bool:
-    filename = str(getattr(js, "filename", js) or "")
-    attrs = getattr(js, "attributes", {}) or {}
-    return (
-        filename.endswith(("require.js", "embed-amd.js"))
-        or attrs.get("type") == "application/vnd.jupyter.widget-state+json"
-    )
+    return (_filename(js).endswith(("require.js", "embed-amd.js"))
+            or _attributes(js).get("type") == WIDGET_STATE)
 
 
-def _thebe_enabled(app) -> bool:
-    opts = app.config.html_theme_options or {}
-    launch = opts.get("launch_buttons") or {}
-    return bool(launch.get("thebe")) or bool(getattr(app.config, "use_thebe", False))
+def drop_unused_widget_assets(app: Sphinx, pagename: str, templatename: str, context: dict[str, Any],
+                              doctree: Any) -> None:
+    """myst-nb 1.4.0 loads the widget manager on a page whose notebook saved widget state.
 
-
-def _fix_page_assets(app, pagename, templatename, context, doctree) -> None:
-    scripts = context.get("script_files")
-    if isinstance(scripts, list):
-        thebe = _thebe_enabled(app)
-        seen: set[tuple] = set()
-        kept = []
-        for js in scripts:
-            key = _script_key(js)
-            if key in seen or (not thebe and _is_thebe(js)):
-                continue
-            seen.add(key)
-            kept.append(js)
-        # widgets: a notebook can carry widget state with no widget shown on the
-        # page (a removed cell made one); the 4.3 MB manager then renders nothing.
-        body = str(context.get("body", ""))
-        if "application/vnd.jupyter.widget-view+json" not in body:
-            kept = [js for js in kept if not _is_widget_asset(js)]
-        # widgets: shim MathJax 2's API and point require.js at the vendored manager
-        names = [str(getattr(js, "filename", "") or "") for js in kept]
-        req = next((i for i, n in enumerate(names) if n.endswith("require.js")), None)
-        if req is not None and any("html-manager" in n for n in names):
-            from sphinx.builders.html._assets import _JavaScript
-
-            prio = kept[req].priority
-            url = context["pathto"]("_static/html-manager", 1)
-            extra = [
-                _JavaScript("", priority=prio, body=_require_paths_config(url)),
-                _JavaScript("", priority=prio, body=_MATHJAX2_SHIM),
-            ]
-            kept[req + 1:req + 1] = extra
-        context["script_files"] = kept
-    css = context.get("css_files")
-    if isinstance(css, list) and not _thebe_enabled(app):
-        context["css_files"] = [
-            c for c in css if not str(getattr(c, "filename", c) or "").endswith("sphinx-thebe.css")
-        ]
-
-
-# ---------------------------------------------------------------- config
-def _drop_fontawesome_js(app, config) -> None:
-    """Override pydata-sphinx-theme's ``static/webpack-macros.html`` without its fontawesome.js.
-
-    The theme loads ``_static/scripts/fontawesome.js`` (1.4 MB, every Font
-    Awesome icon as JavaScript) on every page "so that users can add custom
-    icons". The book adds none; the theme's own icons come from its CSS and
-    the woff2 webfont, so the script only adds weight. The override is made
-    from the installed theme's file at build time (one line removed), so it
-    follows the pinned theme version.
+    It adds require.js, the 4.3 MB widget manager (``nb_ipywidgets_js``) and the
+    saved state whenever the notebook's metadata holds widget state, even when
+    no widget is shown (a hidden cell made one). The book shows no live widget
+    (the chapters show animations) and vendors no widget manager
+    (tools/vendor.py), so these are dropped; a page that does show a widget
+    stops the build, since it could not work offline.
     """
-    try:
-        import pydata_sphinx_theme
-    except ImportError:
+    scripts = context.get("script_files")
+    if not isinstance(scripts, list):
         return
-    src = Path(pydata_sphinx_theme.__file__).parent / "theme" / "pydata_sphinx_theme" / "static" / "webpack-macros.html"
-    if not src.exists():
-        return
-    text = src.read_text(encoding="utf-8")
-    fixed = re.sub(r"[ \t]*<script[^>]*scripts/fontawesome\.js[^>]*></script>\n?", "", text)
-    if fixed == text:
-        return
-    dest = Path(app.doctreedir) / "offline_fixes_templates"
-    (dest / "static").mkdir(parents=True, exist_ok=True)
-    (dest / "static" / "webpack-macros.html").write_text(fixed, encoding="utf-8")
-    config.templates_path = [str(dest)] + list(config.templates_path or [])
+    if WIDGET_VIEW in str(context.get("body", "")):
+        raise ExtensionError(
+            f"offline_fixes: page {pagename!r} shows a live Jupyter widget, which the book cannot run: it "
+            "vendors no widget manager (tools/vendor.py). Show an animation instead, or tag the cell remove-cell.")
+    kept = [js for js in scripts if not _is_widget_asset(js)]
+    if len(kept) < len(scripts):
+        _TALLY["drop_unused_widget_assets"] += 1
+        context["script_files"] = kept
 
 
-def _config_inited(app, config) -> None:
-    _drop_fontawesome_js(app, config)
-    if not config.html_favicon:
-        config.html_favicon = str(HERE / "favicon.svg")
+# ---------------------------------------------------------------- configuration
+
+
+def _theme_file(*parts: str) -> Path:
+    import pydata_sphinx_theme
+
+    return Path(pydata_sphinx_theme.__file__).parent.joinpath("theme", "pydata_sphinx_theme", *parts)
+
+
+def default_theme_mode(app: Sphinx, config: Config) -> None:
+    """``Got invalid theme mode: . Resetting to auto.`` on a first visit (pydata-sphinx-theme 0.17.1).
+
+    The theme's layout sets ``localStorage.getItem("mode") || "{{ default_mode }}"``
+    and ``default_mode`` is empty unless ``html_context`` sets it. It is set to
+    ``"auto"`` (follow the reader's system setting), what the theme falls back to.
+    """
+    layout = _theme_file("layout.html").read_text(encoding="utf-8")
+    if '|| "{{ default_mode }}"' not in layout:
+        raise ProblemGone("default_theme_mode", "the theme's layout.html no longer reads default_mode")
     if config.html_context is None:
         config.html_context = {}
     config.html_context.setdefault("default_mode", "auto")
 
 
+def default_favicon(app: Sphinx, config: Config) -> None:
+    """``GET /favicon.ico 404``: jupyter-book 1.0.4 names no favicon, so browsers ask for one.
+
+    The book gets ``_ext/favicon.svg``.
+    """
+    if config.html_favicon:
+        raise ProblemGone("default_favicon", f"html_favicon is already set ({config.html_favicon!r})")
+    config.html_favicon = str(HERE / "favicon.svg")
+
+
+_FONTAWESOME_TAG = re.compile(r"[ \t]*<script[^>]*scripts/fontawesome\.js[^>]*></script>\n?")
+
+
+def drop_fontawesome_js(app: Sphinx, config: Config) -> None:
+    """pydata-sphinx-theme 0.17.1 loads ``fontawesome.js`` (1.4 MB) on every page.
+
+    The script holds every Font Awesome icon as JavaScript "so that users can
+    add custom icons"; the book adds none, and the theme's own icons come from
+    its CSS and webfont. The theme's ``static/webpack-macros.html`` is
+    overridden by a copy without that line, made from the installed theme at
+    build time (so it follows the pinned version).
+    """
+    src = _theme_file("static", "webpack-macros.html")
+    text = src.read_text(encoding="utf-8") if src.is_file() else ""
+    fixed = _FONTAWESOME_TAG.sub("", text)
+    if fixed == text:
+        raise ProblemGone("drop_fontawesome_js", f"{src} does not load scripts/fontawesome.js")
+    dest = Path(app.doctreedir) / "offline_fixes_templates"
+    (dest / "static").mkdir(parents=True, exist_ok=True)
+    (dest / "static" / "webpack-macros.html").write_text(fixed, encoding="utf-8")
+    config.templates_path = [str(dest), *(config.templates_path or [])]
+
+
+#: files of the themes' static folders that no page loads (paths under _static; globs)
+UNLOADED_THEME_FILES: Sequence[str] = (
+    "scripts/*.map", "styles/*.map",             # source maps, for the theme's developers
+    "scripts/fontawesome.js*",                   # no longer loaded (drop_fontawesome_js)
+    "vendor/fontawesome/webfonts/*.ttf",         # every browser that runs the theme reads the woff2
+    "locales",                                   # the theme's translations, read at build time
+)
+
+
+def remove_unloaded_theme_files(app: Sphinx, exception: Exception | None) -> None:
+    """pydata-sphinx-theme 0.17.1 and sphinx-book-theme 1.3.0 copy 5 MB into ``_static`` that no page loads.
+
+    Source maps (3.4 MB), ``fontawesome.js`` (1.5 MB, see
+    :func:`drop_fontawesome_js`), TrueType copies of the woff2 webfonts and the
+    translation catalogues are removed from the built ``_static`` (they are
+    copied again, and removed again, by every build). The browser tests see
+    every request a page makes; none goes to these files.
+    """
+    if exception is not None or app.builder.format != "html":
+        return
+    static = Path(app.outdir) / "_static"
+    found = [p for pattern in UNLOADED_THEME_FILES for p in static.glob(pattern)]
+    if not found:
+        raise ProblemGone("remove_unloaded_theme_files", f"none of {list(UNLOADED_THEME_FILES)} is in {static}")
+    for path in found:
+        if path.is_dir():
+            shutil.rmtree(path)
+        else:
+            path.unlink()
+
+
 # ---------------------------------------------------------------- alt text
 
 
-def titles_from_code(source: str) -> list[str]:
-    """String-literal titles a cell sets on its figure, in order.
+def fill_alt_text(app: Sphinx, doctree: nodes.document, docname: str) -> None:
+    """Images without real alt text (myst-nb 1.4.0, matplotlib 3.10's HTML animation).
 
-    Looks for ``ax.set_title("...")``, ``fig.suptitle("...")`` and
-    ``plt.title("...")`` with a literal first argument (f-strings keep their
-    literal parts). The code is parsed, never run.
+    myst-nb renders a matplotlib output as ``<img>`` whose alt is the file path
+    (``../_images/3f2a...png``), and matplotlib's JS animation has an ``<img>``
+    with no alt at all. They get a description (:mod:`alt_text`): an explicit
+    ``mystnb: image: alt:`` is kept as is; else the figure caption, the titles
+    the cell's code sets, or the section the output sits in.
     """
-    found: list[str] = []
-    try:
-        tree = ast.parse(source)
-    except SyntaxError:
-        return found
-    for node in ast.walk(tree):
-        if not isinstance(node, ast.Call) or not node.args:
-            continue
-        func = node.func
-        name = func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
-        if name not in ("set_title", "suptitle", "title"):
-            continue
-        arg = node.args[0]
-        text = None
-        if isinstance(arg, ast.Constant) and isinstance(arg.value, str):
-            text = arg.value
-        elif isinstance(arg, ast.JoinedStr):
-            text = "".join(
-                v.value for v in arg.values if isinstance(v, ast.Constant) and isinstance(v.value, str)
-            )
-        if text:
-            text = re.sub(r"\$([^$]*)\$", r"\1", text)  # drop mathtext dollars
-            text = re.sub(r"\\(mathrm|mathcal|mathbf|operatorname)\{([^}]*)\}", r"\2", text)
-            text = " ".join(text.replace("\\", "").split())
-            if text and text not in found:
-                found.append(text)
-    return found
+    if describe_image(doctree, Path(app.env.doc2path(docname)), app.env.titles.get(docname)):
+        _TALLY["fill_alt_text"] += 1
 
 
-def _cell_sources(app, docname: str) -> dict[int, str]:
-    """Code of each cell of a notebook page, by cell index (empty if not a notebook)."""
-    cache = getattr(app.env, "_offline_fixes_sources", None)
-    if cache is None:
-        cache = app.env._offline_fixes_sources = {}
-    if docname in cache:
-        return cache[docname]
-    sources: dict[int, str] = {}
-    try:
-        path = Path(app.env.doc2path(docname))
-        text = path.read_text(encoding="utf-8")
-        if path.suffix == ".ipynb":
-            import nbformat
-
-            nb = nbformat.reads(text, as_version=4)
-        else:
-            from myst_nb.core.read import read_myst_markdown_notebook
-
-            nb = read_myst_markdown_notebook(text)
-        sources = {i: c.get("source", "") for i, c in enumerate(nb.cells) if c.get("cell_type") == "code"}
-    except Exception:  # not a notebook, or unreadable: fall back to section titles
-        sources = {}
-    cache[docname] = sources
-    return sources
-
-
-def _section_title(node: nodes.Node) -> str | None:
-    parent = node.parent
-    while parent is not None:
-        if isinstance(parent, nodes.section):
-            for child in parent.children:
-                if isinstance(child, nodes.title):
-                    return child.astext()
-        parent = parent.parent
-    return None
-
-
-def _cell_index(node: nodes.Node) -> int | None:
-    parent = node.parent
-    while parent is not None:
-        if isinstance(parent, nodes.container) and parent.get("nb_element") == "cell_code":
-            idx = parent.get("cell_index")
-            return int(idx) if idx is not None else None
-        parent = parent.parent
-    return None
-
-
-def plain(text: str) -> str:
-    """Alt text is read aloud: TeX commands as words, no braces or backslashes.
-
-    >>> plain(r"arm at $\\theta = (0.5, 0.6)$, T_{sb}")
-    'arm at theta = (0.5, 0.6), T_sb'
-    """
-    text = text.replace("$", "")
-    text = re.sub(r"\\(mathrm|mathcal|mathbf|operatorname|text)\{([^}]*)\}", r"\2", text)
-    text = re.sub(r"\\([a-zA-Z]+)", r"\1", text)
-    text = text.replace("{", "").replace("}", "").replace("\\", "")
-    return " ".join(text.split())
-
-
-def _describe(app, docname: str, node: nodes.Node, kind: str) -> str:
-    return plain(_describe_raw(app, docname, node, kind))
-
-
-def _describe_raw(app, docname: str, node: nodes.Node, kind: str) -> str:
-    # a figure caption says it best
-    parent = node.parent
-    while parent is not None:
-        if isinstance(parent, nodes.figure):
-            for child in parent.children:
-                if isinstance(child, nodes.caption) and child.astext().strip():
-                    return child.astext().strip()
-            break
-        parent = parent.parent
-    idx = _cell_index(node)
-    if idx is not None:
-        titles = titles_from_code(_cell_sources(app, docname).get(idx, ""))
-        if titles:
-            return f"{kind}: " + "; ".join(titles)
-    section = _section_title(node) or app.env.titles.get(docname, nodes.title()).astext()
-    return f"{kind} in the section “{section}”" if section else kind
-
-
-_IMG_TAG = re.compile(r"<img\b[^>]*>", re.IGNORECASE)
-_HAS_ALT = re.compile(r"\balt\s*=", re.IGNORECASE)
-
-
-def add_alt_to_html(fragment: str, alt: str) -> str:
-    """Give every ``<img>`` of an HTML fragment without an ``alt`` attribute one."""
-
-    def fix(match: re.Match) -> str:
-        tag = match.group(0)
-        if _HAS_ALT.search(tag):
-            return tag
-        return tag[:4] + f' alt="{html.escape(alt, quote=True)}"' + tag[4:]
-
-    return _IMG_TAG.sub(fix, fragment)
-
-
-def _fix_alt_text(app, doctree, docname) -> None:
-    for img in list(doctree.findall(nodes.image)):
-        alt = (img.get("alt") or "").strip()
-        uri = img.get("uri", "")
-        if alt and alt != uri and Path(alt).name != Path(uri).name:
-            continue
-        img["alt"] = _describe(app, docname, img, "Figure")
-    for raw in list(doctree.findall(nodes.raw)):
-        if "html" not in raw.get("format", "").split():
-            continue
-        text = raw.astext()
-        if "<img" not in text.lower():
-            continue
-        kind = "Animation" if "_anim_img" in text or "anim-buttons" in text else "Figure"
-        fixed = add_alt_to_html(text, _describe(app, docname, raw, kind))
-        if fixed != text:
-            new = nodes.raw(fixed, fixed, **{k: v for k, v in raw.attributes.items() if k != "ids"})
-            new["ids"] = list(raw.get("ids", []))
-            raw.replace_self(new)
-
-
-def setup(app) -> dict[str, Any]:
-    app.connect("config-inited", _config_inited)
-    app.connect("html-page-context", _fix_page_assets, priority=900)
-    app.connect("doctree-resolved", _fix_alt_text)
-    return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
+def setup(app: Sphinx) -> dict[str, Any]:
+    app.connect("config-inited", default_theme_mode)
+    app.connect("config-inited", default_favicon)
+    app.connect("config-inited", drop_fontawesome_js)
+    app.connect("builder-inited", _reset_tally)
+    app.connect("html-page-context", _count_page, priority=900)
+    app.connect("html-page-context", drop_duplicate_scripts, priority=900)
+    app.connect("html-page-context", drop_thebe_assets, priority=901)
+    app.connect("html-page-context", drop_unused_widget_assets, priority=902)
+    app.connect("doctree-resolved", fill_alt_text)
+    app.connect("build-finished", remove_unloaded_theme_files)
+    app.connect("build-finished", check_tally, priority=900)
+    return {"version": "2.0", "parallel_read_safe": True, "parallel_write_safe": True}
