@@ -72,7 +72,8 @@ __all__ = [
 
 # ---------------------------------------------------------------- core evaluation
 
-def _core_convert(frame: str, J, R, p):
+def _core_convert(frame: str, J: NDArray[np.float64], R: NDArray[np.float64],
+                  p: NDArray[np.float64]) -> NDArray[np.float64]:
     """Convert space columns J (6, n, ...) to ``frame`` with T_sb = (R, p), core axes first.
 
     R has shape (3, 3, ...) and p (3, ...), batch axes last; J's column axis is
@@ -99,8 +100,14 @@ def _core_convert(frame: str, J, R, p):
     return out
 
 
-def _evaluate(chain: SerialChain, theta, frame: str, with_pose: bool = False):
-    """J in ``frame`` (space/body/geometric, already checked) with shape (..., 6, n), and optionally T_sb."""
+def _evaluate(chain: SerialChain, theta: ArrayLike, frame: str) -> NDArray[np.float64]:
+    """J in ``frame`` (space/body/geometric, already checked), shape (..., 6, n)."""
+    return _evaluate_pose(chain, theta, frame, with_pose=False)[0]
+
+
+def _evaluate_pose(chain: SerialChain, theta: ArrayLike, frame: str,
+                   with_pose: bool = True) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """J in ``frame`` (space/body/geometric, already checked) with shape (..., 6, n), and T_sb if ``with_pose``."""
     chain = _as_chain(chain)
     C = chain._C
     n = chain.dof
@@ -122,16 +129,16 @@ def _evaluate(chain: SerialChain, theta, frame: str, with_pose: bool = False):
                 J[:3] = Rt @ J[:3]
                 J[3:] = Rt @ lin
         if with_pose:
-            T = np.eye(4)
-            T[:3, :3] = R
-            T[:3, 3] = p
-            return J, T
-        return J
+            T1 = np.eye(4)
+            T1[:3, :3] = R
+            T1[:3, 3] = p
+            return J, T1
+        return J, None
     batch = th.shape[:-1]
     flat = th.reshape(-1, n)
     N = flat.shape[0]
-    out = np.empty((N, 6, n))
-    T = None
+    out: NDArray[np.float64] = np.empty((N, 6, n))
+    T: NDArray[np.float64] | None = None
     if with_pose:
         T = np.zeros((N, 4, 4))
         T[:, 3, 3] = 1.0
@@ -140,22 +147,24 @@ def _evaluate(chain: SerialChain, theta, frame: str, with_pose: bool = False):
         if frame == "body" and not with_pose:
             # reversed sweep over -B_n..-B_1: no conversion needed
             thT = np.ascontiguousarray(flat[a:b, ::-1].T)
-            J, _, _, _ = K.sweep_batch(chain._C_rev, thT, want_columns=True, want_final=False)
-            np.negative(J[:, ::-1].transpose(2, 0, 1), out=out[a:b])
+            Jr, _, _, _ = K.sweep_batch(chain._C_rev, thT, want_columns=True, want_final=False)
+            np.negative(Jr[:, ::-1].transpose(2, 0, 1), out=out[a:b])
             continue
         thT = np.ascontiguousarray(flat[a:b].T)
         need_pose = frame != "space" or with_pose
-        J, R, p, _ = K.sweep_batch(C, thT, want_columns=True, want_final=need_pose)
+        Jc, Rc, pc, _ = K.sweep_batch(C, thT, want_columns=True, want_final=need_pose)
         if need_pose:
-            R, p = K.times_home(R, p, M)
-        out[a:b] = _core_convert(frame, J, R, p).transpose(2, 0, 1)
-        if with_pose:
-            T[a:b, :3, :3] = R.transpose(2, 0, 1)
-            T[a:b, :3, 3] = p.T
+            assert Rc is not None and pc is not None
+            Rc, pc = K.times_home(Rc, pc, M)
+        out[a:b] = _core_convert(frame, Jc, Rc, pc).transpose(2, 0, 1)  # type: ignore[arg-type]
+        if T is not None:
+            assert Rc is not None and pc is not None
+            T[a:b, :3, :3] = Rc.transpose(2, 0, 1)
+            T[a:b, :3, 3] = pc.T
     out = out.reshape(batch + (6, n))
-    if with_pose:
+    if T is not None:
         return out, T.reshape(batch + (4, 4))
-    return out
+    return out, None
 
 
 def jacobian(chain: SerialChain, theta: ArrayLike, frame: Frame, representation: str = "zyx",
@@ -271,7 +280,8 @@ def pose_coordinates(T: ArrayLike, representation: str = "zyx") -> NDArray[np.fl
     return np.concatenate([_coords(T[..., :3, :3], representation), T[..., :3, 3]], axis=-1)
 
 
-def _analytic_from_geometric(J, T, representation, on_singularity, tol):
+def _analytic_from_geometric(J: NDArray[np.float64], T: NDArray[np.float64], representation: str,
+                             on_singularity: str, tol: float) -> NDArray[np.float64]:
     phi = _coords(T[..., :3, :3], representation)
     bad = _margin(phi, representation) < tol
     if np.any(bad):
@@ -322,34 +332,36 @@ def analytic_jacobian(chain: SerialChain, theta: ArrayLike, representation: str 
     if on_singularity not in ("raise", "nan"):
         raise ValueError(f"Expected on_singularity 'raise' or 'nan', got {on_singularity!r}")
     tol = positive_float(tol, "tol")
-    J, T = _evaluate(chain, theta, "geometric", with_pose=True)
+    J, T = _evaluate_pose(chain, theta, "geometric")
+    assert T is not None
     return _analytic_from_geometric(J, T, representation, on_singularity, tol)
 
 
 # ---------------------------------------------------------------- conversions
 
-def _pair(J, T, names=("J", "T")):
-    J = jacobian_array(J, names[0])
-    T = transform_array(T, names[1])
-    broadcast_leading(J, 2, T, 2, names)
-    return J, T
+def _pair(J: object, T: object, names: tuple[str, str] = ("J", "T")) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    Ja = jacobian_array(J, names[0])
+    Ta = transform_array(T, names[1])
+    broadcast_leading(Ja, 2, Ta, 2, names)
+    return Ja, Ta
 
 
-def _rotate_blocks(R, J, transpose=False):
+def _rotate_blocks(R: NDArray[np.float64], J: NDArray[np.float64], transpose: bool = False) -> NDArray[np.float64]:
     Rm = np.swapaxes(R, -1, -2) if transpose else R
-    out = np.empty(np.broadcast_shapes(J.shape[:-2], R.shape[:-2]) + J.shape[-2:])
+    out: NDArray[np.float64] = np.empty(np.broadcast_shapes(J.shape[:-2], R.shape[:-2]) + J.shape[-2:])
     out[..., :3, :] = Rm @ J[..., :3, :]
     out[..., 3:, :] = Rm @ J[..., 3:, :]
     return out
 
 
-def _cross_cols(p, w):
+def _cross_cols(p: NDArray[np.float64], w: NDArray[np.float64]) -> NDArray[np.float64]:
     """p × w column-wise: p (..., 3), w (..., 3, n)."""
-    p = p[..., :, None]
-    return np.stack(
-        [p[..., 1, :] * w[..., 2, :] - p[..., 2, :] * w[..., 1, :],
-         p[..., 2, :] * w[..., 0, :] - p[..., 0, :] * w[..., 2, :],
-         p[..., 0, :] * w[..., 1, :] - p[..., 1, :] * w[..., 0, :]], -2)
+    q = p[..., :, None]
+    out: NDArray[np.float64] = np.stack(
+        [q[..., 1, :] * w[..., 2, :] - q[..., 2, :] * w[..., 1, :],
+         q[..., 2, :] * w[..., 0, :] - q[..., 0, :] * w[..., 2, :],
+         q[..., 0, :] * w[..., 1, :] - q[..., 1, :] * w[..., 0, :]], -2)
+    return out
 
 
 def space_to_body(J_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
@@ -364,32 +376,32 @@ def space_to_body(J_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     -------
     J_b : ndarray, shape (..., 6, n)
     """
-    J_s, T = _pair(J_s, T_sb, ("J_s", "T_sb"))
+    Js, T = _pair(J_s, T_sb, ("J_s", "T_sb"))
     R, p = T[..., :3, :3], T[..., :3, 3]
-    lin = J_s[..., 3:, :] - _cross_cols(p, J_s[..., :3, :])
-    out = np.concatenate(np.broadcast_arrays(J_s[..., :3, :], lin), axis=-2)
+    lin = Js[..., 3:, :] - _cross_cols(p, Js[..., :3, :])
+    out = np.concatenate(np.broadcast_arrays(Js[..., :3, :], lin), axis=-2)
     return _rotate_blocks(R, out, transpose=True)
 
 
 def body_to_space(J_b: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J_s = [\mathrm{Ad}_{T_{sb}}] J_b`: rows :math:`(R\omega_b,\ R v_b + p \times R\omega_b)`."""
-    J_b, T = _pair(J_b, T_sb, ("J_b", "T_sb"))
+    Jb, T = _pair(J_b, T_sb, ("J_b", "T_sb"))
     R, p = T[..., :3, :3], T[..., :3, 3]
-    out = _rotate_blocks(R, J_b)
+    out = _rotate_blocks(R, Jb)
     out[..., 3:, :] += _cross_cols(p, out[..., :3, :])
     return out
 
 
 def body_to_geometric(J_b: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J = \mathrm{diag}(R_{sb}, R_{sb})\, J_b`."""
-    J_b, T = _pair(J_b, T_sb, ("J_b", "T_sb"))
-    return _rotate_blocks(T[..., :3, :3], J_b)
+    Jb, T = _pair(J_b, T_sb, ("J_b", "T_sb"))
+    return _rotate_blocks(T[..., :3, :3], Jb)
 
 
 def geometric_to_body(J: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`J_b = \mathrm{diag}(R_{sb}^T, R_{sb}^T)\, J`."""
-    J, T = _pair(J, T_sb, ("J", "T_sb"))
-    return _rotate_blocks(T[..., :3, :3], J, transpose=True)
+    Jg, T = _pair(J, T_sb, ("J", "T_sb"))
+    return _rotate_blocks(T[..., :3, :3], Jg, transpose=True)
 
 
 def space_to_geometric(J_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
@@ -397,10 +409,10 @@ def space_to_geometric(J_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
 
     Rows :math:`(\omega_s,\ v_s + \omega_s\times p)`.
     """
-    J_s, T = _pair(J_s, T_sb, ("J_s", "T_sb"))
+    Js, T = _pair(J_s, T_sb, ("J_s", "T_sb"))
     p = T[..., :3, 3]
-    lin = J_s[..., 3:, :] - _cross_cols(p, J_s[..., :3, :])
-    return np.concatenate(np.broadcast_arrays(J_s[..., :3, :], lin), axis=-2)
+    lin = Js[..., 3:, :] - _cross_cols(p, Js[..., :3, :])
+    return np.concatenate(np.broadcast_arrays(Js[..., :3, :], lin), axis=-2)
 
 
 def geometric_to_space(J: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
@@ -408,10 +420,10 @@ def geometric_to_space(J: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
 
     Rows :math:`(\omega_s,\ \dot p + p\times\omega_s)`.
     """
-    J, T = _pair(J, T_sb, ("J", "T_sb"))
+    Jg, T = _pair(J, T_sb, ("J", "T_sb"))
     p = T[..., :3, 3]
-    lin = J[..., 3:, :] + _cross_cols(p, J[..., :3, :])
-    return np.concatenate(np.broadcast_arrays(J[..., :3, :], lin), axis=-2)
+    lin = Jg[..., 3:, :] + _cross_cols(p, Jg[..., :3, :])
+    return np.concatenate(np.broadcast_arrays(Jg[..., :3, :], lin), axis=-2)
 
 
 def geometric_to_analytic(J: ArrayLike, T_sb: ArrayLike, representation: str = "zyx",
@@ -420,11 +432,11 @@ def geometric_to_analytic(J: ArrayLike, T_sb: ArrayLike, representation: str = "
     representation = check_representation(representation)
     if on_singularity not in ("raise", "nan"):
         raise ValueError(f"Expected on_singularity 'raise' or 'nan', got {on_singularity!r}")
-    J, T = _pair(J, T_sb, ("J", "T_sb"))
-    shape = np.broadcast_shapes(J.shape[:-2], T.shape[:-2])
-    J = np.broadcast_to(J, shape + J.shape[-2:])
+    Jg, T = _pair(J, T_sb, ("J", "T_sb"))
+    shape = np.broadcast_shapes(Jg.shape[:-2], T.shape[:-2])
+    Jg = np.broadcast_to(Jg, shape + Jg.shape[-2:])
     T = np.broadcast_to(T, shape + (4, 4))
-    return _analytic_from_geometric(J, T, representation, on_singularity, positive_float(tol, "tol"))
+    return _analytic_from_geometric(Jg, T, representation, on_singularity, positive_float(tol, "tol"))
 
 
 # ---------------------------------------------------------------- link Jacobians
