@@ -31,6 +31,7 @@ here: :func:`~jacobians.velocity.pinv_rates`,
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validation import as_float_array, check_finite, positive_float
 from .statics import joint_torques
@@ -55,7 +56,7 @@ __all__ = [
 ]
 
 
-def _matrix(J, name: str = "J") -> np.ndarray:
+def _matrix(J: object, name: str = "J") -> NDArray[np.float64]:
     """A finite float array with at least two dimensions (..., m, n), m, n >= 1."""
     A = as_float_array(J, name)
     if A.ndim < 2:
@@ -68,7 +69,7 @@ def _matrix(J, name: str = "J") -> np.ndarray:
     return check_finite(A, name)
 
 
-def _six_rows(J, name: str = "J") -> np.ndarray:
+def _six_rows(J: object, name: str = "J") -> NDArray[np.float64]:
     A = _matrix(J, name)
     if A.shape[-2] != 6:
         hint = " (it looks transposed)" if A.shape[-1] == 6 else ""
@@ -76,13 +77,13 @@ def _six_rows(J, name: str = "J") -> np.ndarray:
     return A
 
 
-def _rtol(value, A: np.ndarray) -> float:
+def _rtol(value: object, A: NDArray[np.float64]) -> float:
     if value is None:
-        return max(A.shape[-2:]) * np.finfo(float).eps
+        return float(max(A.shape[-2:]) * np.finfo(float).eps)
     return positive_float(value, "rtol")
 
 
-def singular_values(J) -> np.ndarray:
+def singular_values(J: ArrayLike) -> NDArray[np.float64]:
     r"""Singular values :math:`\sigma_1 \ge \dots \ge \sigma_r \ge 0`, :math:`r = \min(m, n)`.
 
     Parameters
@@ -96,10 +97,10 @@ def singular_values(J) -> np.ndarray:
     >>> singular_values([[3.0, 0.0], [0.0, -4.0]])
     array([4., 3.])
     """
-    return np.linalg.svd(_matrix(J), compute_uv=False)
+    return np.asarray(np.linalg.svd(_matrix(J), compute_uv=False), dtype=np.float64)
 
 
-def manipulability(J) -> np.ndarray:
+def manipulability(J: ArrayLike) -> NDArray[np.float64]:
     r"""Yoshikawa's manipulability :math:`w = \sqrt{\det(J J^T)} = \sigma_1\cdots\sigma_m`.
 
     The volume of the velocity ellipsoid, up to the volume of the unit ball.
@@ -124,10 +125,11 @@ def manipulability(J) -> np.ndarray:
     >>> round(float(manipulability([[1.0, 2.0], [3.0, 4.0]])), 12)   # |det| = 2
     2.0
     """
-    return np.prod(singular_values(J), axis=-1)
+    w: NDArray[np.float64] = np.prod(singular_values(J), axis=-1)
+    return w
 
 
-def condition_number(J) -> np.ndarray:
+def condition_number(J: ArrayLike) -> NDArray[np.float64]:
     r"""Condition number :math:`\kappa = \sigma_{\max} / \sigma_{\min}` (over the min(m, n) singular values).
 
     1 for an isotropic configuration; ``inf`` where :math:`\sigma_{\min} = 0`
@@ -149,7 +151,7 @@ def condition_number(J) -> np.ndarray:
         return np.where(small > 0, big / np.where(small > 0, small, 1.0), np.inf)
 
 
-def isotropy(J) -> np.ndarray:
+def isotropy(J: ArrayLike) -> NDArray[np.float64]:
     r"""Inverse condition number :math:`\sigma_{\min}/\sigma_{\max}` in [0, 1] (0 at a singularity and for J = 0).
 
     MR: :math:`1/\mu_1` (Section 5.4).
@@ -162,7 +164,7 @@ def isotropy(J) -> np.ndarray:
     return np.where(big > 0, small / np.where(big > 0, big, 1.0), 0.0)
 
 
-def linear_rows(J) -> np.ndarray:
+def linear_rows(J: ArrayLike) -> NDArray[np.float64]:
     r"""Rows 3:6 of a 6-row Jacobian (the v or :math:`\dot p` part; twists are angular first).
 
     Which linear rows you want depends on the Jacobian:
@@ -193,7 +195,7 @@ def linear_rows(J) -> np.ndarray:
     return _six_rows(J)[..., 3:6, :].copy()
 
 
-def angular_rows(J) -> np.ndarray:
+def angular_rows(J: ArrayLike) -> NDArray[np.float64]:
     r"""Rows 0:3 of a 6-row Jacobian, the angular velocity part :math:`\omega`.
 
     The same for the space and geometric Jacobians (:math:`\omega_s`);
@@ -209,7 +211,7 @@ def angular_rows(J) -> np.ndarray:
     return _six_rows(J)[..., 0:3, :].copy()
 
 
-def velocity_ellipsoid(A) -> tuple:
+def velocity_ellipsoid(A: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     r"""The image of the unit ball of joint rates: semi-axes and their directions.
 
     With :math:`A = U\Sigma V^T`, the set :math:`\{A\dot\theta : \|\dot\theta\|\le 1\}`
@@ -247,7 +249,7 @@ def velocity_ellipsoid(A) -> tuple:
     return axes, U
 
 
-def force_ellipsoid(A, rtol=None) -> tuple:
+def force_ellipsoid(A: ArrayLike, rtol: float | None = None) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     r"""The wrenches (forces or moments) the joints can resist with :math:`\|\tau\|\le 1`.
 
     With :math:`\tau = A^T F` and :math:`A = U\Sigma V^T`, the set
@@ -294,7 +296,7 @@ def force_ellipsoid(A, rtol=None) -> tuple:
     return inv, U
 
 
-def singularity_measure(J) -> np.ndarray:
+def singularity_measure(J: ArrayLike) -> NDArray[np.float64]:
     r"""The smallest singular value :math:`\sigma_{\min}` (of the min(m, n)); zero at a singularity.
 
     MR: no function; Section 5.3 defines a singularity as a drop in the rank of J.
@@ -305,7 +307,7 @@ def singularity_measure(J) -> np.ndarray:
     return singular_values(J)[..., -1]
 
 
-def is_singular(J, tol: float = 1e-8) -> np.ndarray:
+def is_singular(J: ArrayLike, tol: float = 1e-8) -> NDArray[np.bool_]:
     r"""True where J loses rank: :math:`\sigma_{\min} \le \text{tol}\cdot\sigma_{\max}`.
 
     The test is relative, so it does not depend on the units of length.
@@ -346,7 +348,7 @@ def is_singular(J, tol: float = 1e-8) -> np.ndarray:
     return s[..., -1] <= tol * s[..., 0]
 
 
-def nullspace(J, rtol=None) -> np.ndarray:
+def nullspace(J: ArrayLike, rtol: float | None = None) -> NDArray[np.float64]:
     r"""An orthonormal basis of the null space of one matrix: joint rates that do not move the task.
 
     :math:`J\dot\theta = 0` for every column of the result. Its number of
@@ -384,7 +386,7 @@ def nullspace(J, rtol=None) -> np.ndarray:
     return Vt[rank:].T.copy()
 
 
-def nullspace_projector(J, rtol=None) -> np.ndarray:
+def nullspace_projector(J: ArrayLike, rtol: float | None = None) -> NDArray[np.float64]:
     r"""The orthogonal projector :math:`I - J^\dagger J` onto the null space of J.
 
     :math:`J (I - J^\dagger J) = 0`; adding :math:`(I - J^\dagger J)z` to a
@@ -413,4 +415,5 @@ def nullspace_projector(J, rtol=None) -> np.ndarray:
     r = s.shape[-1]
     keep[..., :r] = s > tol * s[..., :1]
     V_range = Vt * keep[..., :, None]  # rows spanning the row space of J
-    return np.eye(n) - np.swapaxes(V_range, -1, -2) @ V_range
+    P: NDArray[np.float64] = np.eye(n) - np.swapaxes(V_range, -1, -2) @ V_range
+    return P

@@ -31,7 +31,7 @@ from .lie import _adjoint, _inverse_transform
 __all__ = ["joint_torques", "joint_torques_from_wrench", "wrench_body_to_space", "wrench_space_to_body"]
 
 
-def _wrench(F, m: int, name: str = "wrench") -> np.ndarray:
+def _wrench(F: object, m: int, name: str = "wrench") -> NDArray[np.float64]:
     F = as_float_array(F, name)
     if F.ndim < 1 or F.shape[-1] != m:
         hint = " as (m_x, m_y, m_z, f_x, f_y, f_z), moment first" if m == 6 else ""
@@ -39,7 +39,7 @@ def _wrench(F, m: int, name: str = "wrench") -> np.ndarray:
     return check_finite(F, name)
 
 
-def joint_torques(J, wrench) -> np.ndarray:
+def joint_torques(J: ArrayLike, wrench: ArrayLike) -> NDArray[np.float64]:
     r"""Joint torques :math:`\tau = J^T\mathcal F` (forces for prismatic joints).
 
     J and the wrench must be expressed in the same frame and the same row
@@ -72,7 +72,8 @@ def joint_torques(J, wrench) -> np.ndarray:
         np.broadcast_shapes(A.shape[:-2], F.shape[:-1])
     except ValueError:
         raise ValueError(f"The batch shapes of J {A.shape[:-2]} and wrench {F.shape[:-1]} do not broadcast") from None
-    return (np.swapaxes(A, -1, -2) @ F[..., :, None])[..., 0]
+    tau: NDArray[np.float64] = (np.swapaxes(A, -1, -2) @ F[..., :, None])[..., 0]
+    return tau
 
 
 def joint_torques_from_wrench(chain: SerialChain, theta: ArrayLike, wrench: ArrayLike,
@@ -114,7 +115,7 @@ def joint_torques_from_wrench(chain: SerialChain, theta: ArrayLike, wrench: Arra
     return joint_torques(J, _wrench(wrench, 6))
 
 
-def wrench_space_to_body(F_s, T_sb) -> np.ndarray:
+def wrench_space_to_body(F_s: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`\mathcal F_b = [\mathrm{Ad}_{T_{sb}}]^T\mathcal F_s` (the same wrench, seen in {b}).
 
     Wrenches change frame with the transposed adjoint, so that
@@ -140,10 +141,11 @@ def wrench_space_to_body(F_s, T_sb) -> np.ndarray:
     """
     F = _wrench(F_s, 6, "F_s")
     T = transform_array(T_sb, "T_sb")
-    return (np.swapaxes(_adjoint(T), -1, -2) @ F[..., :, None])[..., 0]
+    F_b: NDArray[np.float64] = (np.swapaxes(_adjoint(T), -1, -2) @ F[..., :, None])[..., 0]
+    return F_b
 
 
-def wrench_body_to_space(F_b, T_sb) -> np.ndarray:
+def wrench_body_to_space(F_b: ArrayLike, T_sb: ArrayLike) -> NDArray[np.float64]:
     r""":math:`\mathcal F_s = [\mathrm{Ad}_{T_{bs}}]^T\mathcal F_b`, the inverse of :func:`wrench_space_to_body`.
 
     >>> import numpy as np
@@ -153,4 +155,5 @@ def wrench_body_to_space(F_b, T_sb) -> np.ndarray:
     """
     F = _wrench(F_b, 6, "F_b")
     T = transform_array(T_sb, "T_sb")
-    return (np.swapaxes(_adjoint(_inverse_transform(T)), -1, -2) @ F[..., :, None])[..., 0]
+    F_s: NDArray[np.float64] = (np.swapaxes(_adjoint(_inverse_transform(T)), -1, -2) @ F[..., :, None])[..., 0]
+    return F_s

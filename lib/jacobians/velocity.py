@@ -26,18 +26,20 @@ array([ 1., -1.])
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validation import as_float_array, check_finite, positive_float, theta_array
-from .chain import _as_chain
+from .chain import SerialChain, _as_chain
 from .jacobian import geometric_jacobian
 
 __all__ = ["pinv_rates", "dls_rates", "resolved_rate", "ResolvedRateResult"]
 
 
-def _system(J, V):
+def _system(J: object, V: object) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     A = as_float_array(J, "J")
     if A.ndim < 2 or A.shape[-1] == 0 or A.shape[-2] == 0:
         raise ValueError(f"Expected J with shape (..., m, n), got shape {A.shape}")
@@ -56,14 +58,16 @@ def _system(J, V):
     return A, b
 
 
-def _svd_solve(A, b, gain):
+def _svd_solve(A: NDArray[np.float64], b: NDArray[np.float64],
+               gain: Callable[[NDArray[np.float64]], NDArray[np.float64]]) -> NDArray[np.float64]:
     """V_r diag(gain(sigma)) U^T b, with the thin SVD of A."""
     U, s, Vt = np.linalg.svd(A, full_matrices=False)
     Utb = (np.swapaxes(U, -1, -2) @ b[..., :, None])[..., 0]
-    return (np.swapaxes(Vt, -1, -2) @ (gain(s) * Utb)[..., :, None])[..., 0]
+    out: NDArray[np.float64] = (np.swapaxes(Vt, -1, -2) @ (gain(s) * Utb)[..., :, None])[..., 0]
+    return out
 
 
-def pinv_rates(J, V, rcond: float = 1e-10) -> np.ndarray:
+def pinv_rates(J: ArrayLike, V: ArrayLike, rcond: float = 1e-10) -> NDArray[np.float64]:
     r"""Joint rates :math:`\dot\theta = J^\dagger V` (Moore-Penrose pseudo-inverse).
 
     Computed from the SVD :math:`J = U\Sigma V^T`: singular values below
@@ -91,14 +95,14 @@ def pinv_rates(J, V, rcond: float = 1e-10) -> np.ndarray:
     A, b = _system(J, V)
     rcond = positive_float(rcond, "rcond")
 
-    def gain(s):
+    def gain(s: NDArray[np.float64]) -> NDArray[np.float64]:
         keep = s > rcond * s[..., :1]
         return np.where(keep, 1.0 / np.where(keep, s, 1.0), 0.0)
 
     return _svd_solve(A, b, gain)
 
 
-def dls_rates(J, V, damping: float) -> np.ndarray:
+def dls_rates(J: ArrayLike, V: ArrayLike, damping: float) -> NDArray[np.float64]:
     r"""Damped least-squares joint rates :math:`\dot\theta = (J^TJ + \lambda^2 I)^{-1}J^TV`.
 
     The minimiser of :math:`\|J\dot\theta - V\|^2 + \lambda^2\|\dot\theta\|^2`.
@@ -131,7 +135,7 @@ def dls_rates(J, V, damping: float) -> np.ndarray:
     lam = positive_float(damping, "damping", allow_zero=True)
     lam2 = lam * lam
 
-    def gain(s):
+    def gain(s: NDArray[np.float64]) -> NDArray[np.float64]:
         den = s * s + lam2
         return np.where(den > 0, s / np.where(den > 0, den, 1.0), 0.0)
 
@@ -153,8 +157,9 @@ class ResolvedRateResult(NamedTuple):
     sigma_min: np.ndarray
 
 
-def resolved_rate(chain, theta0, target_path, dt: float, method: str = "pinv", damping: float = 0.05,
-                  gain: float = 2.0, target_velocities=None) -> ResolvedRateResult:
+def resolved_rate(chain: SerialChain, theta0: ArrayLike, target_path: ArrayLike, dt: float, method: str = "pinv",
+                  damping: float = 0.05, gain: float = 2.0,
+                  target_velocities: ArrayLike | None = None) -> ResolvedRateResult:
     r"""Make the origin of {b} follow a path of points by resolved-rate motion control.
 
     At each step k, with :math:`p_k` the position of {b}'s origin at
