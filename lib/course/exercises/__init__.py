@@ -23,9 +23,12 @@ True
 >>> exercises.check("ch01_ex1", "0 0 1 0 0 0", seed=3).kind
 'invalid'
 
-Modules: ``_registry`` (the catalogue), ``_common`` (random variants, LaTeX,
-plain-numpy kinematics, shared mistakes), ``ch01_03``, ``ch04_06``, ``ch07_09``
-(the definitions, by chapter).
+Modules: ``ch01`` ... ``ch09`` (the definitions, one module per chapter);
+``_registry`` (the catalogue they fill); shared by them: ``_variants`` (random
+angles, lengths, chains, poses; test cases of function exercises), ``_kinematics``
+(the references' plain-numpy formulas), ``_mistakes`` (mistakes met in many
+exercises), ``_latex`` (numbers in statements), ``_symbolic_2r`` (the planar 2R
+arm in sympy).
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ from typing import Any
 
 from jacobians.grading import SEED_ENV, Exercise, Feedback
 
-from . import ch01_03, ch04_06, ch07_09  # noqa: F401  (importing them registers the exercises)
+from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09  # noqa: F401  (importing them registers the exercises)
 from ._registry import CATALOGUE
 
 __all__ = ["CATALOGUE", "SEED_ENV", "check", "exercise_ids", "load"]

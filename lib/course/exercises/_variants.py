@@ -1,0 +1,142 @@
+"""Random variants: nice angles, lengths, rotations, chains and poses drawn from the seeded generator,
+and the test cases of function exercises."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, NamedTuple
+
+import numpy as np
+from numpy.random import Generator
+
+from jacobians import lie, robots
+from jacobians.chain import SerialChain
+from jacobians.grading import Case, Mistake
+
+from ._kinematics import DEG, Array, adj, blockdiag, body_jac, fk, planar_chain, space_jac
+
+
+def angles_deg(rng: Generator, n: int, step: int = 15, low: int = -150, high: int = 150,
+               nonzero: bool = True) -> Array:
+    """``n`` angles in degrees, multiples of ``step`` in [low, high] (0 excluded unless ``nonzero`` is False)."""
+    choices = np.arange(low, high + 1, step)
+    if nonzero:
+        choices = choices[choices != 0]
+    return rng.choice(choices, size=n).astype(float)
+
+
+def lengths(rng: Generator, n: int, low: float = 0.5, high: float = 1.5) -> Array:
+    """``n`` link lengths with one decimal."""
+    return np.round(rng.uniform(low, high, size=n), 1)
+
+
+def random_rotation(rng: Generator) -> Array:
+    """A rotation about a random coordinate-ish axis by a multiple of 30 degrees (nice numbers)."""
+    axes = [np.array(a, float) for a in ([1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [0, 1, 1], [1, 0, 1])]
+    R = np.eye(3)
+    for _ in range(2):
+        a = axes[rng.integers(len(axes))]
+        a = a / np.linalg.norm(a)
+        ang = float(rng.choice([30, 45, 60, 90, 120, -30, -60, -90])) * DEG
+        R = R @ lie.exp_so3(a * ang)
+    return R
+
+
+def random_transform(rng: Generator, digits: int = 4) -> Array:
+    """A transform with a nice rotation (rounded to ``digits``) and a position in halves."""
+    T = np.eye(4)
+    T[:3, :3] = np.round(random_rotation(rng), digits)
+    T[:3, 3] = rng.integers(-3, 4, size=3) * 0.5
+    if not np.any(T[:3, 3]):
+        T[0, 3] = 1.0
+    return T
+
+
+def random_chain(rng: Generator, n: int | None = None, prismatic: bool = True) -> tuple[Array, Array, Array]:
+    """A random spatial chain (S 6xn, M 4x4): unit axes through random points, maybe a prismatic joint."""
+    n = int(rng.integers(2, 7)) if n is None else n
+    cols = []
+    for _ in range(n):
+        w = rng.normal(size=3)
+        w /= np.linalg.norm(w)
+        if prismatic and rng.random() < 0.2:
+            cols.append(np.concatenate([np.zeros(3), w]))
+        else:
+            q = rng.uniform(-1, 1, size=3)
+            cols.append(np.concatenate([w, -np.cross(w, q)]))
+    S = np.stack(cols, axis=1)
+    M = np.eye(4)
+    M[:3, :3] = random_rotation(rng)
+    M[:3, 3] = rng.uniform(-1, 1, size=3)
+    theta = rng.uniform(-np.pi, np.pi, size=n)
+    return S, M, theta
+
+
+class PlanarPose(NamedTuple):
+    """A random planar arm at a random pose: lengths, angles in degrees and radians, the chain."""
+
+    lengths: Array
+    theta_deg: Array
+    theta: Array
+    arm: SerialChain
+
+
+def planar_pose(rng: Generator, n: int, step: int = 15, low: int = -150, high: int = 150) -> PlanarPose:
+    """A planar nR arm (lengths drawn first, then angles, as :func:`lengths` and :func:`angles_deg` draw)."""
+    ls = lengths(rng, n)
+    th_deg = angles_deg(rng, n, step=step, low=low, high=high)
+    return PlanarPose(ls, th_deg, th_deg * DEG, planar_chain(ls))
+
+
+class SpatialPose(NamedTuple):
+    """The spatial 5R arm at a random pose, as a statement shows it (4 digits): the pose, the body,
+    geometric and space Jacobians."""
+
+    T: Array
+    J_b: Array
+    J: Array
+    J_s: Array
+
+
+def spatial_5r_pose(rng: Generator, digits: int = 4) -> SpatialPose:
+    """The spatial 5R arm with random dimensions at a random pose, numbers rounded to ``digits``."""
+    vals = [float(v) for v in rng.choice([0.3, 0.5, 0.8, 1.0], size=5)]
+    arm = robots.spatial_5r(*vals)
+    th = angles_deg(rng, 5, step=30, low=-120, high=120) * DEG
+    T = fk(arm.screw_axes, arm.home, th)
+    T[:3, :] = np.round(T[:3, :], digits)
+    J_b = np.round(body_jac(arm.body_axes, th), digits)
+    R = T[:3, :3]
+    return SpatialPose(T, J_b, blockdiag(R, R) @ J_b, adj(T) @ J_b)
+
+
+# ----------------------------------------------------------------- test cases of function exercises
+
+CaseBody = Callable[[Array, Array, Array], tuple[tuple[Any, ...], Any, list[Mistake]]]
+
+
+def chain_case(body: CaseBody) -> Callable[[Generator], Case]:
+    """A ``make_case`` for a function exercise on a random chain: ``body(S, M, theta)`` gives the
+    arguments, the reference and the mistakes; the case is labelled by the chain's number of joints."""
+    def make_case(rng: Generator) -> Case:
+        S, M, th = random_chain(rng)
+        args, ref, mistakes = body(S, M, th)
+        return Case(args, ref, mistakes, f"a random {S.shape[1]}-joint chain")
+    make_case.__doc__ = body.__doc__
+    return make_case
+
+
+def planar_column(rng: Generator, frame: str, low: int, high: int
+                   ) -> tuple[Array, Array, int, Array, Array, Array, Array]:
+    """Ch. 2 and 3's "one column by hand": a planar 3R arm at a random pose and a joint i in [low, high).
+
+    Returns the lengths, the angles in degrees, i, the home screw axes of ``frame`` ("space" or "body"),
+    the Jacobian of ``frame``, the other Jacobian, and the Jacobian of ``frame`` computed with the angles
+    in degrees (a mistake)."""
+    ls, th_deg, th, arm = planar_pose(rng, 3)
+    i = int(rng.integers(low, high))
+    jacobian: dict[str, tuple[Array, Callable[[Array, Array], Array]]] = {
+        "space": (arm.screw_axes, space_jac), "body": (arm.body_axes, body_jac)}
+    home, own = jacobian[frame]
+    axes_other, other = jacobian["body" if frame == "space" else "space"]
+    return ls, th_deg, i, home, own(home, th), other(axes_other, th), own(home, th_deg)

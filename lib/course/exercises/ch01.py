@@ -1,0 +1,114 @@
+"""Exercises of chapter 1: twists, screw axes and the adjoint."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.random import Generator
+
+from jacobians import lie
+from jacobians.grading import Case, Exercise, Mistake, numeric_exercise
+
+from ._kinematics import Array, adj, inv_T, swap
+from ._latex import bmatrix, vec
+from ._mistakes import swap_mistake
+from ._registry import register, register_code
+from ._variants import random_transform
+
+SKEW_HINT = "Recall [p] is the skew matrix with [p]x = p × x."
+
+
+@register("ch01_ex1")
+def _ch01_ex1(rng: Generator) -> Exercise:
+    axes = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], float)
+    w = axes[rng.integers(6)]
+    while True:
+        q = rng.integers(-3, 4, size=3).astype(float)
+        if np.linalg.norm(np.cross(w, q)) > 0.5:
+            break
+    ref = np.concatenate([w, -np.cross(w, q)])
+    mistakes = [
+        Mistake("v_sign", np.concatenate([w, np.cross(w, q)]),
+                "The linear part has the wrong sign. v is the velocity of the point of the body at the origin "
+                "of {s}: work out which way that point moves when the body turns about the axis."),
+        swap_mistake(ref),
+        Mistake("q_as_v", np.concatenate([w, q]),
+                "You put the point q itself in the linear part. The linear part is a velocity, built from "
+                "ω and q with a cross product."),
+    ]
+    st = (f"A revolute joint turns about the unit axis $\\hat\\omega = {vec(w)}$ through the point "
+          f"$q = {vec(q)}$ (in {{s}}). Give its screw axis $\\mathcal S = (\\omega, v)$ as a 6-vector, "
+          "angular part first.")
+    return numeric_exercise("Screw axis of a revolute joint", st, {"omega": w, "q": q}, ref, mistakes,
+                            what="screw axis", hint="Check v = -ω × q entry by entry.")
+def _adj_mistakes(T: Array) -> list[Mistake]:
+    R, p = T[:3, :3], T[:3, 3]
+    A = adj(T)
+    wrong_order = A.copy()
+    wrong_order[3:, :3] = R @ lie.skew(p)
+    vfirst = np.zeros((6, 6))
+    vfirst[:3, :3] = R
+    vfirst[3:, 3:] = R
+    vfirst[:3, 3:] = lie.skew(p) @ R
+    no_block = A.copy()
+    no_block[3:, :3] = 0
+    return [
+        Mistake("product_order", wrong_order,
+                "The lower-left block has its two factors in the wrong order: the skew matrix of p and R do "
+                "not commute. " + SKEW_HINT),
+        Mistake("v_first_layout", vfirst,
+                "This is the adjoint for twists ordered (v, ω). In this course twists are (ω, v), "
+                "so the coupling block sits below the diagonal."),
+        Mistake("inverse", adj(inv_T(T)),
+                "This is the adjoint of the inverse transform. Check which transform the exercise asks about."),
+        Mistake("missing_block", no_block,
+                "The coupling block is missing: the block-diagonal part alone only rotates, it forgets that the "
+                "frames' origins are apart."),
+    ]
+
+
+@register("ch01_ex2")
+def _ch01_ex2(rng: Generator) -> Exercise:
+    T = random_transform(rng)
+    ref = adj(T)
+    st = (f"Give the $6\\times 6$ adjoint matrix $[\\mathrm{{Ad}}_T]$ of \n\n$$T = {bmatrix(T, 4)},$$\n\n"
+          "for twists ordered $(\\omega, v)$.")
+    return numeric_exercise("The adjoint of a transform", st, {"T": T}, ref, _adj_mistakes(T), what="adjoint matrix",
+                            hint="Compare block by block with [[R, 0], [[p]R, R]].")
+
+
+@register("ch01_ex3")
+def _ch01_ex3(rng: Generator) -> Exercise:
+    T_ab = random_transform(rng)
+    V_b = rng.integers(-3, 4, size=6).astype(float)
+    V_b[:3] = V_b[:3] if np.any(V_b[:3]) else np.array([1.0, 0, 0])
+    ref = adj(T_ab) @ V_b
+    R = T_ab[:3, :3]
+    mistakes = [
+        Mistake("inverse", adj(inv_T(T_ab)) @ V_b,
+                "You used the adjoint of T_ba = T_ab⁻¹. To re-express a twist from {b} in {a}, "
+                "use the transform whose subscripts read 'a from b'."),
+        swap_mistake(ref),
+        Mistake("rotation_only", np.concatenate([R @ V_b[:3], R @ V_b[3:]]),
+                "You only rotated both halves. The linear part also picks up p × (R ω) because the "
+                "origins of {a} and {b} differ."),
+        Mistake("vfirst_input", swap(adj(T_ab) @ swap(V_b)),
+                "You read the given twist as (v, ω). It is given angular part first."),
+    ]
+    st = (f"A body has the twist $\\mathcal V_b = {vec(V_b)}$ expressed in frame {{b}}, and "
+          f"\n\n$$T_{{ab}} = {bmatrix(T_ab, 4)}.$$\n\nGive the same twist expressed in {{a}}, $\\mathcal V_a$.")
+    return numeric_exercise("Changing the frame of a twist", st, {"T_ab": T_ab, "V_b": V_b}, ref, mistakes,
+                            what="twist")
+
+
+def _adj_case(rng: Generator) -> Case:
+    T = random_transform(rng)
+    T[:3, 3] = rng.uniform(-2, 2, size=3)
+    return Case((T,), adj(T), _adj_mistakes(T), f"T with p = {vec(T[:3, 3], 2)}")
+
+
+register_code(
+    "ch01_ex4", "Code: the adjoint map",
+    "Write a function `my_adjoint(T)` that takes a $4\\times4$ transform (numpy array) and returns its "
+    "$6\\times 6$ adjoint $[\\mathrm{Ad}_T]$ for twists ordered $(\\omega, v)$. Set `answer = my_adjoint`. "
+    "It is tested on random transforms.",
+    reference=adj, make_case=_adj_case, fn_name="my_adjoint", what="adjoint matrix")

@@ -1,0 +1,134 @@
+"""Exercises of chapter 2: the space Jacobian."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.random import Generator
+
+from jacobians import robots
+from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exercise
+
+from ._kinematics import DEG, Array, adj, body_jac, expS, space_jac
+from ._latex import degs, num, vec
+from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
+from ._registry import register, register_code
+from ._symbolic_2r import SYM_NOTE, sym_catalogue, sym_names, sym_planar_2r
+from ._variants import angles_deg, chain_case, planar_column
+
+
+@register("ch02_ex1")
+def _ch02_ex1(rng: Generator) -> Exercise:
+    ls, th_deg, i, S, J_s, J_b, J_s_deg = planar_column(rng, "space", 2, 4)  # joint 2 or 3
+    ref = J_s[:, i - 1]
+    mistakes = [
+        Mistake("home_axis", S[:, i - 1],
+                f"This is the screw axis of joint {i} at the home pose. Joints 1..{i - 1} have moved it: carry it "
+                "along with the adjoint of the product of their exponentials."),
+        Mistake("body_column", J_b[:, i - 1],
+                f"This is column {i} of the body Jacobian (seen from the tool frame). The space Jacobian "
+                "expresses the joint's screw in the fixed frame {s}."),
+        degrees_mistake(J_s_deg[:, i - 1]),
+        swap_mistake(ref),
+        Mistake("v_sign", np.concatenate([ref[:3], -ref[3:]]),
+                f"The linear part has the wrong sign. It is -ω × q with q the current position of "
+                f"joint {i}."),
+    ]
+    st = (f"A planar 3R arm (joints about $z$, links along $x$ at home) has link lengths "
+          f"$L = {vec(ls, 1)}$ and is at $\\theta = {degs(th_deg)}$. Give column {i} of its space Jacobian, "
+          f"$J_{{s{i}}}(\\theta)$, as a 6-vector.")
+    return numeric_exercise("One column of the space Jacobian", st,
+                    {"lengths": ls, "theta_deg": th_deg, "column": i}, ref, mistakes,
+                    what="column", hint=f"The column is (ω, -ω × q_{i}) with q_{i} where joint {i} "
+                    "is now.")
+
+
+def _jac_catalogue(ref: Array, J_other: Array, other_name: str, other_msg: str, home_msg: str,
+                   deg_value: Array | None = None, home: Array | None = None) -> list[Mistake]:
+    """The standard catalogue for a full 6xn Jacobian."""
+    mistakes = [Mistake(other_name, J_other, other_msg), swap_mistake(ref)]
+    if home is not None:
+        mistakes.append(Mistake("home_axes", home, "These are the screw axes at the home pose. " + home_msg))
+        for j in range(ref.shape[1]):
+            W = ref.copy()
+            W[:, j] = home[:, j]
+            mistakes.append(Mistake(f"home_axis_column_{j + 1}", W,
+                                    f"Column {j + 1} is the home screw axis of joint {j + 1}, not the moved one. "
+                                    + home_msg))
+    if deg_value is not None:
+        mistakes.append(degrees_mistake(deg_value))
+    mistakes += sign_mistakes(ref)
+    return mistakes
+
+
+@register("ch02_ex2")
+def _ch02_ex2(rng: Generator) -> Exercise:
+    h, reach = float(rng.choice([0.5, 1.0, 1.5])), float(rng.choice([0.5, 1.0, 2.0]))
+    arm = robots.spatial_rrp(h, reach)
+    th_deg = angles_deg(rng, 2, step=30, low=-120, high=120)
+    d3 = float(rng.choice([0.25, 0.5, 0.75]))
+    th = np.array([th_deg[0] * DEG, th_deg[1] * DEG, d3])
+    S = arm.screw_axes
+    ref = space_jac(S, th)
+    J_b = body_jac(arm.body_axes, th)
+    mistakes = _jac_catalogue(
+        ref, J_b, "body_for_space",
+        "This is the body Jacobian (twists seen from the tool frame). The space Jacobian expresses each "
+        "column in the fixed frame {s}.",
+        "Each column must be carried by the joints before it: J_si = Ad(e^[S1]θ1 ⋯ e^[S(i-1)]θ(i-1)) S_i.",
+        deg_value=space_jac(S, np.array([th_deg[0], th_deg[1], d3])), home=S)
+    st = (f"The spatial RRP arm: joint 1 turns about $z$ through the origin, joint 2 about $y$ through "
+          f"$(0, 0, {num(h)})$, joint 3 slides along $x$; at home the tool is at $({num(reach)}, 0, {num(h)})$. "
+          f"At $\\theta_1 = {int(th_deg[0])}^\\circ$, $\\theta_2 = {int(th_deg[1])}^\\circ$, "
+          f"$\\theta_3 = {num(d3)}$ give the space Jacobian $J_s(\\theta)$ ($6\\times3$).")
+    return numeric_exercise("The space Jacobian of an RRP arm", st,
+                            {"h": h, "reach": reach, "theta1_deg": th_deg[0], "theta2_deg": th_deg[1], "d3": d3}, ref,
+                            mistakes, what="space Jacobian")
+
+
+@register("ch02_ex3")
+def _ch02_ex3(rng: Generator) -> Exercise:
+    syms, S, M, J_s, J_b, B, T = sym_planar_2r()
+    mistakes = sym_catalogue(
+        J_s, J_b, "body_for_space",
+        "This is the body Jacobian. The space Jacobian expresses each column in the fixed frame {s}.",
+        S, "Joint 2's axis moves when joint 1 turns: carry it with the adjoint of e^[S1]θ1.")
+    st = ("For the planar 2R arm with link lengths $l_1, l_2$ (joint 1 about $z$ at the origin, joint 2 about "
+          "$z$ through $(l_1, 0, 0)$ at home), give the space Jacobian $J_s(\\theta_1, \\theta_2)$ as a "
+          "$6\\times2$ symbolic matrix. " + SYM_NOTE)
+    return symbolic_exercise("Symbolic space Jacobian of the planar 2R arm", st, sym_names(syms), J_s, mistakes,
+                             what="space Jacobian")
+
+
+@chain_case
+def _space_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
+    ref = space_jac(S, th)
+    mistakes = [
+        Mistake("home_axes", S, "Your function returns the screw axes at home: each column must be carried by "
+                "the joints before it."),
+        Mistake("product_order", space_jac(S, th, order="reverse"),
+                "The product of exponentials is multiplied in the wrong order: the transform for column i is "
+                "e^[S1]θ1 e^[S2]θ2 ⋯ e^[S(i-1)]θ(i-1), first joint on the left."),
+        Mistake("all_joints", _own(S, th),
+                "Every column is carried by the product over all the joints: only joints 1..i-1 move axis i."),
+        swap_mistake(ref),
+    ]
+    return (S, th), ref, mistakes
+
+
+def _own(S: Array, th: Array) -> Array:
+    """Every column carried by the product over all joints (wrong)."""
+    T = np.eye(4)
+    for i in range(S.shape[1]):
+        T = T @ expS(S[:, i], th[i])
+    return adj(T) @ S
+
+
+register_code(
+    "ch02_ex4", "Code: the space Jacobian",
+    ("Write `my_space_jacobian(S, theta)`: `S` is a $6\\times n$ numpy array whose columns are the screw "
+     "axes $(\\omega, v)$ at home, `theta` a length-$n$ array of joint values; return $J_s(\\theta)$, "
+     "$6\\times n$. You may use `jacobians.lie.exp_se3` and `jacobians.lie.adjoint`, but not "
+     "`jacobians.space_jacobian`. Set `answer = my_space_jacobian`."),
+    reference=space_jac, make_case=_space_case, fn_name="my_space_jacobian", what="space Jacobian")

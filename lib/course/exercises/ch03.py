@@ -1,0 +1,104 @@
+"""Exercises of chapter 3: the body Jacobian."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.random import Generator
+
+from jacobians import robots
+from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exercise
+
+from ._kinematics import Array, adj, body_jac, inv_T, space_jac
+from ._latex import bmatrix, degs, num, vec
+from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
+from ._registry import register, register_code
+from ._symbolic_2r import SYM_NOTE, sym_catalogue, sym_names, sym_planar_2r
+from ._variants import chain_case, planar_column
+
+
+@register("ch03_ex1")
+def _ch03_ex1(rng: Generator) -> Exercise:
+    ls, th_deg, i, B, J_b, J_s, J_b_deg = planar_column(rng, "body", 1, 3)  # joint 1 or 2
+    ref = J_b[:, i - 1]
+    mistakes = [
+        Mistake("home_axis", B[:, i - 1],
+                f"This is the body screw axis B_{i} at the home pose. Joints {i + 1}..3 move the tool frame relative "
+                f"to joint {i}: carry B_{i} with the adjoint of e^-[B3]θ3 ⋯ e^-[B{i + 1}]θ{i + 1}."),
+        Mistake("space_column", J_s[:, i - 1],
+                f"This is column {i} of the space Jacobian. The body Jacobian expresses the joint's screw in the "
+                "tool frame {b}."),
+        degrees_mistake(J_b_deg[:, i - 1]),
+        swap_mistake(ref),
+        Mistake("v_sign", np.concatenate([ref[:3], -ref[3:]]),
+                "The linear part has the wrong sign: in {b} it is -ω_b × r with r the position of the joint "
+                "axis seen from the tool."),
+    ]
+    st = (f"A planar 3R arm has link lengths $L = {vec(ls, 1)}$ (tool at the end of link 3) and is at "
+          f"$\\theta = {degs(th_deg)}$. Give column {i} of its body Jacobian, $J_{{b{i}}}(\\theta)$, as a 6-vector.")
+    return numeric_exercise("One column of the body Jacobian", st, {"lengths": ls, "theta_deg": th_deg, "column": i},
+                            ref, mistakes, what="column")
+
+
+@register("ch03_ex2")
+def _ch03_ex2(rng: Generator) -> Exercise:
+    vals = [float(v) for v in rng.choice([0.3, 0.5, 0.8, 1.0, 1.2], size=5)]
+    arm = robots.spatial_5r(*vals)
+    S, M = arm.screw_axes, arm.home
+    ref = adj(inv_T(M)) @ S
+    mistakes = [
+        Mistake("wrong_adjoint", adj(M) @ S,
+                "You used Ad of M instead of Ad of M⁻¹: check which way the adjoint carries the axes "
+                "(from {s} to {b} needs T_bs = M⁻¹ at home)."),
+        Mistake("unchanged", S, "These are the space screw axes: the body axes are the same axes expressed in the "
+                "tool frame at home."),
+        swap_mistake(ref),
+    ] + sign_mistakes(ref)
+    st = (f"The spatial 5R arm has $h = {num(vals[0])}$, $l_1 = {num(vals[1])}$, $l_2 = {num(vals[2])}$, "
+          f"$l_3 = {num(vals[3])}$, $l_4 = {num(vals[4])}$; its space screw axes and home pose are "
+          f"\n\n$$S = {bmatrix(S)},$$\n\n\n\n$$M = {bmatrix(M)}.$$\n\n"
+          "Give its body screw axes $B$ ($6\\times5$, one column per joint).")
+    return numeric_exercise("Body screw axes from space screw axes", st, {"S": S, "M": M}, ref, mistakes,
+                            what="matrix of body screw axes")
+
+
+@register("ch03_ex3")
+def _ch03_ex3(rng: Generator) -> Exercise:
+    syms, S, M, J_s, J_b, B, T = sym_planar_2r()
+    mistakes = sym_catalogue(
+        J_b, J_s, "space_for_body",
+        "This is the space Jacobian. The body Jacobian expresses each column in the tool frame {b}.",
+        B, "Joint 1's axis, seen from the tool, moves when joint 2 turns: carry B1 with the adjoint of "
+        "e^-[B2]θ2.")
+    st = ("For the planar 2R arm with link lengths $l_1, l_2$ (tool frame at the end of link 2, oriented like "
+          "{s} at home), give the body Jacobian $J_b(\\theta_1, \\theta_2)$ as a $6\\times2$ symbolic matrix. "
+          + SYM_NOTE)
+    return symbolic_exercise("Symbolic body Jacobian of the planar 2R arm", st, sym_names(syms), J_b, mistakes,
+                             what="body Jacobian")
+
+
+@chain_case
+def _body_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
+    B = adj(inv_T(M)) @ S
+    ref = body_jac(B, th)
+    mistakes = [
+        Mistake("home_axes", B, "Your function returns the body screw axes at home: each column must be carried "
+                "by the joints after it."),
+        Mistake("exponent_sign", body_jac(B, th, sign=+1),
+                "The exponentials have the wrong sign: the body column i uses e^-[Bn]θn ⋯ e^-[B(i+1)]θ(i+1) "
+                "(negative exponents)."),
+        Mistake("space_formula", space_jac(B, th),
+                "You applied the space-Jacobian recursion (joints before i) to the body axes: in the body "
+                "Jacobian column i is moved by the joints after i."),
+        swap_mistake(ref),
+    ]
+    return (B, th), ref, mistakes
+
+
+register_code(
+    "ch03_ex4", "Code: the body Jacobian",
+    ("Write `my_body_jacobian(B, theta)`: `B` is $6\\times n$ (body screw axes at home, $(\\omega, v)$), "
+     "`theta` length $n$; return $J_b(\\theta)$. Do not call `jacobians.body_jacobian`. "
+     "Set `answer = my_body_jacobian`."),
+    reference=body_jac, make_case=_body_case, fn_name="my_body_jacobian", what="body Jacobian")

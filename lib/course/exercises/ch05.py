@@ -1,0 +1,120 @@
+"""Exercises of chapter 5: the geometric Jacobian."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.random import Generator
+from numpy.typing import ArrayLike
+
+from jacobians.grading import Exercise, Mistake, numeric_exercise
+
+from ._kinematics import Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
+from ._latex import bmatrix, degs, vec
+from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
+from ._registry import register, register_code
+from ._variants import chain_case, planar_pose, spatial_5r_pose
+
+
+def _geo_catalogue(ref: Array, J_b: Array, R: Array, J_s: Array | None = None) -> list[Mistake]:
+    ms = [
+        Mistake("R_missing", J_b, "This is the body Jacobian J_b: its rows are expressed in the tool frame. The "
+                "geometric Jacobian expresses both ω and ṗ in {s}: rotate each half by R_sb."),
+        Mistake("only_angular_rotated", blockdiag(R, np.eye(3)) @ J_b,
+                "Only the angular half is rotated into {s}; the linear half needs R_sb too."),
+        Mistake("only_linear_rotated", blockdiag(np.eye(3), R) @ J_b,
+                "Only the linear half is rotated into {s}; the angular half needs R_sb too."),
+        Mistake("R_transposed", blockdiag(R.T, R.T) @ J_b,
+                "You rotated with R_sbᵀ: to express a vector given in {b} in {s}, multiply by R_sb."),
+    ]
+    if J_s is not None:
+        ms.append(Mistake("space_for_geometric", J_s,
+                          "This is the space Jacobian: its linear rows are the velocity of the body point at the "
+                          "origin of {s}, not of the tool point p."))
+    return ms + [swap_mistake(ref)]
+
+
+@register("ch05_ex1")
+def _ch05_ex1(rng: Generator) -> Exercise:
+    ls, th_deg, th, arm = planar_pose(rng, 2)
+    J_b = body_jac(arm.body_axes, th)
+    J_s = space_jac(arm.screw_axes, th)
+    T = fk(arm.screw_axes, arm.home, th)
+    R = T[:3, :3]
+    ref = blockdiag(R, R) @ J_b
+    deg_T = fk(arm.screw_axes, arm.home, th_deg)
+    deg_ref = blockdiag(deg_T[:3, :3], deg_T[:3, :3]) @ body_jac(arm.body_axes, th_deg)
+    mistakes = _geo_catalogue(ref, J_b, R, J_s) + [degrees_mistake(deg_ref)] + sign_mistakes(ref)
+    st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Give its geometric "
+          "Jacobian $J(\\theta)$ ($6\\times2$, rows $(\\omega_s, \\dot p)$, $p$ the tool point).")
+    return numeric_exercise("Geometric Jacobian of a planar 2R arm", st, {"lengths": ls, "theta_deg": th_deg}, ref,
+                            mistakes, what="geometric Jacobian",
+                            hint="Column i is (z_i, z_i × (p - p_i)) with p_i the current position of joint i.")
+
+@register("ch05_ex2")
+def _ch05_ex2(rng: Generator) -> Exercise:
+    T, J_b, ref, J_s = spatial_5r_pose(rng)
+    mistakes = _geo_catalogue(ref, J_b, T[:3, :3], J_s)
+    st = (f"A 5-joint arm has body Jacobian \n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nat a pose with "
+          f"\n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\nGive its geometric Jacobian $J$ (rows $(\\omega_s, \\dot p)$).")
+    return numeric_exercise("From the body to the geometric Jacobian", st, {"J_b": J_b, "T_sb": T}, ref, mistakes,
+                            what="geometric Jacobian")
+
+
+@register("ch05_ex3")
+def _ch05_ex3(rng: Generator) -> Exercise:
+    axes = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [0, 0, -1], [0, -1, 0]], float)
+    z = axes[rng.integers(len(axes))]
+    while True:
+        p_i = rng.integers(-2, 3, size=3).astype(float)
+        p = rng.integers(-2, 3, size=3).astype(float)
+        if np.linalg.norm(np.cross(z, p - p_i)) > 0.5 and np.linalg.norm(np.cross(z, p)) > 0.5 \
+                and not np.allclose(np.cross(z, p), np.cross(z, p - p_i)):
+            break
+    ref = np.concatenate([z, np.cross(z, p - p_i)])
+    mistakes = [
+        Mistake("reversed_difference", np.concatenate([z, np.cross(z, p_i - p)]),
+                "The linear part has the wrong sign: it is the velocity of the tool point turning about the "
+                "joint axis, so the lever arm points from the joint to the tool."),
+        Mistake("no_cross", np.concatenate([z, p - p_i]),
+                "The linear part is the lever arm itself; the velocity is the cross product of the axis with "
+                "the lever arm."),
+        Mistake("lever_from_origin", np.concatenate([z, np.cross(z, p)]),
+                "Your lever arm starts at the origin of {s}; it must start at a point of the joint axis."),
+        swap_mistake(ref),
+    ]
+    st = (f"Joint $i$ of an arm is revolute; at the current configuration its axis points along "
+          f"$z_i = {vec(z)}$ and passes through $p_i = {vec(p_i)}$, and the tool point is at $p = {vec(p)}$. "
+          "Give column $i$ of the geometric Jacobian (6-vector, angular part first).")
+    return numeric_exercise("A geometric-Jacobian column from the axis", st, {"z_i": z, "p_i": p_i, "p": p}, ref,
+                            mistakes, what="column")
+
+
+def ref_geometric_jacobian(S: ArrayLike, M: ArrayLike, theta: ArrayLike) -> Array:
+    """Reference: J = blockdiag(R, R) J_b."""
+    T = fk(S, M, theta)
+    R = T[:3, :3]
+    B = adj(inv_T(M)) @ np.asarray(S, float)
+    return blockdiag(R, R) @ body_jac(B, theta)
+
+
+@chain_case
+def _geo_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
+    T = fk(S, M, th)
+    B = adj(inv_T(M)) @ S
+    J_b = body_jac(B, th)
+    R = T[:3, :3]
+    ref = blockdiag(R, R) @ J_b
+    J_s = space_jac(S, th)
+    mistakes = _geo_catalogue(ref, J_b, R, J_s)
+    return (S, M, th), ref, mistakes
+
+
+register_code(
+    "ch05_ex4", "Code: the geometric Jacobian",
+    "Write `my_geometric_jacobian(S, M, theta)` returning the geometric Jacobian $J(\\theta)$ "
+    "(rows $(\\omega_s, \\dot p)$) of the chain with space screw axes `S` ($6\\times n$) and home pose `M`. "
+    "You may use `jacobians.space_jacobian`/`body_jacobian` with `jacobians.SerialChain(S, M)`, but not "
+    "`geometric_jacobian` or the conversion functions. Set `answer = my_geometric_jacobian`.",
+    reference=ref_geometric_jacobian, make_case=_geo_case, fn_name="my_geometric_jacobian", what="geometric Jacobian")

@@ -1,0 +1,163 @@
+"""Exercises of chapter 6: the analytic Jacobian."""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+from numpy.random import Generator
+
+from jacobians import lie, robots
+from jacobians.grading import Exercise, Feedback, Mistake, numeric_exercise, predicate_exercise, symbolic_exercise
+
+from ._kinematics import DEG, Array, blockdiag, body_jac, fk
+from ._latex import bmatrix, degs, num
+from ._mistakes import degrees_mistake, swap_mistake
+from ._registry import register
+from ._variants import angles_deg
+
+
+@register("ch06_ex1")
+def _ch06_ex1(rng: Generator) -> Exercise:
+    th1, th2, l1, l2 = sp.symbols("theta1 theta2 l1 l2", real=True)
+    x = l1 * sp.cos(th1) + l2 * sp.cos(th1 + th2)
+    y = l1 * sp.sin(th1) + l2 * sp.sin(th1 + th2)
+    ref = sp.Matrix([[sp.diff(x, th1), sp.diff(x, th2)], [sp.diff(y, th1), sp.diff(y, th2)]])
+    wrong_sign = sp.Matrix([[-ref[0, 0], -ref[0, 1]], [ref[1, 0], ref[1, 1]]])
+    col1_eq_col2 = sp.Matrix([[ref[0, 1], ref[0, 1]], [ref[1, 1], ref[1, 1]]])
+    only_l2 = sp.Matrix([[-l1 * sp.sin(th1), -l2 * sp.sin(th2)], [l1 * sp.cos(th1), l2 * sp.cos(th2)]])
+    mistakes = [
+        Mistake("sign_row_1", wrong_sign, "Row 1 has the wrong sign: differentiate cos carefully."),
+        Mistake("column_1_missing_l1", col1_eq_col2,
+                "Column 1 is missing the l1 term: joint 1 moves the whole arm, link 1 included."),
+        Mistake("relative_angle", only_l2,
+                "Link 2's direction is θ1 + θ2 (absolute angle), not θ2 alone."),
+    ]
+    syms = {"theta1": th1, "theta2": th2, "l1": l1, "l2": l2}
+    st = ("The tool point of the planar 2R arm is at $x = l_1\\cos\\theta_1 + l_2\\cos(\\theta_1+\\theta_2)$, "
+          "$y = l_1\\sin\\theta_1 + l_2\\sin(\\theta_1+\\theta_2)$. Give the $2\\times2$ analytic (position) "
+          "Jacobian $\\partial(x, y)/\\partial(\\theta_1, \\theta_2)$ as a sympy Matrix in "
+          "`theta1, theta2, l1, l2` (real symbols).")
+    return symbolic_exercise("Position Jacobian of the planar 2R arm", st, syms, ref, mistakes,
+                             what="position Jacobian")
+
+
+def _B(phi: Array, rep: str) -> Array:
+    a, b = phi[0], phi[1]
+    ca, sa, cb, sb = np.cos(a), np.sin(a), np.cos(b), np.sin(b)
+    if rep == "zyx":
+        return np.array([[0, -sa, ca * cb], [0, ca, sa * cb], [1, 0, -sb]])
+    return np.array([[0, -sa, ca * sb], [0, ca, sa * sb], [1, 0, cb]])
+
+
+@register("ch06_ex2")
+def _ch06_ex2(rng: Generator) -> Exercise:
+    rep = "zyx" if rng.random() < 0.5 else "zyz"
+    phi_deg = angles_deg(rng, 3, step=15, low=-75, high=75)
+    if rep == "zyz":
+        phi_deg[1] = abs(phi_deg[1]) + 15
+    phi = phi_deg * DEG
+    ref = _B(phi, rep)
+    mistakes = [
+        Mistake("inverse", np.linalg.inv(ref), "This is B(φ)⁻¹ (it maps ω_s to φ̇). The "
+                "exercise asks for B, which maps φ̇ to ω_s."),
+        degrees_mistake(_B(phi_deg, rep)),
+        Mistake("body_frame", _rot(phi, rep).T @ ref,
+                "This is the map to the angular velocity in the body frame, Rᵀ B. The exercise wants ω in {s}."),
+    ]
+    name = {"zyx": "ZYX (yaw-pitch-roll)", "zyz": "ZYZ"}[rep]
+    word = {"zyx": r"R = R_z(\phi_1)R_y(\phi_2)R_x(\phi_3)", "zyz": r"R = R_z(\phi_1)R_y(\phi_2)R_z(\phi_3)"}[rep]
+    st = (f"For the {name} Euler angles, ${word}$, give the $3\\times3$ matrix $B(\\phi)$ with "
+          f"$\\omega_s = B(\\phi)\\dot\\phi$ at $\\phi = {degs(phi_deg)}$.")
+    return numeric_exercise("From Euler-angle rates to angular velocity", st,
+                            {"representation": rep, "phi_deg": phi_deg}, ref, mistakes, what="matrix B",
+                            hint="Column j of B is the axis of the j-th rotation, carried by the rotations before it.")
+
+
+def _rot(phi: Array, rep: str) -> Array:
+    a, b, c = phi
+    last = "x" if rep == "zyx" else "z"
+    return lie.rotation_about("z", a) @ lie.rotation_about("y", b) @ lie.rotation_about(last, c)
+
+
+@register("ch06_ex3")
+def _ch06_ex3(rng: Generator) -> Exercise:
+    arm = robots.zyx_wrist(float(rng.choice([0.1, 0.2, 0.3])))
+    th_deg = angles_deg(rng, 3, step=15, low=-60, high=60)
+    th = th_deg * DEG
+    T = fk(arm.screw_axes, arm.home, th)
+    J = np.round(blockdiag(T[:3, :3], T[:3, :3]) @ body_jac(arm.body_axes, th), 4)
+    phi_deg = th_deg  # ZYX coordinates of this wrist are its joint angles
+    Binv = np.linalg.inv(_B(phi_deg * DEG, "zyx"))
+    ref = blockdiag(Binv, np.eye(3)) @ J
+    mistakes = [
+        Mistake("B_not_inverted", blockdiag(_B(phi_deg * DEG, "zyx"), np.eye(3)) @ J,
+                "You multiplied by B(φ); the analytic Jacobian needs B(φ)⁻¹, the map from ω_s to "
+                "the angle rates."),
+        Mistake("unchanged", J, "That is the geometric Jacobian unchanged: its angular rows are ω_s, not the "
+                "rates of the ZYX angles."),
+        Mistake("linear_rows_converted", blockdiag(np.eye(3), Binv) @ J,
+                "You converted the linear rows. Only the angular rows change; ṗ stays as it is."),
+        degrees_mistake(blockdiag(np.linalg.inv(_B(phi_deg, "zyx")), np.eye(3)) @ J),
+        swap_mistake(ref),
+    ]
+    st = (f"A ZYX wrist (joints about $z$, $y$, $x$ through the origin, tool at distance "
+          f"{num(arm.home[0, 3])} along $x$) is at $\\theta = {degs(th_deg)}$, so the ZYX angles of its tool are "
+          f"$\\phi = \\theta$. Its geometric Jacobian is \n\n$$J = {bmatrix(J, 4)}.$$\n\nGive the analytic Jacobian "
+          "$J_a$ for $x = (\\phi, p)$ (rows: the three ZYX angle rates, then $\\dot p$).")
+    return numeric_exercise("The analytic Jacobian of a ZYX wrist", st, {"J": J, "phi_deg": phi_deg}, ref, mistakes,
+                            what="analytic Jacobian")
+
+
+@register("ch06_ex4")
+def _ch06_ex4(rng: Generator) -> Exercise:
+    rep = "zyx" if rng.random() < 0.5 else "zyz"
+    other = "zyz" if rep == "zyx" else "zyx"
+
+    def margin(x: float, r: str) -> float:
+        return float(abs(np.cos(x)) if r == "zyx" else abs(np.sin(x)))
+
+    def predicate(arr: Array) -> Feedback:
+        if arr.size != 1:
+            return Feedback(False, f"Give one number (the angle φ₂ in radians); you gave {arr.size} values.",
+                            mistake="wrong_shape")
+        x = float(arr.ravel()[0])
+        if margin(x, rep) < 1e-3:
+            return Feedback(True, f"Right: at φ₂ = {x:.4g} rad the {rep.upper()} matrix B(φ) is singular "
+                            "(gimbal lock: the first and third rotation axes line up).", "correct")
+        if abs(x) > 2 * np.pi + 0.01 and margin(x * np.pi / 180, rep) < 1e-3:
+            return Feedback(False, "This looks like an angle in degrees; give it in radians.",
+                            mistake="degrees_for_radians")
+        if margin(x, other) < 1e-3:
+            return Feedback(False, f"That is where the {other.upper()} angles lock. For {rep.upper()} look at which "
+                            "value of φ₂ lines up the first and third axes (det B = 0).",
+                            mistake="other_representation")
+        return Feedback(False, f"At φ₂ = {x:.4g} rad, det B(φ) is not zero. Write B(φ) and find "
+                        "where its determinant vanishes.", mistake="not_singular")
+
+    ref = np.pi / 2 if rep == "zyx" else np.pi
+    st = (f"For the {rep.upper()} Euler angles, give a value of the middle angle $\\phi_2$ (in radians, "
+          f"not 0) at which $B(\\phi)$ is singular, so that the angle rates cannot follow some angular "
+          "velocities.")
+    return predicate_exercise("Where Euler angles lock", st, {"representation": rep}, ref, predicate, what="angle")
+
+
+@register("ch06_ex5")
+def _ch06_ex5(rng: Generator) -> Exercise:
+    th_deg = angles_deg(rng, 3, step=15, low=-60, high=60)
+    th = th_deg * DEG
+    arm = robots.zyx_wrist(0.2)
+    T = fk(arm.screw_axes, arm.home, th)
+    J = blockdiag(T[:3, :3], T[:3, :3]) @ body_jac(arm.body_axes, th)
+    B = _B(th, "zyx")
+    ref = np.linalg.inv(B) @ J[:3]
+    mistakes = [
+        Mistake("geometric_block", J[:3], "This is the angular block of the geometric Jacobian (ω_s per joint "
+                "rate). The analytic one gives the rates of the ZYX angles."),
+        Mistake("B_not_inverted", B @ J[:3], "You multiplied by B instead of B⁻¹."),
+        degrees_mistake(np.linalg.inv(_B(th_deg, "zyx")) @ J[:3]),
+    ]
+    st = (f"The ZYX wrist is at $\\theta = {degs(th_deg)}$ (away from gimbal lock). Give the $3\\times3$ angular "
+          "block of its analytic Jacobian for ZYX angles, $\\partial\\dot\\phi/\\partial\\dot\\theta$. "
+          "Think before you compute.")
+    return numeric_exercise("Angular block of the wrist's analytic Jacobian", st, {"theta_deg": th_deg}, ref, mistakes,
+                            what="matrix")

@@ -1,0 +1,123 @@
+"""Exercises of chapter 7: the conventions of other books and libraries."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.random import Generator
+from numpy.typing import ArrayLike
+
+from jacobians.grading import Exercise, Mistake, numeric_exercise
+
+from ._kinematics import Array, blockdiag, fk, space_jac, swap
+from ._latex import bmatrix
+from ._registry import register, register_code
+from ._variants import chain_case, spatial_5r_pose
+
+V_FIRST = ("Rows 1-3 of your answer should be the angular part and rows 4-6 the linear part: Modern Robotics "
+           "puts ω first, unlike Siciliano, Corke and Pinocchio.")
+
+
+def _p_cross(p: Array, J: Array) -> Array:
+    """Rows (omega, v + p x omega)."""
+    out = J.copy()
+    out[3:] = J[3:] + np.cross(p, J[:3].T).T
+    return out
+
+
+@register("ch07_ex1")
+def _ch07_ex1(rng: Generator) -> Exercise:
+    T, J_b, J, J_s = spatial_5r_pose(rng)
+    J_sic = np.round(swap(J), 4)
+    ref = swap(J_sic)
+    mistakes = [
+        Mistake("unchanged", J_sic, "You copied Siciliano's matrix unchanged; its rows are (ṗ, ω). " + V_FIRST),
+        Mistake("space_for_geometric", _p_cross(T[:3, 3], ref),
+                "You also moved the reference point to the origin of {s}: that is the space Jacobian. The exercise "
+                "asks for the geometric Jacobian, which keeps ṗ of the tool point."),
+    ]
+    st = (f"Siciliano's book writes the geometric Jacobian with rows $(\\dot p, \\omega)$. For a 5-joint arm it "
+          f"is \n\n$$J_{{Sic}} = {bmatrix(J_sic, 4)}.$$\n\nGive the same Jacobian in this course's convention, rows "
+          "$(\\omega_s, \\dot p)$.")
+    return numeric_exercise("Siciliano's geometric Jacobian", st, {"J_sic": J_sic}, ref, mistakes,
+                            what="geometric Jacobian")
+
+
+@register("ch07_ex2")
+def _ch07_ex2(rng: Generator) -> Exercise:
+    T, J_b, J, J_s = spatial_5r_pose(rng)
+    J0 = np.round(swap(J), 4)          # Corke's jacob0: (v of the tool point, omega) in the world frame
+    Jg = swap(J0)
+    p = T[:3, 3]
+    ref = _p_cross(p, Jg)
+    mistakes = [
+        Mistake("only_swapped", Jg,
+                "You reordered the rows, which gives the geometric Jacobian (velocity of the tool point). "
+                "J_s wants the velocity of the body point at the origin of {s}: shift the reference point."),
+        Mistake("unchanged", J0, "You copied jacob0 unchanged: its rows are (v, ω). " + V_FIRST),
+        Mistake("wrong_shift_sign", _p_cross(-p, Jg),
+                "The reference-point shift has the wrong sign: v_s = ṗ - ω × p = ṗ + p × ω."),
+        Mistake("shift_not_swapped", swap(_p_cross(p, Jg)),
+                "The point shift is right but the rows are (v, ω). " + V_FIRST),
+    ]
+    st = (f"Robotics Toolbox's `jacob0` returns, for a 5-joint arm, the world-frame Jacobian of the tool point "
+          f"with rows $(v, \\omega)$: \n\n$$J_0 = {bmatrix(J0, 4)}.$$\n\n"
+          f"The tool pose is \n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\n"
+          "Give the space Jacobian $J_s$ of Modern Robotics.")
+    return numeric_exercise("From Corke's jacob0 to the space Jacobian", st, {"J0": J0, "T_sb": T}, ref, mistakes,
+                            what="space Jacobian")
+
+
+@register("ch07_ex3")
+def _ch07_ex3(rng: Generator) -> Exercise:
+    T, J_b, J, J_s = spatial_5r_pose(rng)
+    J_lwa = np.round(swap(J), 4)       # Pinocchio LOCAL_WORLD_ALIGNED: (v of the frame origin, omega) in world axes
+    R = T[:3, :3]
+    Jg = swap(J_lwa)
+    ref = blockdiag(R.T, R.T) @ Jg
+    mistakes = [
+        Mistake("only_swapped", Jg,
+                "You reordered the rows only. LOCAL_WORLD_ALIGNED uses the axes of the world frame; J_b needs "
+                "both halves expressed in the tool frame."),
+        Mistake("R_not_transposed", blockdiag(R, R) @ Jg,
+                "You rotated with R_sb; to express world-axis vectors in {b}, multiply by R_sbᵀ."),
+        Mistake("only_angular_rotated", blockdiag(R.T, np.eye(3)) @ Jg, "Only the angular half was rotated into {b}."),
+        Mistake("only_linear_rotated", blockdiag(np.eye(3), R.T) @ Jg, "Only the linear half was rotated into {b}."),
+        Mistake("not_swapped", blockdiag(R.T, R.T) @ J_lwa, "The rotation is right but the rows are (v, ω). "
+                + V_FIRST),
+    ]
+    st = (f"Pinocchio's `getFrameJacobian(..., LOCAL_WORLD_ALIGNED)` gives, for the tool frame of a 5-joint arm, "
+          f"rows $(v, \\omega)$ of the frame's origin in world axes: \n\n$$J_{{LWA}} = {bmatrix(J_lwa, 4)},$$\n\nat "
+          f"\n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\nGive the body Jacobian $J_b$ of Modern Robotics.")
+    return numeric_exercise("From Pinocchio's LOCAL_WORLD_ALIGNED to the body Jacobian", st,
+                            {"J_lwa": J_lwa, "T_sb": T}, ref, mistakes, what="body Jacobian")
+
+
+def ref_from_pinocchio_world(J_world: ArrayLike) -> Array:
+    """Reference: Pinocchio WORLD (v, omega) at the world origin -> MR J_s (omega, v)."""
+    return swap(np.asarray(J_world, float))
+
+
+@chain_case
+def _world_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
+    J_s = space_jac(S, th)
+    J_world = swap(J_s)
+    T = fk(S, M, th)
+    mistakes = [
+        Mistake("unchanged", J_world, "Your function returns its input unchanged: WORLD rows are (v, ω). " + V_FIRST),
+        Mistake("moved_point", space_jac(S, th) - np.vstack([np.zeros((3, J_s.shape[1])),
+                                                            np.cross(T[:3, 3], J_s[:3].T).T]),
+                "Your function moves the reference point to the tool. WORLD is already taken at the world origin, "
+                "like J_s: only the row order differs."),
+    ]
+    return (J_world,), J_s, mistakes
+
+
+register_code(
+    "ch07_ex4", "Code: from Pinocchio's WORLD frame",
+    "Pinocchio's `WORLD` Jacobian is the space Jacobian with rows $(v, \\omega)$. Write "
+    "`from_pinocchio_world(J_world)` returning the Modern Robotics space Jacobian $J_s$ ($6\\times n$, "
+    "numpy). Set `answer = from_pinocchio_world`.",
+    reference=ref_from_pinocchio_world, make_case=_world_case, fn_name="from_pinocchio_world",
+    what="space Jacobian")

@@ -1,0 +1,180 @@
+"""Exercises of chapter 9: using the Jacobian (statics, inverse rates, manipulability)."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.random import Generator
+from numpy.typing import ArrayLike
+
+from jacobians.grading import Case, Exercise, Feedback, Mistake, numeric_exercise, predicate_exercise
+
+from ._kinematics import DEG, Array, adj
+from ._latex import bmatrix, degs, vec
+from ._mistakes import degrees_mistake
+from ._registry import register, register_code
+from ._variants import angles_deg, lengths, spatial_5r_pose
+
+
+@register("ch09_ex1")
+def _ch09_ex1(rng: Generator) -> Exercise:
+    T, J_b, J, J_s = spatial_5r_pose(rng)
+    J_b = J_b[:, :3].copy()
+    J_s = np.round(adj(T) @ J_b, 4)
+    F_b = rng.integers(-3, 4, size=6).astype(float)
+    F_b[3:] = F_b[3:] if np.any(F_b[3:]) else np.array([0, 0, 1.0])
+    ref = J_b.T @ F_b
+    mistakes = [
+        Mistake("frame_mismatch", J_s.T @ F_b,
+                "You paired the space Jacobian with a wrench given in {b}. Power is FᵀV only when both are in "
+                "the same frame: use J_b with F_b (or convert F_b to {s} first)."),
+        Mistake("force_moment_swapped", J_b.T @ np.concatenate([F_b[3:], F_b[:3]]),
+                "You read the wrench as (f, m). In this course wrenches are (m, f), moment first, matching (ω, v)."),
+        Mistake("negated", -ref, "The sign is flipped: τ = JᵀF gives the joint torques that make the tool "
+                "apply the wrench F."),
+    ]
+    st = (f"The first three joints of an arm have, at the current pose, the body Jacobian "
+          f"\n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nand the space Jacobian \n\n$$J_s = {bmatrix(J_s, 4)}.$$\n\n"
+          "The tool must apply the "
+          f"wrench $\\mathcal F_b = {vec(F_b)}$ (moment first, in the tool frame {{b}}). Give the joint torques "
+          "$\\tau$ (3-vector).")
+    return numeric_exercise("Joint torques for a wrench", st, {"J_b": J_b, "J_s": J_s, "F_b": F_b}, ref, mistakes,
+                            what="torque vector")
+
+
+def _pos_jac_planar(ls: Array, th: Array) -> Array:
+    c = np.cumsum(th)
+    x = -np.array([np.sum(ls[i:] * np.sin(c[i:])) for i in range(len(ls))])
+    y = np.array([np.sum(ls[i:] * np.cos(c[i:])) for i in range(len(ls))])
+    return np.stack([x, y])
+
+
+@register("ch09_ex2")
+def _ch09_ex2(rng: Generator) -> Exercise:
+    ls = lengths(rng, 3)
+    th_deg = angles_deg(rng, 3, step=30, low=-120, high=120)
+    while abs(np.sin(th_deg[1] * DEG)) < 0.3 and abs(np.sin(th_deg[2] * DEG)) < 0.3:
+        th_deg = angles_deg(rng, 3, step=30, low=-120, high=120)
+    Jv = _pos_jac_planar(ls, th_deg * DEG)
+    v = rng.integers(-3, 4, size=2).astype(float) / 2
+    if not np.any(v):
+        v[0] = 0.5
+    ref = np.linalg.pinv(Jv) @ v
+    mistakes = [
+        Mistake("transpose", Jv.T @ v, "You used Jᵀ instead of the pseudoinverse: Jᵀ maps forces to torques; "
+                "it does not invert the velocity map."),
+        degrees_mistake(np.linalg.pinv(_pos_jac_planar(ls, th_deg)) @ v),
+        Mistake("dls", Jv.T @ np.linalg.solve(Jv @ Jv.T + 0.01 * np.eye(2), v),
+                "This is a damped solution; the exercise asks for the exact minimum-norm rates, the pseudoinverse."),
+    ]
+    st = (f"A planar 3R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Its tool point must move at "
+          f"$\\dot p = {vec(v)}$ (x and y, m/s). Give the joint rates of least norm that do it, "
+          "$\\dot\\theta = J_v^{+}\\dot p$, with $J_v$ the $2\\times3$ position Jacobian.")
+    return numeric_exercise("Least-norm joint rates", st, {"lengths": ls, "theta_deg": th_deg, "p_dot": v}, ref,
+                            mistakes, what="joint rates")
+
+
+def _regular_2r(rng: Generator) -> tuple[Array, Array, Array]:
+    """A planar 2R arm away from its singularity (|sin θ2| >= 0.2): lengths, angles in degrees, and its
+    2x2 position Jacobian."""
+    ls = lengths(rng, 2)
+    th_deg = angles_deg(rng, 2, step=15, low=-165, high=165)
+    while abs(np.sin(th_deg[1] * DEG)) < 0.2:
+        th_deg = angles_deg(rng, 2, step=15, low=-165, high=165)
+    return ls, th_deg, _pos_jac_planar(ls, th_deg * DEG)
+
+
+@register("ch09_ex3")
+def _ch09_ex3(rng: Generator) -> Exercise:
+    ls, th_deg, Jv = _regular_2r(rng)
+    ref = np.sqrt(np.linalg.det(Jv @ Jv.T))
+    Jd = _pos_jac_planar(ls, th_deg)
+    mistakes = [
+        Mistake("no_sqrt", np.linalg.det(Jv @ Jv.T), "You gave det(J Jᵀ); the manipulability is its square root."),
+        degrees_mistake(np.sqrt(abs(np.linalg.det(Jd @ Jd.T)))),
+        Mistake("trace", np.sqrt(np.trace(Jv @ Jv.T)), "You used the trace; the manipulability uses the determinant."),
+    ]
+    st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Give Yoshikawa's "
+          "manipulability $w = \\sqrt{\\det(J_v J_v^T)}$ of its $2\\times2$ position Jacobian $J_v$.")
+    return numeric_exercise("Manipulability of a 2R arm", st, {"lengths": ls, "theta_deg": th_deg}, ref, mistakes,
+                            what="manipulability")
+
+
+def ref_dls_rates(J: ArrayLike, V: ArrayLike, lam: float) -> Array:
+    """Damped least squares: J^T (J J^T + lam^2 I)^-1 V."""
+    J = np.asarray(J, float)
+    return J.T @ np.linalg.solve(J @ J.T + lam ** 2 * np.eye(J.shape[0]), np.asarray(V, float))
+
+
+def _dls_case(rng: Generator) -> Case:
+    m = int(rng.integers(2, 7))
+    n = int(rng.integers(2, 8))
+    J = rng.normal(size=(m, n))
+    if rng.random() < 0.5 and m > 1:
+        J[-1] = J[0] * 0.999            # close to singular: where damping matters
+    V = rng.normal(size=m)
+    lam = float(rng.choice([0.05, 0.1, 0.3]))
+    ref = ref_dls_rates(J, V, lam)
+    mistakes = [
+        Mistake("no_damping", np.linalg.pinv(J) @ V, "Your function returns the pseudoinverse solution: the "
+                "damping term is missing."),
+        Mistake("lambda_not_squared", ref_dls_rates(J, V, np.sqrt(lam)),
+                "The damping enters squared: Jᵀ(J Jᵀ + λ² I)⁻¹V."),
+        Mistake("transpose_only", J.T @ V, "Your function returns JᵀV, without the inverse."),
+    ]
+    return Case((J, V, lam), ref, mistakes, f"a random {m}x{n} J, lambda = {lam}")
+
+
+register_code(
+    "ch09_ex4", "Code: damped least squares",
+    "Write `my_dls_rates(J, V, lam)` returning the damped least-squares joint rates "
+    "$\\dot\\theta = J^T(JJ^T + \\lambda^2 I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ `V` and "
+    "damping `lam` > 0. Set `answer = my_dls_rates`.",
+    reference=ref_dls_rates, make_case=_dls_case, fn_name="my_dls_rates", what="joint rates")
+
+
+@register("ch09_ex5")
+def _ch09_ex5(rng: Generator) -> Exercise:
+    ls, th_deg, Jv = _regular_2r(rng)
+    sv = np.linalg.svd(Jv, compute_uv=False)
+    ref = sv
+    mistakes = [
+        Mistake("squared", sv ** 2, "These are the eigenvalues of J Jᵀ; the semi-axes are their square roots."),
+        Mistake("ascending", sv[::-1], "Give the semi-axes from the longest to the shortest."),
+        Mistake("inverse", 1 / sv, "These are the semi-axes of the force ellipsoid (1/σ); the velocity ellipsoid's "
+                "are the singular values σ."),
+        degrees_mistake(np.linalg.svd(_pos_jac_planar(ls, th_deg), compute_uv=False)),
+    ]
+    st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Unit-norm joint rates map to "
+          "an ellipse of tool velocities. Give its two semi-axis lengths, longest first (a 2-vector).")
+    return numeric_exercise("The velocity ellipse", st, {"lengths": ls, "theta_deg": th_deg}, ref, mistakes,
+                            what="semi-axes")
+
+
+@register("ch09_ex6")
+def _ch09_ex6(rng: Generator) -> Exercise:
+    ls = lengths(rng, 2)
+    th1 = float(angles_deg(rng, 1)[0])
+
+    def predicate(arr: Array) -> Feedback:
+        if arr.size != 1:
+            return Feedback(False, f"Give one number, θ₂ in radians; you gave {arr.size} values.",
+                            mistake="wrong_shape")
+        x = float(arr.ravel()[0])
+        s = abs(np.sin(x))
+        if s < 1e-3 and abs(np.cos(x) - 1) < 1e-3:
+            return Feedback(False, "θ₂ = 0 (arm stretched) is singular, but the exercise asks for the other "
+                            "one in (0, 2π).", mistake="excluded_zero")
+        if s < 1e-3:
+            return Feedback(True, "Right: with θ₂ = π the arm is folded back and det J_v = l1 l2 sin θ₂ = 0.",
+                            "correct")
+        if abs(x) > 2 * np.pi + 0.01 and abs(np.sin(x * DEG)) < 1e-3:
+            return Feedback(False, "This looks like an angle in degrees; give it in radians.",
+                            mistake="degrees_for_radians")
+        return Feedback(False, f"At θ₂ = {x:.4g} rad det J_v is not zero: write det J_v as a function of "
+                        "θ₂ and find where it vanishes.", mistake="not_singular")
+
+    st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ has $\\theta_1 = {int(th1)}^\\circ$. Apart from $\\theta_2 = 0$, "
+          "give the value of $\\theta_2$ in radians, between 0 and $2\\pi$, at which its position Jacobian is "
+          "singular.")
+    return predicate_exercise("A singular configuration", st, {"lengths": ls, "theta1_deg": th1}, np.pi, predicate,
+                              what="angle")
