@@ -7,16 +7,18 @@
 
 from __future__ import annotations
 
+import functools
 import statistics
 import sys
 import timeit
+from collections.abc import Callable
 
 import numpy as np
 
 import jacobians as jac
 
 
-def best_of(stmt, number, repeat=7):
+def best_of(stmt: Callable[[], object], number: int, repeat: int = 7) -> tuple[float, float]:
     times = timeit.repeat(stmt, number=number, repeat=repeat)
     return min(times) / number, statistics.median(times) / number
 
@@ -49,7 +51,7 @@ def main() -> int:
     print(f"\nUR5, a batch of {N} configurations in one call (best of 5)")
     for frame in ("space", "body", "geometric"):
         label = f"{frame} Jacobian"
-        t, _ = best_of(lambda frame=frame: jac.jacobian(ur, thetas, frame), 1, repeat=5)
+        t, _ = best_of(functools.partial(jac.jacobian, ur, thetas, frame), 1, repeat=5)
         print(f"  {label:20s} {t * 1e3:7.1f} ms   {t / N * 1e6:5.2f} us per configuration  (goal <= 1 us)")
     t_fk, _ = best_of(lambda: ur.fk(thetas), 1, repeat=5)
     print(f"  {'forward kinematics':20s} {t_fk * 1e3:7.1f} ms   {t_fk / N * 1e6:5.2f} us per configuration")
@@ -65,7 +67,7 @@ def main() -> int:
     data = model.createData()
     qs = thetas[:10_000]
 
-    def pin_loop():
+    def pin_loop() -> np.ndarray:
         out = np.empty((len(qs), 6, 6))
         for k, q in enumerate(qs):
             out[k] = pin.computeFrameJacobian(model, data, q, fid, pin.ReferenceFrame.WORLD)

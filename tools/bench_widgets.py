@@ -14,10 +14,14 @@ and at least 10 updates per second.
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import time
 
 os.environ.setdefault("MPLBACKEND", "Agg")
+
+from collections.abc import Callable, Iterator
+from typing import Any
 
 import numpy as np
 
@@ -25,7 +29,7 @@ import jacobians as jac
 from jacobians import widgets as Wd
 
 
-def timed(fn, reps, cpu=None):
+def timed(fn: Callable[[int], object], reps: int, cpu: list[float] | None = None) -> np.ndarray:
     """Wall-clock seconds of each call; CPU seconds of this process appended to ``cpu`` if given."""
     out = []
     for k in range(reps):
@@ -37,7 +41,7 @@ def timed(fn, reps, cpu=None):
     return np.array(out)
 
 
-def cases():
+def cases() -> Iterator[tuple[str, Callable[[], Any], Callable[[Any, int], object]]]:
     arm3 = jac.robots.planar_3r(1.0, 0.8, 0.5)
     yield ("explorer 2R", lambda: Wd.planar_arm_explorer(),
            lambda w, k: setattr(w.angle_sliders[1], "value", round(-2.5 + 0.23 * k, 2)))
@@ -53,7 +57,11 @@ def cases():
            lambda w, k: setattr(w.damping_slider, "value", 10 ** (-2.5 + 0.1 * k)))
 
 
-def main():
+def _rebuild(make: Callable[[], Any], k: int) -> None:
+    make()
+
+
+def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=20, help="slider changes per widget")
     ap.add_argument("--builds", type=int, default=3, help="from-scratch builds per widget")
@@ -66,17 +74,20 @@ def main():
     for name, make, change in cases():
         w = make()
         change(w, 0)  # warm up
-        cpu = []
-        upd = timed(lambda k, w=w, change=change: change(w, k + 1), args.n, cpu)
+        cpu: list[float] = []
+        def step(k: int, w: Any = w, change: Callable[[Any, int], object] = change) -> None:
+            change(w, k + 1)
 
-        def full(k, w=w, change=change):
+        upd = timed(step, args.n, cpu)
+
+        def full(k: int, w: Any = w, change: Callable[[Any, int], object] = change) -> None:
             w.blitter.invalidate()
             change(w, k + 1)
 
         # full redraw: the same change, with the kept background thrown away first
         fullt = timed(full, max(args.n // 4, 3))
         w.blitter.invalidate()
-        rebuild = timed(lambda k, make=make: make(), args.builds)
+        rebuild = timed(functools.partial(_rebuild, make), args.builds)
         med = float(np.median(upd))
         print(f"{name:40s} {1000 * med:8.1f}ms {1000 * upd.max():6.1f}ms {1000 * np.median(fullt):9.1f}ms "
               f"{1000 * np.median(rebuild):6.0f}ms {np.median(rebuild) / med:13.1f}x {1 / med:9.1f} "
