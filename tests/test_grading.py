@@ -12,6 +12,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from course import exercises
+from jacobians import grading
 from jacobians.grading import Exercise, Feedback, Mistake, compare
 
 
@@ -285,3 +286,51 @@ def test_statement_renders_as_markdown_with_numbers():
 def test_compare_on_nan_reference_is_not_called_correct():
     fb = compare(np.array([np.nan]), np.array([1.0]), [], 1e-3, 1e-3, "x")
     assert not fb.correct
+
+
+# ------------------------------------------------------------------ the catalogue (exercises by id and seed)
+
+def _toy_catalogue():
+    toy = grading.Catalogue()
+
+    @toy.register("ch01_ex10")
+    def _ten(rng):
+        x = float(rng.integers(1, 100))
+        same = grading.Mistake("same_as_reference", 2 * x, "never shown")
+        half = grading.Mistake("half", x, "You gave x, not 2x.")
+        return grading.numeric_exercise("Double", f"Double {x:g}.", {"x": x}, 2 * x, [same, half, half])
+
+    @toy.register("ch01_ex2")
+    def _two(rng):
+        return grading.numeric_exercise("Zero", "Give 0.", {}, 0.0, [])
+
+    return toy
+
+
+def test_catalogue_orders_ids_by_chapter_then_number_and_sets_id_and_seed():
+    toy = _toy_catalogue()
+    assert toy.ids() == ["ch01_ex2", "ch01_ex10"] and len(toy) == 2 and "ch01_ex2" in toy
+    ex = toy.load("ch01_ex10", seed=4)
+    assert (ex.id, ex.seed) == ("ch01_ex10", 4)
+    assert toy.load("ch01_ex10", seed=4).given == ex.given
+
+
+def test_catalogue_drops_mistakes_equal_to_the_reference_or_to_an_earlier_mistake():
+    ex = _toy_catalogue().load("ch01_ex10", seed=1)
+    assert [m.name for m in ex.mistakes] == ["half"]
+    assert _toy_catalogue().check("ch01_ex10", ex.given["x"], seed=1).mistake == "half"
+
+
+def test_catalogue_refuses_a_bad_or_repeated_id_at_registration():
+    toy = _toy_catalogue()
+    with pytest.raises(ValueError, match="registered twice"):
+        toy.register("ch01_ex2")(lambda rng: None)
+    with pytest.raises(ValueError, match="ch02_ex1"):
+        toy.register("exercise one")
+    fb = toy.check("ch01_ex3", 0, seed=0)
+    assert fb.kind == "invalid" and "Unknown exercise 'ch01_ex3'" in fb.message
+
+
+def test_grading_holds_no_exercise_and_the_course_catalogue_holds_39():
+    assert not hasattr(grading, "load") and not hasattr(grading, "check")
+    assert len(exercises.CATALOGUE) == 39 and exercises.exercise_ids() == exercises.CATALOGUE.ids()
