@@ -1,0 +1,78 @@
+r"""Interactive explorers for the course (ipywidgets 8 + matplotlib), and their static twins.
+
+Four widgets, each a function returning an ``ipywidgets.VBox`` subclass:
+
+* :func:`planar_arm_explorer` (chapters 2 and 5): joint angles and rates, the
+  arm with frames {s} and {b}, the tool velocity :math:`\dot p` from
+  :math:`J\dot\theta`, a choice of Jacobian shown as a live matrix with its
+  formula, velocity and force ellipses, a singularity indicator, a Play button
+  that sweeps a joint.
+* :func:`columns_explorer` (chapter 4): which joints change column i of
+  :math:`J_s` (those before i) and of :math:`J_b` (those after i).
+* :func:`gimbal_lock_explorer` (chapter 6): ZYX coordinates of a spherical
+  wrist's tool orientation; :math:`B(\phi)` and :math:`\det B` next to the
+  smallest singular value of the angular rows of J, and the analytic Jacobian
+  blowing up as the ZYX pitch goes to ±90° while the geometric Jacobian stays
+  well-conditioned (on a ZYZ wrist, away from its own singularity θ2 = 0).
+* :func:`resolved_rate_explorer` (chapter 9): a planar arm following a path with
+  the pseudo-inverse or damped least squares; joint rates plotted; what happens
+  near a singularity.
+
+How they draw. The figure is a plain :class:`matplotlib.figure.Figure` on an
+Agg canvas (no pyplot, no ipympl). Its fixed parts (axes, ticks, labels,
+legend) are drawn once and kept as a bitmap; a change of a control updates the
+moving artists with ``set_data`` and draws only those over the kept bitmap
+(blitting), then sends the PNG to an ``ipywidgets.Image``. That works in any
+Jupyter with a kernel and is easy to test: every widget has a ``set(...)``
+method and exposes what it drew.
+
+Static book: each widget has a ``*_animation`` function returning a
+:class:`jacobians.plotting.FrameSource` of the same view (its ``explorer`` is
+the widget that draws the frames), for :func:`jacobians.plotting.animation_html`.
+
+Which Jacobian a widget shows is a ``frame`` (:mod:`jacobians.frames`); the
+former parameter name ``kind`` is still accepted.
+
+The numbers come from the library: the ellipses from
+:func:`jacobians.analysis.velocity_ellipsoid` and
+:func:`jacobians.analysis.force_ellipsoid` (a force semi-axis that is infinite
+at a singularity, or too long for the view, is drawn clipped and marked), the
+resolved-rate runs from :func:`jacobians.velocity.resolved_rate`.
+"""
+
+from ..plotting import PALETTE
+from .base import ROW_LABELS, ROW_LABELS_TEX
+from .columns import ColumnsExplorer, columns_explorer, columns_explorer_animation
+from .gimbal import GimbalLockExplorer, gimbal_lock_animation, gimbal_lock_explorer
+from .path_following import ResolvedRateExplorer, resolved_rate_animation, resolved_rate_explorer
+from .planar import (
+    FORCE_LABELS,
+    JACOBIAN_FORMULAS,
+    JACOBIAN_SYMBOLS,
+    TWIST_SYMBOLS,
+    PlanarArmExplorer,
+    planar_arm_explorer,
+    planar_arm_explorer_animation,
+)
+
+__all__ = [
+    "PlanarArmExplorer",
+    "planar_arm_explorer",
+    "planar_arm_explorer_animation",
+    "ColumnsExplorer",
+    "columns_explorer",
+    "columns_explorer_animation",
+    "GimbalLockExplorer",
+    "gimbal_lock_explorer",
+    "gimbal_lock_animation",
+    "ResolvedRateExplorer",
+    "resolved_rate_explorer",
+    "resolved_rate_animation",
+    "PALETTE",
+    "JACOBIAN_SYMBOLS",
+    "JACOBIAN_FORMULAS",
+    "TWIST_SYMBOLS",
+    "FORCE_LABELS",
+    "ROW_LABELS",
+    "ROW_LABELS_TEX",
+]
