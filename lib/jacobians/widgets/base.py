@@ -4,13 +4,17 @@ from __future__ import annotations
 
 import contextlib
 import io
+from collections.abc import Iterator
+from typing import Any
 
 import ipywidgets as W
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import theta_array
+from ..chain import SerialChain
 from ..frames import FRAMES, Frame, check_frame
 from ..plotting import (
     PALETTE,
@@ -28,14 +32,15 @@ FONT = 12
 class _Blitter:
     """Draw a figure's fixed part once, then only its moving artists; return PNG bytes."""
 
-    def __init__(self, fig: Figure, live: bool):
+    def __init__(self, fig: Figure, live: bool) -> None:
         self.fig = fig
         self.canvas = FigureCanvasAgg(fig)
         self.live = live
-        self.dynamic: list = []
-        self._bg = None
+        self.dynamic: list[Any] = []
+        self._bg: Any = None
 
-    def add(self, *artists):
+    def add(self, *artists: Any) -> None:
+        """Draw these artists (nested lists allowed, None skipped) over the kept background."""
         for a in artists:
             if a is None:
                 continue
@@ -46,7 +51,8 @@ class _Blitter:
                 a.set_animated(True)
             self.dynamic.append(a)
 
-    def invalidate(self):
+    def invalidate(self) -> None:
+        """Forget the kept background (after a change of a fixed part)."""
         self._bg = None
 
     def render_rgba(self) -> np.ndarray:
@@ -82,7 +88,7 @@ def _png(rgba: np.ndarray) -> bytes:
 class _Explorer(W.VBox):
     """Common parts: a figure, an Image, held updates, a render counter."""
 
-    def _setup(self, fig: Figure, static: bool):
+    def _setup(self, fig: Figure, static: bool) -> None:
         self.static = bool(static)
         self.fig = fig
         # static (book) figures blit too: their FrameSource renders frames with self.blitter.render_rgba
@@ -92,7 +98,7 @@ class _Explorer(W.VBox):
         self._hold = 0
 
     @contextlib.contextmanager
-    def hold_updates(self):
+    def hold_updates(self) -> Iterator[_Explorer]:
         """Change several controls and redraw once at the end."""
         self._hold += 1
         try:
@@ -102,11 +108,11 @@ class _Explorer(W.VBox):
             if self._hold == 0:
                 self.refresh()
 
-    def _changed(self, change=None):
+    def _changed(self, change: object = None) -> None:
         if self._hold == 0:
             self.refresh()
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Recompute from the controls, move the artists, and (live) send a new PNG."""
         self._compute_and_update()
         if not self.static:
@@ -114,14 +120,16 @@ class _Explorer(W.VBox):
             self.image.value = self.png
         self.render_count += 1
 
-    def _compute_and_update(self):  # pragma: no cover - abstract
+    def _compute_and_update(self) -> None:  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def close_figure(self):
+    def close_figure(self) -> None:
+        """Clear the figure (frees its artists)."""
         self.fig.clear()
 
 
-def _slider(description, value, lo, hi, step, color=None, readout_format=".2f", width="330px"):
+def _slider(description: str, value: float, lo: float, hi: float, step: float, color: str | None = None,
+            readout_format: str = ".2f", width: str = "330px") -> W.FloatSlider:
     style = {"description_width": "70px"}
     if color:
         style["handle_color"] = color
@@ -130,30 +138,30 @@ def _slider(description, value, lo, hi, step, color=None, readout_format=".2f", 
                          layout=W.Layout(width=width))
 
 
-def _latex_block(*lines) -> str:
+def _latex_block(*lines: str) -> str:
     return "".join(f"<div style='margin:2px 0'>$${ln}$$</div>" for ln in lines)
 
 
-def _status_html(text, ok_level):
+def _status_html(text: str, ok_level: str) -> str:
     colour = {"ok": PALETTE["ok"], "warn": PALETTE["warning"], "bad": PALETTE["singular"]}[ok_level]
     return (f"<div style='padding:4px 8px;border-left:8px solid {colour};font-size:15px'>"
             f"{text}</div>")
 
 
-def _planar_theta(chain, theta, default):
+def _planar_theta(chain: SerialChain, theta: ArrayLike | None, default: list[float]) -> NDArray[np.float64]:
     n = chain.dof
     if theta is None:
-        base = np.array(default + [0.4] * n)[:n]
+        base: NDArray[np.float64] = np.array(default + [0.4] * n)[:n]
         return base
     return theta_array(theta, n)
 
 
-def _frame_or_kind(frame: Frame | None, kind: Frame | None, default: Frame | None = None) -> Frame | None:
-    """``frame``, or ``kind`` (its former name), checked; ``default`` if neither is given."""
+def _frame_or_kind(frame: Frame | None, kind: Frame | None) -> Frame | None:
+    """``frame``, or ``kind`` (its former name), checked; None if neither is given."""
     if kind is not None:
         if frame is not None and frame != kind:
             raise ValueError(f"Expected one of frame and its former name kind, got frame={frame!r} and kind={kind!r}")
         frame = kind
     if frame is None:
-        return default
+        return None
     return check_frame(frame, FRAMES)

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 import numpy as np
 from matplotlib.figure import Figure
+from numpy.typing import ArrayLike
 
 from .. import robots
 from .._validation import theta_array
-from ..chain import _as_chain
+from ..chain import SerialChain, _as_chain
 from ..jacobian import body_jacobian, space_jacobian
 from ..plotting import (
     PALETTE,
@@ -36,7 +39,8 @@ __all__ = ["ColumnsExplorer", "columns_explorer", "columns_explorer_animation"]
 class ColumnsExplorer(_Explorer):
     """Space-vs-body columns; see :func:`columns_explorer`."""
 
-    def __init__(self, chain=None, column=3, theta=None, *, static=False, figsize=(6.0, 5.2), dpi=80):
+    def __init__(self, chain: SerialChain | None = None, column: int = 3, theta: ArrayLike | None = None, *,
+                 static: bool = False, figsize: tuple[float, float] = (6.0, 5.2), dpi: float = 80) -> None:
         super().__init__()
         chain = robots.spatial_5r() if chain is None else _as_chain(chain)
         self.chain = chain
@@ -61,8 +65,9 @@ class ColumnsExplorer(_Explorer):
         fig = Figure(figsize=figsize, dpi=dpi)
         self._setup(fig, static)
         title = f"{chain.name}: joints that move column"
+        self.arm: Any  # a PlanarArmArtist (planar chain) or a SpatialChainArtist
         if self.planar:
-            ax = fig.add_axes([0.14, 0.1, 0.82, 0.82])
+            ax = fig.add_axes((0.14, 0.1, 0.82, 0.82))
             setup_planar_axes(ax, chain, title=title, margin=0.15)
             self.arm = PlanarArmArtist(ax, chain, theta)
             (self.role_markers,) = ax.plot([], [], linestyle="none")
@@ -89,10 +94,10 @@ class ColumnsExplorer(_Explorer):
                    Line2D([], [], color="black", lw=4, label="joint i")]
         ax.legend(handles=handles, loc="upper left", fontsize=8.5, framealpha=0.85)
         self.blitter.add(moving, self.title_text)
-        self._last_J = None
+        self._last_J: tuple[Any, ...] | None = None
         self.changed_space_columns: list = []
         self.changed_body_columns: list = []
-        self.last_moved_joint = None
+        self.last_moved_joint: int | None = None
         for k, s in enumerate(self.angle_sliders):
             s.observe(lambda ch, k=k: self._joint_moved(k), names="value")
         self.column_dropdown.observe(self._changed, names="value")
@@ -109,7 +114,7 @@ class ColumnsExplorer(_Explorer):
     def column(self) -> int:
         return int(self.column_dropdown.value)
 
-    def set(self, theta=None, column=None):
+    def set(self, theta: ArrayLike | None = None, column: int | None = None) -> ColumnsExplorer:
         """Set joint angles (rad) and/or the watched column (1-based); redraw once."""
         with self.hold_updates():
             if column is not None:
@@ -124,22 +129,22 @@ class ColumnsExplorer(_Explorer):
                 self.last_moved_joint = moved[0] + 1 if len(moved) == 1 else None
         return self
 
-    def move_joint(self, joint, value):
+    def move_joint(self, joint: int, value: float) -> ColumnsExplorer:
         """Move one joint (1-based) to ``value`` rad; records which columns of J_s and J_b changed."""
         self.angle_sliders[int(joint) - 1].value = float(value)
         return self
 
-    def _joint_moved(self, k):
+    def _joint_moved(self, k: int) -> None:
         if self._hold == 0:
             self.last_moved_joint = k + 1
             self.refresh()
 
-    def roles(self, column=None):
+    def roles(self, column: int | None = None) -> tuple[list[int], list[int]]:
         """For column i (1-based): (joints before i, joints after i), 1-based lists."""
         i = self.column if column is None else int(column)
         return list(range(1, i)), list(range(i + 1, self.chain.dof + 1))
 
-    def _compute_and_update(self):
+    def _compute_and_update(self) -> None:
         th = self.theta
         chain = self.chain
         n = chain.dof
@@ -195,7 +200,8 @@ class ColumnsExplorer(_Explorer):
                                       "change.</div>")
 
 
-def columns_explorer(chain=None, column=3, theta=None, **kw) -> ColumnsExplorer:
+def columns_explorer(chain: SerialChain | None = None, column: int = 3, theta: ArrayLike | None = None,
+                     **kw: Any) -> ColumnsExplorer:
     r"""Which joints change column i of :math:`J_s` and of :math:`J_b` (chapter 4).
 
     Column i of the space Jacobian is :math:`[\mathrm{Ad}_{e^{[\mathcal S_1]\theta_1}\cdots
@@ -210,7 +216,8 @@ def columns_explorer(chain=None, column=3, theta=None, **kw) -> ColumnsExplorer:
     return ColumnsExplorer(chain, column, theta, **kw)
 
 
-def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval=150) -> FrameSource:
+def columns_explorer_animation(chain: SerialChain | None = None, column: int = 3, frames: int = 36, dpi: float = 72,
+                               interval: float = 150) -> FrameSource:
     """The columns view as a :class:`~jacobians.plotting.FrameSource`: each joint in turn swings by ±0.8 rad
     while column ``column`` is watched.
 
@@ -222,8 +229,8 @@ def columns_explorer_animation(chain=None, column=3, frames=36, dpi=72, interval
     chain = w.chain
     n = chain.dof
     fig = w.fig
-    w.ax.set_position([0.0, 0.04, 0.58, 0.9])
-    axm = fig.add_axes([0.66, 0.16, 0.3, 0.66])
+    w.ax.set_position((0.0, 0.04, 0.58, 0.9))
+    axm = fig.add_axes((0.66, 0.16, 0.3, 0.66))
     i = w.column
     mat = MatrixArtist(axm, np.column_stack([w.J_s[:, i - 1], w.J_b[:, i - 1]]), digits=2, row_labels=ROW_LABELS,
                        col_labels=[f"$J_s$ col {i}", f"$J_b$ col {i}"], fontsize=11)

@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 import numpy as np
 from matplotlib.figure import Figure
+from numpy.typing import ArrayLike, NDArray
 
 from .. import robots
 from .._validation import as_float_array
+from ..chain import SerialChain
 from ..jacobian import analytic_jacobian, geometric_jacobian, pose_coordinates
 from ..plotting import (
     COLUMN_COLORS,
@@ -31,7 +35,7 @@ from .base import (
 __all__ = ["GimbalLockExplorer", "gimbal_lock_explorer", "gimbal_lock_animation"]
 
 
-def _sigma_min_angular(J):
+def _sigma_min_angular(J: ArrayLike) -> NDArray[np.float64]:
     """Smallest singular value of the angular (ω) rows of geometric Jacobians (..., 6, n)."""
     return np.linalg.svd(np.asarray(J)[..., :3, :], compute_uv=False)[..., -1]
 
@@ -41,8 +45,9 @@ class GimbalLockExplorer(_Explorer):
 
     WRISTS = {"zyz": "ZYZ wrist: only its ZYX coordinates lock", "zyx": "ZYX wrist: both coincide"}
 
-    def __init__(self, angles_deg=(30.0, 60.0, 0.0), wrist="zyz", tool=0.3, *, theta2_range=(-180.0, 180.0),
-                 n_grid=241, static=False, figsize=(8.4, 6.0), dpi=80):
+    def __init__(self, angles_deg: ArrayLike = (30.0, 60.0, 0.0), wrist: str = "zyz", tool: float = 0.3, *,
+                 theta2_range: tuple[float, float] = (-180.0, 180.0), n_grid: int = 241, static: bool = False,
+                 figsize: tuple[float, float] = (8.4, 6.0), dpi: float = 80) -> None:
         super().__init__()
         if wrist not in self.WRISTS:
             raise ValueError(f"Expected wrist 'zyz' or 'zyx', got {wrist!r}")
@@ -67,7 +72,7 @@ class GimbalLockExplorer(_Explorer):
         self._setup(fig, static)
         fs = FONT
         # left: the wrist in 3-D above the matrix B(phi); right: det B and sigma_min above the two norms
-        ax3 = fig.add_axes([0.0, 0.40, 0.46, 0.56], projection="3d")
+        ax3: Any = fig.add_axes((0.0, 0.40, 0.46, 0.56), projection="3d")
         setup_3d_axes(ax3, self.chain, margin=0.05)
         ax3.view_init(elev=22, azim=-55)
         r = np.floor(0.8 * arm_reach(self.chain) * 10) / 10 or 0.1  # tick labels clear of the box corners
@@ -78,15 +83,15 @@ class GimbalLockExplorer(_Explorer):
         self.arm = SpatialChainArtist(ax3, self.chain, np.radians(a), axis_length=0.9 * arm_reach(self.chain),
                                       frame_length=0.18)
         self.title3 = ax3.text2D(0.5, 1.0, "", transform=ax3.transAxes, ha="center", va="top", fontsize=fs)
-        axm = fig.add_axes([0.10, 0.03, 0.32, 0.19])
+        axm = fig.add_axes((0.10, 0.03, 0.32, 0.19))
         self.matrix_artist = MatrixArtist(axm, np.eye(3), digits=2, fontsize=fs,
                                           col_labels=[r"$\dot\phi_1$", r"$\dot\phi_2$", r"$\dot\phi_3$"],
                                           row_labels=[r"$\omega_x$", r"$\omega_y$", r"$\omega_z$"])
         axm.tick_params(labelsize=fs)
         axm.xaxis.tick_top()
         self.matrix_title = fig.text(0.26, 0.305, "", ha="center", va="center", fontsize=fs)
-        ax_d = fig.add_axes([0.60, 0.60, 0.38, 0.27])
-        ax_n = fig.add_axes([0.60, 0.12, 0.38, 0.27], sharex=ax_d)
+        ax_d = fig.add_axes((0.60, 0.60, 0.38, 0.27))
+        ax_n = fig.add_axes((0.60, 0.12, 0.38, 0.27), sharex=ax_d)
         self.ax3, self.ax_m, self.ax_det, self.ax = ax3, axm, ax_d, ax_n
         for ax_ in (ax_d, ax_n):
             ax_.tick_params(labelsize=fs - 1)
@@ -125,13 +130,13 @@ class GimbalLockExplorer(_Explorer):
         self.wrist_dropdown.observe(self._wrist_changed, names="value")
         controls = W.VBox([self.wrist_dropdown, W.HTML("<b>joint angles</b>"), *self.angle_sliders])
         self.children = [W.HBox([controls, self.status]), self.image, self.matrix_html]
-        self._curve_key = None
+        self._curve_key: tuple[Any, ...] | None = None
         self.refresh()
 
-    def _wrist_chain(self, wrist):
+    def _wrist_chain(self, wrist: str) -> SerialChain:
         return robots.zyz_wrist(self._tool) if wrist == "zyz" else robots.zyx_wrist(self._tool)
 
-    def _wrist_changed(self, change):
+    def _wrist_changed(self, change: dict[str, Any]) -> None:
         self.chain = self._wrist_chain(change["new"])
         self.arm.chain = self.chain
         self._changed()
@@ -142,9 +147,10 @@ class GimbalLockExplorer(_Explorer):
 
     @property
     def wrist(self) -> str:
-        return self.wrist_dropdown.value
+        return str(self.wrist_dropdown.value)
 
-    def set(self, angles_deg=None, theta2_deg=None, wrist=None):
+    def set(self, angles_deg: ArrayLike | None = None, theta2_deg: float | None = None,
+            wrist: str | None = None) -> GimbalLockExplorer:
         """Set the joint angles (degrees), or only θ2, and/or the wrist ('zyz' or 'zyx'); redraw once."""
         with self.hold_updates():
             if wrist is not None:
@@ -162,7 +168,7 @@ class GimbalLockExplorer(_Explorer):
                 s2.value = float(np.clip(theta2_deg, s2.min, s2.max))
         return self
 
-    def _curves(self, th):
+    def _curves(self, th: NDArray[np.float64]) -> None:
         """det B, sigma_min of J's omega rows, ||J_a|| and ||J|| along theta2_grid with theta1, theta3 fixed."""
         g = np.radians(self.theta2_grid)
         grid = np.column_stack([np.full_like(g, th[0]), g, np.full_like(g, th[2])])
@@ -179,7 +185,7 @@ class GimbalLockExplorer(_Explorer):
         self.curve_a.set_data(self.theta2_grid, self.norm_Ja_grid)
         self.curve_g.set_data(self.theta2_grid, self.norm_J_grid)
 
-    def _compute_and_update(self):
+    def _compute_and_update(self) -> None:
         a = self.angles_deg
         th = np.radians(a)
         chain = self.chain
@@ -244,7 +250,8 @@ class GimbalLockExplorer(_Explorer):
             + "</div>")
 
 
-def gimbal_lock_explorer(angles_deg=(30.0, 60.0, 0.0), wrist="zyz", tool=0.3, **kw) -> GimbalLockExplorer:
+def gimbal_lock_explorer(angles_deg: ArrayLike = (30.0, 60.0, 0.0), wrist: str = "zyz", tool: float = 0.3,
+                         **kw: Any) -> GimbalLockExplorer:
     r"""ZYX coordinates of a spherical wrist's tool orientation, and their gimbal lock (chapter 6).
 
     Default: the ZYZ wrist :func:`jacobians.robots.zyz_wrist`,
@@ -270,8 +277,9 @@ def gimbal_lock_explorer(angles_deg=(30.0, 60.0, 0.0), wrist="zyz", tool=0.3, **
     return GimbalLockExplorer(angles_deg, wrist, tool, **kw)
 
 
-def gimbal_lock_animation(frames=15, dpi=80, interval=250, wrist="zyz", theta1_deg=30.0, theta3_deg=0.0,
-                          theta2_deg=(45.0, 135.0)) -> FrameSource:
+def gimbal_lock_animation(frames: int = 15, dpi: float = 80, interval: float = 250, wrist: str = "zyz",
+                          theta1_deg: float = 30.0, theta3_deg: float = 0.0,
+                          theta2_deg: tuple[float, float] = (45.0, 135.0)) -> FrameSource:
     r"""The gimbal-lock view as a :class:`~jacobians.plotting.FrameSource` along a path of the wrist.
 
     θ2 runs once from ``theta2_deg[0]`` to ``theta2_deg[1]`` (both included, ``frames``

@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 import numpy as np
 from matplotlib.figure import Figure
+from numpy.typing import NDArray
 
 from .. import robots
 from .. import velocity as _velocity
+from ..chain import SerialChain
 from ..jacobian import geometric_jacobian
 from ..plotting import (
     COLUMN_COLORS,
@@ -27,7 +31,8 @@ from .base import (
 __all__ = ["ResolvedRateExplorer", "resolved_rate_explorer", "resolved_rate_animation"]
 
 
-def _planar_path(kind, reach, n_steps):
+def _planar_path(kind: str, reach: float,
+                 n_steps: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Desired tool positions (N, 2) and velocities (N, 2) over t in [0, T] with T = 4 s."""
     T = 4.0
     t = np.linspace(0.0, T, n_steps)
@@ -56,8 +61,9 @@ class ResolvedRateExplorer(_Explorer):
     RATE_LIMIT = 8.0  # rad/s shown on the rate plot; larger peaks leave the plot and are printed
     GAIN = 2.0  # feedback gain K (1/s) of the controller
 
-    def __init__(self, chain=None, path="close past the base", method="pinv", damping=0.1, *, static=False, n_steps=160,
-                 figsize=(9.6, 4.8), dpi=80):
+    def __init__(self, chain: SerialChain | None = None, path: str = "close past the base", method: str = "pinv",
+                 damping: float = 0.1, *, static: bool = False, n_steps: int = 160,
+                 figsize: tuple[float, float] = (9.6, 4.8), dpi: float = 80) -> None:
         super().__init__()
         chain = robots.planar_2r() if chain is None else chain
         self.chain = check_planar(chain, "the resolved-rate explorer")
@@ -81,8 +87,8 @@ class ResolvedRateExplorer(_Explorer):
         self.status = W.HTML()
         fig = Figure(figsize=figsize, dpi=dpi)
         self._setup(fig, static)
-        ax = fig.add_axes([0.07, 0.12, 0.4, 0.78])
-        axr = fig.add_axes([0.58, 0.12, 0.4, 0.78])
+        ax = fig.add_axes((0.07, 0.12, 0.4, 0.78))
+        axr = fig.add_axes((0.58, 0.12, 0.4, 0.78))
         self.ax, self.ax_rates = ax, axr
         setup_planar_axes(ax, self.chain, title="tool following the path", margin=0.1)
         (self.des_line,) = ax.plot([], [], "--", color=PALETTE["path"], lw=2.2, label="desired path")
@@ -102,7 +108,7 @@ class ResolvedRateExplorer(_Explorer):
         axr.legend(loc="lower right", fontsize=9)
         self.blitter.add(self.des_line, self.act_line, self.arm.artists, self.target, self.rate_lines, self.cursor,
                          self.rate_text)
-        self._sim_key = None
+        self._sim_key: tuple[Any, ...] | None = None
         for c in (self.path_dropdown, self.method_dropdown, self.damping_slider, self.time_slider):
             c.observe(self._changed, names="value")
         controls = W.VBox([self.path_dropdown, self.method_dropdown, self.damping_slider,
@@ -110,7 +116,8 @@ class ResolvedRateExplorer(_Explorer):
         self.children = [W.HBox([controls, self.status]), self.image]
         self.refresh()
 
-    def set(self, path=None, method=None, damping=None, step=None):
+    def set(self, path: str | None = None, method: str | None = None, damping: float | None = None,
+            step: int | None = None) -> ResolvedRateExplorer:
         """Choose the path, the method ('pinv' or 'dls'), the damping λ, and/or the time step shown."""
         with self.hold_updates():
             if path is not None:
@@ -128,7 +135,7 @@ class ResolvedRateExplorer(_Explorer):
                 self.play.value = self.time_slider.value  # keep the linked Play in step
         return self
 
-    def _simulate(self):
+    def _simulate(self) -> bool:
         path, method, lam = self.path_dropdown.value, self.method_dropdown.value, self.damping_slider.value
         key = (path, method, lam if method == "dls" else None)
         if key == self._sim_key:
@@ -147,7 +154,7 @@ class ResolvedRateExplorer(_Explorer):
         self._sim_key = key
         return True
 
-    def _start_configuration(self, x0):
+    def _start_configuration(self, x0: NDArray[np.float64]) -> NDArray[np.float64]:
         n = self.chain.dof
         th = np.array([0.3] + [0.9] * (n - 1))[:n]
         for _ in range(200):  # Newton steps with a little damping (1 mm)
@@ -158,7 +165,7 @@ class ResolvedRateExplorer(_Explorer):
             th = th + _velocity.dls_rates(J, e, 1e-3)
         return th
 
-    def _compute_and_update(self):
+    def _compute_and_update(self) -> None:
         if self._simulate():
             self.des_line.set_data(self.x_des[:, 0], self.x_des[:, 1])
             for i, ln in enumerate(self.rate_lines):
@@ -189,8 +196,8 @@ class ResolvedRateExplorer(_Explorer):
             level)
 
 
-def resolved_rate_explorer(chain=None, path="close past the base", method="pinv", damping=0.1,
-                           **kw) -> ResolvedRateExplorer:
+def resolved_rate_explorer(chain: SerialChain | None = None, path: str = "close past the base", method: str = "pinv",
+                           damping: float = 0.1, **kw: Any) -> ResolvedRateExplorer:
     r"""Resolved-rate motion of a planar arm along a path (chapter 9).
 
     Paths: ``"circle"`` (well inside the workspace), ``"to full reach"`` (ends
@@ -208,8 +215,9 @@ def resolved_rate_explorer(chain=None, path="close past the base", method="pinv"
     return ResolvedRateExplorer(chain, path, method, damping, **kw)
 
 
-def resolved_rate_animation(chain=None, path="close past the base", method="pinv", damping=0.1, frames=36, dpi=72,
-                            interval=120) -> FrameSource:
+def resolved_rate_animation(chain: SerialChain | None = None, path: str = "close past the base", method: str = "pinv",
+                            damping: float = 0.1, frames: int = 36, dpi: float = 72,
+                            interval: float = 120) -> FrameSource:
     """The resolved-rate view as a :class:`~jacobians.plotting.FrameSource` over the run.
 
     ``.explorer`` is the :class:`ResolvedRateExplorer`, ``.path`` the joint angles of the frames.

@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 import numpy as np
 from matplotlib.figure import Figure
+from numpy.typing import ArrayLike
 
 from .. import robots
 from .._validation import theta_array
 from ..analysis import force_ellipsoid, velocity_ellipsoid
+from ..chain import SerialChain
 from ..frames import FRAMES, JACOBIAN_SYMBOLS, Frame
 from ..jacobian import geometric_jacobian, jacobian, space_jacobian
 from ..plotting import (
@@ -69,15 +73,17 @@ class PlanarArmExplorer(_Explorer):
 
     FRAMES = FRAMES
 
-    def __init__(self, chain=None, theta=None, rates=None, frame: Frame | None = None, *, static=False,
-                 show_ellipses=True, figsize=(5.6, 5.4), dpi=80, matrix_panel=None, kind: Frame | None = None):
+    def __init__(self, chain: SerialChain | None = None, theta: ArrayLike | None = None,
+                 rates: ArrayLike | None = None, frame: Frame | None = None, *, static: bool = False,
+                 show_ellipses: bool = True, figsize: tuple[float, float] = (5.6, 5.4), dpi: float = 80,
+                 matrix_panel: bool | None = None, kind: Frame | None = None) -> None:
         super().__init__()
         chain = robots.planar_2r() if chain is None else chain
         self.chain = check_planar(chain, "the planar arm explorer")
         n = self.chain.dof
         theta = _planar_theta(self.chain, theta, [0.5, 1.2, -0.8])
         rates = np.ones(n) * 0.5 if rates is None else theta_array(rates, n, "rates")
-        frame = _frame_or_kind(frame, kind, "space")
+        frame = _frame_or_kind(frame, kind) or "space"
         self.reach = arm_reach(self.chain)
         self.vel_scale = 0.35  # drawn metres per m/s
         self.force_scale = 0.1 * self.reach ** 2  # drawn metres per (N per N m)
@@ -105,11 +111,11 @@ class PlanarArmExplorer(_Explorer):
         with_matrix = static if matrix_panel is None else matrix_panel
         if with_matrix:
             fig = Figure(figsize=(figsize[0] + 3.6, figsize[1]), dpi=dpi)
-            ax = fig.add_axes([0.08, 0.1, 0.52, 0.8])
-            axm = fig.add_axes([0.7, 0.12, 0.28, 0.72])
+            ax = fig.add_axes((0.08, 0.1, 0.52, 0.8))
+            axm = fig.add_axes((0.7, 0.12, 0.28, 0.72))
         else:
             fig = Figure(figsize=figsize, dpi=dpi)
-            ax = fig.add_axes([0.14, 0.1, 0.82, 0.82])
+            ax = fig.add_axes((0.14, 0.1, 0.82, 0.82))
             axm = None
         self._setup(fig, static)
         self.ax = ax
@@ -137,7 +143,7 @@ class PlanarArmExplorer(_Explorer):
         self.force_clipped = np.zeros(2, dtype=bool)
         self.indicator = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=FONT, va="bottom",
                                  bbox=dict(boxstyle="round", fc="white", ec="0.6", alpha=0.9), zorder=7)
-        self._legend_kind = None
+        self._legend_kind: tuple[Any, ...] | None = None
         self.matrix_artist = None
         if axm is not None:
             self.matrix_artist = MatrixArtist(axm, np.zeros((6, n)), digits=2, row_labels=ROW_LABELS,
@@ -174,14 +180,16 @@ class PlanarArmExplorer(_Explorer):
     @property
     def frame(self) -> Frame:
         """The frame of the Jacobian shown."""
-        return self.frame_dropdown.value
+        frame: Frame = self.frame_dropdown.value
+        return frame
 
     @property
     def kind(self) -> Frame:
         """Former name of :attr:`frame`."""
         return self.frame
 
-    def set(self, theta=None, rates=None, frame: Frame | None = None, *, kind: Frame | None = None):
+    def set(self, theta: ArrayLike | None = None, rates: ArrayLike | None = None, frame: Frame | None = None, *,
+            kind: Frame | None = None) -> PlanarArmExplorer:
         """Set joint angles (rad), joint rates (rad/s) and/or the frame of the Jacobian shown; redraw once.
 
         ``kind`` is the former name of ``frame``.
@@ -200,13 +208,13 @@ class PlanarArmExplorer(_Explorer):
                 self.frame_dropdown.value = frame
         return self
 
-    def _on_play(self, change):
+    def _on_play(self, change: dict[str, Any]) -> None:
         k = change["new"]
         j = self.sweep_dropdown.value
         self.angle_sliders[j].value = float(np.round(-np.pi + 2 * np.pi * k / self.play.max, 2))
 
     # ---- drawing
-    def _compute_and_update(self):
+    def _compute_and_update(self) -> None:
         th, rates, frame = self.theta, self.rates, self.frame
         chain = self.chain
         J = jacobian(chain, th, frame, "zyx", on_singularity="nan")  # analytic: NaN at gimbal lock
@@ -242,9 +250,8 @@ class PlanarArmExplorer(_Explorer):
         self.force_ellipse.update(tip, drawn, U_f)
         force_state = ("inf" if np.isinf(f_axes[clipped]).any() else "clipped") if clipped.any() else None
         if clipped.any():
-            seg = [np.array([tip - self.force_clip * U_f[:, i], tip + self.force_clip * U_f[:, i], [np.nan] * 2])
-                   for i in np.flatnonzero(clipped)]
-            seg = np.concatenate(seg)
+            seg = np.concatenate([np.array([tip - self.force_clip * U_f[:, i], tip + self.force_clip * U_f[:, i],
+                                            [np.nan] * 2]) for i in np.flatnonzero(clipped)])
             self.force_clip_line.set_data(seg[:, 0], seg[:, 1])
         self.force_ellipse.line.set_linestyle(":" if force_state else "--")
         self.vel_ellipse.line.set_visible(show)
@@ -262,8 +269,10 @@ class PlanarArmExplorer(_Explorer):
         self.level = level
         colour = {"ok": PALETTE["ok"], "warn": PALETTE["warning"], "bad": PALETTE["singular"]}[level]
         self.indicator.set_text(f"smallest singular value of $J_v$: {s:.3f} m\n{word}")
-        self.indicator.get_bbox_patch().set_edgecolor(colour)
-        self.indicator.get_bbox_patch().set_linewidth(3)
+        box = self.indicator.get_bbox_patch()
+        if box is not None:
+            box.set_edgecolor(colour)
+            box.set_linewidth(3)
         self.arm.link_line.set_color(PALETTE["link"] if level == "ok" else colour)
         # legend entries are copies made when the legend is built (arm colour, force line style):
         # rebuild it when what they show changes
@@ -275,7 +284,7 @@ class PlanarArmExplorer(_Explorer):
             ell_label, clip_label = FORCE_LABELS[force_state]
             self.force_ellipse.line.set_label(ell_label)
             if show and force_state:
-                self.force_clip_line.set_label(clip_label % self.force_clip)
+                self.force_clip_line.set_label((clip_label or "%.2f") % self.force_clip)
                 handles.append(self.force_clip_line)
             self.legend = self.ax.legend(handles=handles, loc="upper left", fontsize=8.5, framealpha=0.85)
             self._legend_kind = legend_key
@@ -300,7 +309,8 @@ class PlanarArmExplorer(_Explorer):
             self.matrix_title.set_text(f"${sym}(\\theta)$, columns per joint")
 
 
-def planar_arm_explorer(chain=None, theta=None, rates=None, frame: Frame | None = None, **kw) -> PlanarArmExplorer:
+def planar_arm_explorer(chain: SerialChain | None = None, theta: ArrayLike | None = None,
+                        rates: ArrayLike | None = None, frame: Frame | None = None, **kw: Any) -> PlanarArmExplorer:
     r"""A live explorer of a planar arm's Jacobians (chapters 2 and 5).
 
     Parameters
@@ -331,8 +341,10 @@ def planar_arm_explorer(chain=None, theta=None, rates=None, frame: Frame | None 
     return PlanarArmExplorer(chain, theta, rates, frame, **kw)
 
 
-def planar_arm_explorer_animation(chain=None, theta=None, rates=None, frame: Frame | None = None, sweep=None,
-                                  frames=36, dpi=72, interval=150, *, kind: Frame | None = None) -> FrameSource:
+def planar_arm_explorer_animation(chain: SerialChain | None = None, theta: ArrayLike | None = None,
+                                  rates: ArrayLike | None = None, frame: Frame | None = None, sweep: int | None = None,
+                                  frames: int = 36, dpi: float = 72, interval: float = 150, *,
+                                  kind: Frame | None = None) -> FrameSource:
     r"""The explorer's view as a :class:`~jacobians.plotting.FrameSource`, sweeping joint ``sweep``
     (1-based; default the last) over [-π, π].
 
@@ -342,7 +354,7 @@ def planar_arm_explorer_animation(chain=None, theta=None, rates=None, frame: Fra
     :class:`PlanarArmExplorer` that draws the frames, ``.path`` the (frames, n)
     joint angles of the frames; ``kind=`` is the former name of ``frame``.
     """
-    w = PlanarArmExplorer(chain, theta, rates, _frame_or_kind(frame, kind, "space"), static=True, dpi=dpi)
+    w = PlanarArmExplorer(chain, theta, rates, _frame_or_kind(frame, kind) or "space", static=True, dpi=dpi)
     n = w.chain.dof
     j = n - 1 if sweep is None else int(sweep) - 1
     if not 0 <= j < n:
