@@ -59,4 +59,5 @@ def read(path: Path) -> NotebookNode:
     if not is_notebook(path):
         raise ValueError(f"{path} is not a notebook: expected an .ipynb or a MyST Markdown file "
                          "with a jupytext front matter (format_name: myst)")
-    return jupytext.read(path)
+    notebook: NotebookNode = jupytext.read(path)
+    return notebook

@@ -251,10 +251,12 @@ def remove_unloaded_theme_files(app: Sphinx, exception: Exception | None) -> Non
     if exception is not None or app.builder.format != "html":
         return
     static = Path(app.outdir) / "_static"
-    found = [p for pattern in UNLOADED_THEME_FILES for p in static.glob(pattern)]
+    found = list(dict.fromkeys(p for pattern in UNLOADED_THEME_FILES for p in static.glob(pattern)))
     if not found:
         raise ProblemGone("remove_unloaded_theme_files", f"none of {list(UNLOADED_THEME_FILES)} is in {static}")
     for path in found:
+        if not path.exists():  # inside a folder removed just before
+            continue
         if path.is_dir():
             shutil.rmtree(path)
         else:

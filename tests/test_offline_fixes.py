@@ -141,6 +141,7 @@ def test_fontawesome_js_fix_fails_when_the_theme_no_longer_loads_it(tmp_path, mo
 def test_unloaded_theme_files_are_removed_and_loaded_ones_kept(tmp_path):
     static = tmp_path / "html" / "_static"
     files = ["scripts/bootstrap.js", "scripts/bootstrap.js.map", "styles/theme.css.map", "scripts/fontawesome.js",
+             "scripts/fontawesome.js.map",
              "vendor/fontawesome/webfonts/fa-solid-900.woff2", "vendor/fontawesome/webfonts/fa-solid-900.ttf",
              "locales/de/LC_MESSAGES/booktheme.mo", "mathjax/es5/tex-mml-chtml.js"]
     for name in files:

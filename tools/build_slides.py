@@ -36,11 +36,15 @@ import json
 import shutil
 import sys
 import time
+from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
+from typing import Any, cast
 
 import yaml
 from _ext.notebook_pages import has_deck, read
+from nbconvert.exporters import SlidesExporter
+from nbformat import NotebookNode
 
 from tools import vendor
 from tools.slides import myst
@@ -61,7 +65,7 @@ def toc_files(root: Path = ROOT) -> list[Path]:
     toc = yaml.safe_load((root / "_toc.yml").read_text(encoding="utf-8"))
     found: list[str] = []
 
-    def walk(node):
+    def walk(node: object) -> None:
         if isinstance(node, dict):
             if "file" in node:
                 found.append(node["file"])
@@ -128,7 +132,7 @@ def _lib_hash(root: Path = ROOT) -> str:
     return h.hexdigest()
 
 
-def _code_hash(nb) -> str:
+def _code_hash(nb: NotebookNode) -> str:
     h = hashlib.sha256()
     h.update(json.dumps(nb.metadata.get("kernelspec", {}), sort_keys=True).encode())
     for cell in nb.cells:
@@ -137,7 +141,7 @@ def _code_hash(nb) -> str:
     return h.hexdigest()
 
 
-def _from_book_cache(nb):
+def _from_book_cache(nb: NotebookNode) -> NotebookNode | None:
     """Outputs from the book's jupyter-cache, or None if it has no match."""
     if not (BOOK_CACHE / "global.db").exists():
         return None
@@ -145,12 +149,13 @@ def _from_book_cache(nb):
         from jupyter_cache import get_cache
 
         _, merged = get_cache(str(BOOK_CACHE)).merge_match_into_notebook(nb)
-        return merged
+        return cast(NotebookNode, merged)
     except Exception:  # no match, or a cache written by another version
         return None
 
 
-def executed(source: Path, cache_dir: Path, use_book_cache: bool, log) -> tuple:
+def executed(source: Path, cache_dir: Path, use_book_cache: bool,
+             log: Callable[[str], object]) -> tuple[NotebookNode, str]:
     """The chapter as an executed notebook, and where its outputs came from."""
     import nbformat
 
@@ -183,7 +188,7 @@ def executed(source: Path, cache_dir: Path, use_book_cache: bool, log) -> tuple:
     return nb, "executed"
 
 
-def _merge_outputs(nb, done):
+def _merge_outputs(nb: NotebookNode, done: NotebookNode) -> NotebookNode:
     """Copy outputs of the cached executed notebook into the freshly read one.
 
     Markdown and metadata come from the source (they may have changed without
@@ -191,7 +196,7 @@ def _merge_outputs(nb, done):
     """
     code_done = [c for c in done.cells if c.cell_type == "code"]
     code_new = [c for c in nb.cells if c.cell_type == "code"]
-    for new, old in zip(code_new, code_done):
+    for new, old in zip(code_new, code_done, strict=False):  # same code: same count
         new.outputs = old.get("outputs", [])
         new.execution_count = old.get("execution_count")
     for key in ("language_info", "widgets"):
@@ -203,8 +208,7 @@ def _merge_outputs(nb, done):
 # ---------------------------------------------------------------- conversion
 
 
-def exporter(labels: dict, source: Path, stem: str, urls: dict[str, str]):
-    from nbconvert.exporters import SlidesExporter
+def exporter(labels: dict[str, str], source: Path, stem: str, urls: dict[str, str]) -> SlidesExporter:
     from traitlets.config import Config
 
     c = Config()
@@ -261,7 +265,7 @@ def build_deck(source: Path, dest: Path, labels: dict, course: dict, cache_dir: 
     }
 
 
-def _build_one(args):
+def _build_one(args: tuple[Path, Path, dict[str, str], dict[str, Any], Path, bool]) -> dict[str, Any]:
     source, dest, labels, course, cache_dir, use_book_cache = args
     try:
         return build_deck(source, dest, labels, course, cache_dir, use_book_cache)
@@ -288,7 +292,7 @@ def write_index(dest: Path, reports: list[dict]) -> None:
     )
 
 
-def main(argv=None) -> int:
+def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("dest", type=Path)
     ap.add_argument("--only", nargs="*", help="chapter stems to build (default: all)")
@@ -307,7 +311,8 @@ def main(argv=None) -> int:
     if args.only:
         unknown = set(args.only) - {s.stem for s in sources}
         if unknown:
-            print(f"build_slides: no chapter named {sorted(unknown)}; known: {[s.stem for s in sources]}", file=sys.stderr)
+            known = [s.stem for s in sources]
+            print(f"build_slides: no chapter named {sorted(unknown)}; known: {known}", file=sys.stderr)
             return 2
         sources = [s for s in sources if s.stem in args.only]
     labels = all_labels(root)

@@ -15,8 +15,9 @@ Markdown cell's source so that
 * targets ``(label)=``, comments ``% ...`` and equation labels
   ``$$ ... $$ (label)`` disappear.
 
-Everything here is plain string processing with no nbconvert import, so it is
-unit-tested directly (tests/slides/test_myst.py).
+Directive blocks are found by myst-parser's own block parser (the one that
+builds the book); the rest is string processing with no nbconvert import, so
+it is unit-tested directly (tests/slides/test_myst.py).
 """
 
 from __future__ import annotations
@@ -24,8 +25,15 @@ from __future__ import annotations
 import html
 import re
 import textwrap
+from collections.abc import Iterator
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
+
+from markdown_it import MarkdownIt
+from markdown_it.renderer import RendererHTML
+from myst_parser.config.main import MdParserConfig
+from myst_parser.parsers.mdit import create_md_parser
 
 # ---------------------------------------------------------------- vocabulary
 
@@ -72,6 +80,7 @@ CODE_DIRECTIVES = {"code-block", "code", "sourcecode", "literalinclude"}
 #: kinds that open their own (sub)slide when the author gave no slide metadata
 KEY_KINDS = {"definition", "theorem", "proposition", "lemma", "corollary", "exercise"}
 
+_DIRECTIVE_INFO = re.compile(r"^\{(?P<name>[A-Za-z][\w:.+-]*)\}[ \t]*(?P<arg>.*?)\s*$")
 _OPEN = re.compile(r"^(?P<indent>[ ]{0,3})(?P<fence>`{3,}|:{3,})\{(?P<name>[A-Za-z][\w:.+-]*)\}[ \t]*(?P<arg>.*?)\s*$")
 _PLAIN_FENCE = re.compile(r"^(?P<indent>[ ]{0,3})(?P<fence>`{3,}|~{3,})(?P<info>[^`]*)$")
 _OPTION = re.compile(r"^:(?P<key>[\w-]+):(?:[ \t]+(?P<value>.*?))?\s*$")
@@ -148,52 +157,40 @@ def parse_options(lines: list[str]) -> tuple[dict, list[str]]:
     return options, lines[i:]
 
 
-def split_blocks(text: str):
-    """Yield ``("text", str)`` and ``("directive", Directive)`` pieces of ``text``.
+@lru_cache(maxsize=1)
+def _block_parser() -> MarkdownIt:
+    """The book's own MyST block parser (myst-parser, with the extensions of _config.yml that make blocks)."""
+    return create_md_parser(MdParserConfig(enable_extensions={"colon_fence", "dollarmath", "amsmath"}), RendererHTML)
 
-    Only top-level directives are split out; nested ones stay in the body of
-    their parent (converted recursively). Plain code fences are kept whole so
-    nothing inside them is treated as a directive. An unterminated directive
-    runs to the end of the text, as in MyST.
+
+def split_blocks(text: str) -> Iterator[str | Directive]:
+    """Yield the pieces of ``text``: plain text (``str``) and top-level :class:`Directive` blocks.
+
+    The blocks are found by myst-parser (the parser that builds the book):
+    a top-level backtick or colon fence whose info is ``{name} argument``.
+    Nested directives stay in the body of their parent (converted
+    recursively); plain code fences are plain text, so nothing inside them is
+    a directive. An unterminated directive runs to the end of the text, as in
+    MyST. Text pieces are the source lines between the blocks, unchanged.
     """
     lines = text.split("\n")
-    buf: list[str] = []
-    i = 0
-    n = len(lines)
-    while i < n:
-        line = lines[i]
-        m = _OPEN.match(line)
-        if m:
-            fence = m.group("fence")
-            j = i + 1
-            while j < n and not _is_close(lines[j], fence):
-                j += 1
-            content = lines[i + 1:j]
-            if buf:
-                yield "text", "\n".join(buf)
-                buf = []
-            name = m.group("name").lower()
-            if name in CODE_DIRECTIVES:
-                options, body_lines = parse_options(content)
-            else:
-                options, body_lines = parse_options(content)
-            body = textwrap.dedent("\n".join(body_lines)).strip("\n")
-            yield "directive", Directive(name, m.group("arg"), options, body)
-            i = j + 1
+    pos = 0
+    for token in _block_parser().parse(text):
+        if token.level != 0 or token.type not in ("fence", "colon_fence") or token.map is None:
             continue
-        pm = _PLAIN_FENCE.match(line)
-        if pm:
-            fence = pm.group("fence")
-            j = i + 1
-            while j < n and not _is_close(lines[j], fence):
-                j += 1
-            buf.extend(lines[i:j + 1])
-            i = j + 1
+        m = _DIRECTIVE_INFO.match(token.info)
+        if not m:
             continue
-        buf.append(line)
-        i += 1
-    if buf:
-        yield "text", "\n".join(buf)
+        start, end = token.map
+        if pos < start:
+            yield "\n".join(lines[pos:start])
+        content = token.content.removesuffix("\n")
+        options, body_lines = parse_options(content.split("\n"))
+        body = textwrap.dedent("\n".join(body_lines)).strip("\n")
+        yield Directive(m.group("name").lower(), m.group("arg"), options, body)
+        pos = end
+    if pos < len(lines):
+        yield "\n".join(lines[pos:])
 
 
 # ---------------------------------------------------------------- inline text
@@ -210,7 +207,7 @@ def resolve(target: str, ctx: Context) -> str:
     normal = re.sub(r"\.(md|ipynb)$", "", normal)
     for key in (target, target.lstrip("#"), normal, target.rsplit("/", 1)[-1], Path(target).stem):
         if key in ctx.labels:
-            return ctx.labels[key]
+            return str(ctx.labels[key])
     return _readable(target.lstrip("#"))
 
 
@@ -241,7 +238,8 @@ def convert_role(name: str, text: str, ctx: Context) -> str:
     return text
 
 
-_PROTECT = re.compile(r"(`+)(?:.|\n)*?\1|\$\$(?:.|\n)*?\$\$|\$(?!\$)(?:[^$\n]|\n(?!\s*\n))+?\$|\\\[(?:.|\n)*?\\\]|\\\((?:.|\n)*?\\\)")
+_PROTECT = re.compile(r"(`+)(?:.|\n)*?\1|\$\$(?:.|\n)*?\$\$|\$(?!\$)(?:[^$\n]|\n(?!\s*\n))+?\$"
+                      r"|\\\[(?:.|\n)*?\\\]|\\\((?:.|\n)*?\\\)")
 
 
 def convert_inline(text: str, ctx: Context) -> str:
@@ -253,7 +251,7 @@ def convert_inline(text: str, ctx: Context) -> str:
     out = _ROLE.sub(lambda m: convert_role(m.group("name"), m.group("text"), ctx), text)
     out = "\n".join(_EQ_LABEL.sub(r"\1", line) for line in out.split("\n"))
 
-    def link(m):
+    def link(m: re.Match[str]) -> str:
         target = m.group("target")
         if re.match(r"^[a-z][a-z0-9+.-]*:", target, re.I):  # http:, https:, mailto:
             return m.group(0)
@@ -420,8 +418,8 @@ def convert_markdown(text: str, ctx: Context) -> str:
     solution opened in one cell swallows the following cells until its end.
     """
     out: list[str] = []
-    for kind, piece in split_blocks(text):
-        if kind == "directive":
+    for piece in split_blocks(text):
+        if isinstance(piece, Directive):
             if piece.name == "solution-start":
                 ctx.in_solution = True
                 continue
@@ -447,8 +445,8 @@ def split_at_headings(text: str, max_level: int = 3) -> list[str]:
     comments right above a heading stay with it.
     """
     pieces: list[list[str]] = [[]]
-    for kind, piece in split_blocks(text):
-        if kind == "directive":
+    for piece in split_blocks(text):
+        if isinstance(piece, Directive):
             pieces[-1].append(_unsplit(piece))
             continue
         in_fence = None
@@ -466,8 +464,9 @@ def split_at_headings(text: str, max_level: int = 3) -> list[str]:
             h = _HEADING.match(line)
             if h and len(h.group(1)) <= max_level and any(x.strip() for x in pieces[-1]):
                 # carry trailing targets/comments/blank lines with the heading
-                carry = []
-                while pieces[-1] and (not pieces[-1][-1].strip() or _TARGET.match(pieces[-1][-1]) or _COMMENT.match(pieces[-1][-1])):
+                carry: list[str] = []
+                while pieces[-1] and (not pieces[-1][-1].strip() or _TARGET.match(pieces[-1][-1])
+                                      or _COMMENT.match(pieces[-1][-1])):
                     carry.insert(0, pieces[-1].pop())
                 if any(x.strip() for x in pieces[-1]):
                     pieces.append(carry)
@@ -487,8 +486,8 @@ def split_cell(text: str) -> list[str]:
     out: list[str] = []
     for piece in split_at_headings(text):
         buf: list[str] = []
-        for kind, block in split_blocks(piece):
-            if kind == "directive":
+        for block in split_blocks(piece):
+            if isinstance(block, Directive):
                 if any(x.strip() for x in buf):
                     out.append("\n".join(buf).strip("\n"))
                 buf = []
@@ -540,7 +539,11 @@ def has_math(text: str) -> bool:
 
 
 def _strip_inline(text: str) -> str:
-    text = _ROLE.sub(lambda m: _EXPLICIT.match(m.group("text")).group("text") if _EXPLICIT.match(m.group("text")) else m.group("text"), text)
+    def shown(m: re.Match[str]) -> str:
+        explicit = _EXPLICIT.match(m.group("text"))
+        return explicit.group("text") if explicit else m.group("text")
+
+    text = _ROLE.sub(shown, text)
     return text.strip()
 
 
@@ -580,9 +583,9 @@ def index_labels(path: Path) -> dict:
         if pm and not _OPEN.match(line):
             in_fence = pm.group("fence")
 
-    def walk(t: str):
-        for kind, piece in split_blocks(t):
-            if kind != "directive":
+    def walk(t: str) -> None:
+        for piece in split_blocks(t):
+            if not isinstance(piece, Directive):
                 continue
             label = piece.options.get("label")
             k = piece.name.split(":", 1)[-1]

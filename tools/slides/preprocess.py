@@ -32,9 +32,11 @@ from __future__ import annotations
 import copy
 import re
 from pathlib import Path
+from typing import Any
 
 import nbformat
 from nbconvert.preprocessors import Preprocessor
+from nbformat import NotebookNode
 from traitlets import Dict, Unicode
 
 from . import myst
@@ -57,11 +59,12 @@ SHOWN_EVEN_IF_SKIPPED = {"definition", "theorem", "proposition", "lemma", "corol
                          "exercise", "warning", "important"}
 
 
-def _explicit_type(cell) -> str | None:
-    return cell.get("metadata", {}).get("slideshow", {}).get("slide_type")
+def _explicit_type(cell: NotebookNode) -> str | None:
+    value = cell.get("metadata", {}).get("slideshow", {}).get("slide_type")
+    return str(value) if value is not None else None
 
 
-def _set_type(cell, slide_type: str) -> None:
+def _set_type(cell: NotebookNode, slide_type: str) -> None:
     cell.metadata.setdefault("slideshow", {})["slide_type"] = slide_type
 
 
@@ -126,7 +129,7 @@ class MystSlidesPreprocessor(Preprocessor):
     source_dir = Unicode("", help="folder of the chapter source (for local images)").tag(config=True)
     asset_prefix = Unicode("", help="prefix of image files copied next to the deck").tag(config=True)
 
-    def preprocess(self, nb, resources):
+    def preprocess(self, nb: NotebookNode, resources: dict[str, Any]) -> tuple[NotebookNode, dict[str, Any]]:
         ctx = myst.Context(
             labels=dict(self.labels),
             source_dir=Path(self.source_dir) if self.source_dir else None,
@@ -151,7 +154,7 @@ class MystSlidesPreprocessor(Preprocessor):
         return nb, resources
 
     # -------------------------------------------------------------- markdown
-    def _markdown(self, cell, ctx):
+    def _markdown(self, cell: NotebookNode, ctx: myst.Context) -> list[NotebookNode]:
         explicit = _explicit_type(cell)
         out = []
         boxes = 0
@@ -172,7 +175,7 @@ class MystSlidesPreprocessor(Preprocessor):
         return out
 
     # -------------------------------------------------------------- code
-    def _code(self, cell, ctx):
+    def _code(self, cell: NotebookNode, ctx: myst.Context) -> NotebookNode | None:
         if ctx.in_solution:
             return None
         tags = set(cell.metadata.get("tags", []))
@@ -211,5 +214,5 @@ class MystSlidesPreprocessor(Preprocessor):
         return cell
 
 
-def _as_text(value) -> str:
+def _as_text(value: str | list[str]) -> str:
     return "".join(value) if isinstance(value, list) else value

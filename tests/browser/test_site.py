@@ -1,0 +1,120 @@
+"""The built site is lean: at most 25 MB, every vendored tree used, one copy of each front-end package.
+
+Reads the built HTML folder (``BOOK_HTML``, default ``_build/html``: the book
+with its decks in ``slides/``, as ``make book`` writes it); no browser needed.
+The requests pages really make are checked by the other browser tests.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from tools import vendor
+
+MAX_BYTES = 25_000_000
+#: folders of _static that come from the themes and Sphinx, not from tools/vendor.py
+THEME_DIRS = {"scripts", "styles", "vendor", "images"}
+#: file names by which a front-end package is recognised wherever it is copied, and a
+#: text its first kilobyte holds (MathJax has a TeX extension also named require.js)
+PACKAGE_FILES = {
+    "MathJax": (("tex-mml-chtml.js", "tex-chtml.js", "tex-svg.js", "MathJax.js"), ""),
+    "require.js": (("require.js",), "RequireJS"),
+    "reveal.js": (("reveal.js", "reveal.esm.js"), "reveal.js"),
+    "jupyter widget manager": (("embed-amd.js", "libembed-amd.js"), ""),
+    "jQuery": (("jquery.js", "jquery.min.js"), "jQuery"),
+    "font-awesome 4": (("font-awesome.min.css", "font-awesome.css"), "Font Awesome"),
+}
+
+
+def _files(folder: Path) -> list[Path]:
+    return [p for p in folder.rglob("*") if p.is_file()]
+
+
+def _size(folder: Path) -> int:
+    return sum(p.stat().st_size for p in _files(folder))
+
+
+def _pages(site: Path) -> dict[Path, str]:
+    """Every HTML page of the site (book pages and decks), outside _static and the decks' vendor folder."""
+    return {p: p.read_text(encoding="utf-8", errors="replace") for p in site.rglob("*.html")
+            if "_static" not in p.parts and vendor.DECK_VENDOR not in p.relative_to(site).parts}
+
+
+def _referenced(target: Path, pages: dict[Path, str]) -> list[Path]:
+    """Pages whose HTML names ``target`` by its path relative to the page."""
+    import os
+
+    found = []
+    for page, text in pages.items():
+        rel = Path(os.path.relpath(target, page.parent)).as_posix()
+        if rel in text:
+            found.append(page)
+    return found
+
+
+def test_site_is_at_most_25_mb(book_html, capsys):
+    total = _size(book_html)
+    folders = sorted(((_size(p), p) for p in [*book_html.iterdir(), *(book_html / "_static").iterdir(),
+                                               *(book_html / "slides").glob("*/")] if p.is_dir()), reverse=True)
+    lines = [f"site {book_html}: {total / 1e6:.1f} MB (limit {MAX_BYTES / 1e6:.0f} MB); biggest folders:"]
+    lines += [f"  {size / 1e6:6.2f} MB  {path.relative_to(book_html)}" for size, path in folders[:12]]
+    with capsys.disabled():
+        print("\n" + "\n".join(lines))
+    assert total <= MAX_BYTES, "\n".join(lines)
+
+
+def test_every_vendored_tree_is_loaded_by_a_page_or_deck(book_html):
+    pages = _pages(book_html)
+    decks = [p for p in pages if p.name.endswith(".slides.html")]
+    assert decks, "no deck in the site: `make book` builds them into slides/"
+    static = book_html / "_static"
+    for package in vendor.BOOK:
+        entry = static / package.folder / package.entry
+        assert entry.is_file(), f"{entry} is missing: tools/vendor.py vendors {package.npm}"
+        assert _referenced(entry, pages), f"no page or deck loads {entry.relative_to(book_html)}"
+    ours = {p.folder for p in vendor.BOOK}
+    unknown = sorted(p.name for p in static.iterdir() if p.is_dir() and p.name not in ours | THEME_DIRS)
+    assert not unknown, f"trees in _static that tools/vendor.py does not vendor (left by an older build?): {unknown}"
+    deck_vendor = book_html / "slides" / vendor.DECK_VENDOR
+    for package in vendor.DECKS:
+        entry = deck_vendor / package.folder / package.entry
+        assert entry.is_file(), f"{entry} is missing"
+        assert _referenced(entry, {d: pages[d] for d in decks}), f"no deck loads {entry.relative_to(book_html)}"
+    extra = sorted(p.name for p in deck_vendor.iterdir() if p.name not in {q.folder for q in vendor.DECKS})
+    assert not extra, f"the decks' vendor folder holds trees no deck loads: {extra}"
+
+
+def test_one_copy_of_each_front_end_package(book_html):
+    copies: dict[str, list[str]] = {package: [] for package in PACKAGE_FILES}
+    for path in _files(book_html):
+        for package, (names, marker) in PACKAGE_FILES.items():
+            if path.name in names and marker in path.read_bytes()[:1024].decode("utf-8", "replace"):
+                copies[package].append(path.relative_to(book_html).as_posix())
+    for package, found in copies.items():
+        assert len(found) <= 1, f"{package}: {len(found)} copies in the site: {found}"
+    assert not copies["jupyter widget manager"], "no page shows a widget: the widget manager is not vendored"
+    assert copies["MathJax"] and copies["reveal.js"] and copies["require.js"], copies
+
+
+def test_chapter_pages_link_exactly_the_decks(book_html):
+    decks = {p.name for p in (book_html / "slides").glob("*.slides.html")}
+    linked = {}
+    for page in (book_html / "chapters").glob("*.html"):
+        m = re.search(r'<p class="slides-link">.*?href="([^"]+)"', page.read_text(encoding="utf-8"), re.S)
+        if m:
+            linked[page.name] = m.group(1)
+    for page, href in linked.items():
+        assert (book_html / "chapters" / href).resolve().is_file(), f"{page} links {href}, which was not built"
+    assert {Path(h).name for h in linked.values()} == decks, "every deck is linked from its chapter"
+
+
+@pytest.mark.parametrize("package", vendor.BOOK + vendor.DECKS, ids=lambda p: p.npm)
+def test_vendored_package_is_in_package_json(package):
+    import json
+
+    root = Path(__file__).resolve().parents[2]
+    deps = json.loads((root / "package.json").read_text())["dependencies"]
+    assert package.npm in deps, f"{package.npm} is vendored but not pinned in package.json"
