@@ -6,7 +6,8 @@ mistake survives it.
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import jacobians as jac
 from jacobians import lie
@@ -128,7 +129,7 @@ def test_analytic_is_derivative_of_pose_coordinates(rep):
         if not _ok_for_fd(chain, theta, rep):
             continue
         Ja = jac.analytic_jacobian(chain, theta, rep)
-        num = jac.numerical_jacobian(lambda t: jac.pose_coordinates(chain.fk(t), rep), theta)
+        num = jac.numerical_jacobian(lambda t, chain=chain: jac.pose_coordinates(chain.fk(t), rep), theta)
         assert np.allclose(Ja, num, atol=1e-5), rep
         Jg = jac.geometric_jacobian(chain, theta)
         assert np.allclose(jac.geometric_to_analytic(Jg, chain.fk(theta), rep), Ja, atol=1e-12)

@@ -1,6 +1,7 @@
 """Tests of jacobians.plotting: drawn data equal the library's values, updates move artists in place."""
 
 import os
+import re
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
@@ -345,3 +346,79 @@ def test_label_positions_default_and_validation():
         P.draw_spatial_chain(ax, ur5, np.zeros(6), label_at=[1.0, 2.0])
     with pytest.raises(ValueError, match="candidates"):
         art.place_labels(candidates=[])
+
+
+# ---------------------------------------------------------------- the animation interface
+
+def _dot_figure():
+    fig, ax = plt.subplots(figsize=(2, 2), dpi=30)
+    ax.set_xlim(-1, 1)
+    ax.set_ylim(-1, 1)
+    (dot,) = ax.plot([0.0], [0.0], "o")
+    return fig, dot
+
+
+def test_frame_source_rejects_bad_input_saying_what_came():
+    fig, dot = _dot_figure()
+    draw = lambda k: dot.set_data([0.1 * k], [0.0])
+    with pytest.raises(TypeError, match="Expected a matplotlib Figure for fig, got Line2D"):
+        P.FrameSource(dot, draw, 3)
+    with pytest.raises(TypeError, match="Expected a callable draw"):
+        P.FrameSource(fig, 3, 3)
+    with pytest.raises(ValueError, match="positive number of frames, got 2.5"):
+        P.FrameSource(fig, draw, 2.5)
+    with pytest.raises(ValueError, match="positive interval"):
+        P.FrameSource(fig, draw, 3, interval=0)
+    with pytest.raises(TypeError, match="artists in moving, got str"):
+        P.FrameSource(fig, draw, 3, moving=["dot"])
+    with pytest.raises(ValueError, match="between 0 and 2, got 3"):
+        P.FrameSource(fig, draw, 3).frame(3)
+    with pytest.raises(ValueError, match="default_mode"):
+        P.animation_html(P.FrameSource(fig, draw, 3), default_mode="bounce")
+    plt.close(fig)
+
+
+def test_frame_source_frames_move_and_the_player_keeps_the_interval_and_mode():
+    fig, dot = _dot_figure()
+    seen = []
+
+    def draw(k):
+        seen.append(k)
+        dot.set_data([-0.8 + 0.8 * k], [0.0])
+        return [dot]
+
+    source = P.FrameSource(fig, draw, 3, interval=250, moving=[dot])
+    first, last = source.frame(0), source.frame(2)
+    assert first.shape == last.shape and first.shape[2] == 3 and not np.array_equal(first, last)
+    html = P.animation_html(source, default_mode="reflect").data
+    assert seen == [0, 2, 0, 1, 2]  # animation_html draws every frame once, in order
+    assert html.count("data:image/png;base64") == 3 and "https://" not in html
+    checked = re.findall(r'<input type="radio" name="state" value="(\w+)"[^>]*checked>', html)
+    assert checked == ["reflect"]
+    assert re.search(r"new Animation\(frames, img_id, slider_id, 250\.0,", html)
+    assert not plt.fignum_exists(fig.number)
+
+
+def test_animation_html_of_a_plain_func_animation_is_offline_with_palette_frames():
+    from matplotlib.animation import FuncAnimation
+
+    fig, dot = _dot_figure()
+    anim = FuncAnimation(fig, lambda k: dot.set_data([0.3 * k], [0.0]), frames=3, interval=100)
+    html = P.animation_html(anim).data
+    frames = re.findall(r'frames\[\d+\] = "data:image/png;base64,([^"]*)"', html)
+    assert len(frames) == 3 and "font-awesome" not in html and "https://" not in html
+    import base64
+    import io
+
+    from PIL import Image
+
+    assert Image.open(io.BytesIO(base64.b64decode(frames[1]))).mode == "P"  # palette PNG
+    plt.close(fig)
+
+
+def test_animation_html_drops_frames_beyond_the_limit_with_a_warning():
+    fig, dot = _dot_figure()
+    source = P.FrameSource(fig, lambda k: dot.set_data([0.1 * k], [0.0]), 4)
+    with pytest.warns(UserWarning, match="dropped"):
+        html = P.animation_html(source, embed_limit_mb=1e-4).data
+    assert html.count("data:image/png;base64") < 4

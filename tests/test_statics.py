@@ -23,7 +23,7 @@ def test_planar_2r_torques_by_hand():
     f = np.array([3.0, -2.0])
     elbow = l1 * np.array([np.cos(0.4), np.sin(0.4)])
     tip = arm.fk(theta)[:2, 3]
-    cross = lambda r, f: r[0] * f[1] - r[1] * f[0]  # noqa: E731
+    cross = lambda r, f: r[0] * f[1] - r[1] * f[0]
     expect = [cross(tip, f), cross(tip - elbow, f)]
     # in {s}: moment about the origin of {s}, m = p x f
     F_s = np.array([0, 0, cross(tip, f), f[0], f[1], 0])
@@ -68,7 +68,7 @@ def test_power_balance_in_matching_frames(seed, batch):
     T_inv = np.linalg.inv(T)
     Vs_mat = T_dot @ T_inv
     Vb_mat = T_inv @ T_dot
-    def twist(Vm):  # noqa: E306
+    def twist(Vm):
         return np.stack([Vm[..., 2, 1], Vm[..., 0, 2], Vm[..., 1, 0], Vm[..., 0, 3], Vm[..., 1, 3], Vm[..., 2, 3]], -1)
     V_s, V_b = twist(Vs_mat), twist(Vb_mat)
     power_joints = np.sum(tau_s * theta_dot, axis=-1)

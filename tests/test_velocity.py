@@ -70,7 +70,7 @@ def test_dls_tends_to_pinv_as_damping_goes_to_zero():
     V = RNG.normal(size=3)
     ref = vel.pinv_rates(J, V)
     errs = [np.linalg.norm(vel.dls_rates(J, V, lam) - ref) for lam in (1e-1, 1e-2, 1e-3, 1e-4)]
-    assert all(a > b for a, b in zip(errs, errs[1:]))
+    assert all(a > b for a, b in zip(errs[:-1], errs[1:], strict=True))
     assert errs[-1] < 1e-6
     assert np.allclose(vel.dls_rates(J, V, 0.0), ref)
 

@@ -84,7 +84,7 @@ def test_drawn_ellipses_are_the_library_ellipses():
 
 def test_force_ellipse_clipped_and_marked_near_and_at_a_singularity():
     w = Wd.planar_arm_explorer(jac.robots.planar_2r(1.0, 1.0))
-    legend = lambda: [t.get_text() for t in w.legend.get_texts()]  # noqa: E731
+    legend = lambda: [t.get_text() for t in w.legend.get_texts()]
     # at the singularity the library reports an infinite semi-axis along the arm
     w.set(theta=[0.3, 0.0])
     J_v = jac.geometric_jacobian(w.chain, w.theta)[3:5]
@@ -371,7 +371,7 @@ def test_resolved_rate_run_is_the_library_run(method):
     dt = w.t[1] - w.t[0]
     ref = jac.velocity.resolved_rate(w.chain, w.thetas[0], w.x_des, dt, method=method, damping=0.1, gain=2.0,
                                      target_velocities=w.v_des)
-    for got, want in zip(w.result, ref):
+    for got, want in zip(w.result, ref, strict=True):
         np.testing.assert_allclose(got, want, atol=1e-12)
     np.testing.assert_allclose(w.errors, np.linalg.norm(w.x_des - w.x_act, axis=1), atol=1e-15)
     np.testing.assert_allclose(w.sigma_hist, np.linalg.svd(
