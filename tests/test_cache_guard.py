@@ -1,12 +1,8 @@
 """tools/cache_guard.py: a library change empties the book's execution cache, nothing else does."""
 
-import importlib.util
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-_spec = importlib.util.spec_from_file_location("cache_guard", ROOT / "tools" / "cache_guard.py")
-cache_guard = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(cache_guard)
+from tools import cache_guard
 
 
 def _library(tmp_path: Path) -> Path:

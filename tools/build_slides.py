@@ -47,7 +47,7 @@ from nbconvert.exporters import SlidesExporter
 from nbformat import NotebookNode
 
 from tools import vendor
-from tools.slides import myst
+from tools.slides import reader
 from tools.slides.preprocess import MystSlidesPreprocessor
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -105,7 +105,7 @@ def all_labels(root: Path = ROOT) -> dict:
     labels: dict = {}
     decks = set(deck_sources(root))
     for p in sorted((p for p in toc_files(root) if p.suffix == ".md"), key=lambda p: p in decks):
-        found = myst.index_labels(p)
+        found = reader.index_labels(p)
         if p.stem in found:
             found[p.relative_to(root).with_suffix("").as_posix()] = found[p.stem]
         labels.update(found)
@@ -243,7 +243,7 @@ def build_deck(source: Path, dest: Path, labels: dict, course: dict, cache_dir: 
         "metadata": {"name": source.stem, "path": str(source.parent)},
         "course": course,
     }
-    title = myst.index_labels(source).get(source.stem, source.stem)
+    title = reader.index_labels(source).get(source.stem, source.stem)
     nb.metadata["title"] = title
     body, resources = ex.from_notebook_node(nb, resources=resources)
     out = dest / deck_name(source)

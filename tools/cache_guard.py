@@ -7,7 +7,7 @@ library. ``make book`` runs this first: it hashes every file of the library
 (and ``pyproject.toml``) and, when the hash differs from the one stored beside
 the cache, empties the cache so that every page is executed again.
 
-Usage: python tools/cache_guard.py [CACHE_DIR]   (default _build/.jupyter_cache)
+Usage: python -m tools.cache_guard [CACHE_DIR]   (default _build/.jupyter_cache)
 """
 
 from __future__ import annotations

@@ -11,7 +11,6 @@ import re
 from pathlib import Path
 
 import pytest
-
 from tools import vendor
 
 MAX_BYTES = 25_000_000

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 from tools import build_slides
-from tools.slides import myst
+from tools.slides import reader
 
 ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
@@ -199,7 +199,7 @@ def test_math_typeset_and_no_raw_markup(browser, source):
     w = walk(browser, source)
     assert not w["problems"], "\n".join(w["problems"])
     assert w["counts"]["errors"] == 0, "MathJax reported TeX errors"
-    if myst.has_math(source.read_text(encoding="utf-8").split("---", 2)[-1]):
+    if reader.has_math(source.read_text(encoding="utf-8").split("---", 2)[-1]):
         assert w["counts"]["chtml"] > 0, "the chapter has math but no MathJax element is on the slides"
     assert not w["counts"]["notesVisible"], "speaker notes are visible on the slides"
 

@@ -7,7 +7,7 @@ import re
 import nbformat
 import pytest
 from tools import build_slides
-from tools.slides import myst
+from tools.slides import myst, reader
 from tools.slides.preprocess import LIVE_DEMO_HTML, MystSlidesPreprocessor, auto_slide_type
 
 LABELS = {
@@ -96,7 +96,7 @@ def test_code_fences_are_left_alone():
 
 def test_split_at_headings_keeps_targets_with_heading_and_directives_whole():
     text = "Intro.\n\n(sec-a)=\n## A\n\n```{note}\n## not a heading\n```\n\n### B\ntext"
-    pieces = myst.split_at_headings(text)
+    pieces = reader.split_at_headings(text)
     assert len(pieces) == 3
     assert pieces[0] == "Intro."
     assert pieces[1].startswith("(sec-a)=\n## A") and "## not a heading" in pieces[1]
@@ -192,7 +192,7 @@ def test_every_chapter_converts_without_raw_myst_left(source):
     for cell in nb.cells:
         if cell.cell_type != "markdown":
             continue
-        for piece in myst.split_at_headings(cell.source):
+        for piece in reader.split_at_headings(cell.source):
             out = myst.convert_markdown(piece, ctx)
             outside_code = re.sub(r"(?ms)^(`{3,}|~{3,})(?!\{).*?^\1\s*$", "", out)
             assert not re.search(r"^\s*(`{3,}|:{3,})\{", outside_code, re.M), out
@@ -206,7 +206,7 @@ def test_skipped_prose_keeps_its_definition_results_and_warnings():
 
     cell = ("Long prose the author skipped.\n\n```{prf:definition} D\n:label: d\nBody.\n```\n\n"
             "More prose.\n\n```{prf:proof}\nBecause.\n```\n\n```{tip}\nA tip.\n```\n\n## Next section\ntext")
-    pieces = myst.split_cell(cell)
+    pieces = reader.split_cell(cell)
     assert len(pieces) == 6
     types = [piece_slide_type(p, k, "skip") for k, p in enumerate(pieces)]
     assert types == ["skip", "-", "skip", "subslide", "skip", "slide"]
@@ -220,7 +220,7 @@ def test_skipped_prose_keeps_its_definition_results_and_warnings():
 
 
 def test_colon_directive_survives_splitting():
-    pieces = myst.split_cell(":::{important}\n:class: x\nKey **fact**.\n:::\nafter")
+    pieces = reader.split_cell(":::{important}\n:class: x\nKey **fact**.\n:::\nafter")
     assert len(pieces) == 2
     out = myst.convert_markdown(pieces[0], myst.Context())
     assert 'class="box box-important"' in out and "Key **fact**." in out and ":class:" not in out

@@ -39,7 +39,7 @@ from nbconvert.preprocessors import Preprocessor
 from nbformat import NotebookNode
 from traitlets import Dict, Unicode
 
-from . import myst
+from . import myst, reader
 
 WIDGET_MIME = "application/vnd.jupyter.widget-view+json"
 SHOW_CODE_TAG = "slide-show-code"
@@ -70,12 +70,12 @@ def _set_type(cell: NotebookNode, slide_type: str) -> None:
 
 def auto_slide_type(markdown: str) -> str:
     """Slide type for a Markdown piece without author metadata (see module doc)."""
-    level = myst.leading_heading_level(markdown)
+    level = reader.leading_heading_level(markdown)
     if level in (1, 2):
         return "slide"
     if level == 3:
         return "subslide"
-    name = myst.leading_directive(markdown)
+    name = reader.leading_directive(markdown)
     if name is not None:
         kind = name.split(":", 1)[-1]
         if kind in myst.KEY_KINDS or kind == "proof":
@@ -98,8 +98,8 @@ def piece_slide_type(piece: str, k: int, explicit: str | None, in_solution: bool
     * anything else: the first piece has it, later pieces as with no metadata;
     * a proof that is not the first piece of its cell starts a subslide.
     """
-    level = myst.leading_heading_level(piece)
-    name = myst.leading_directive(piece)
+    level = reader.leading_heading_level(piece)
+    name = reader.leading_directive(piece)
     kind = name.split(":", 1)[-1] if name else None
     if in_solution:
         return "-"
@@ -158,7 +158,7 @@ class MystSlidesPreprocessor(Preprocessor):
         explicit = _explicit_type(cell)
         out = []
         boxes = 0
-        for k, piece in enumerate(myst.split_cell(cell.source)):
+        for k, piece in enumerate(reader.split_cell(cell.source)):
             was_in_solution = ctx.in_solution
             text = myst.convert_markdown(piece, ctx)
             if not text.strip():
