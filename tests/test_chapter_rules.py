@@ -11,7 +11,13 @@ with markdown-it (so a ``##`` inside a code fence is not a heading). The rules:
   ``verified = Verified()``;
 * no code cell prints an old "✓ checked" line;
 * every code cell with a ``mystnb: figure:`` option gives both ``name`` and ``caption`` (the name
-  ``chNN-fig-...`` in chapter NN), and the text refers to the figure with {numref}.
+  ``chNN-fig-...`` in chapter NN), and the text refers to the figure with {numref};
+* the first code cell (the page's set-up) is at most 15 lines, imports ``course.chapter`` and has no
+  ``try`` / ``except`` (issue #12: no fallbacks);
+* no chapter defines its own copy of a helper the library or ``course.chapter`` provides: no function
+  named like a public name of ``jacobians.symbolic``, ``jacobians.lie`` or ``course.chapter``, none
+  named ``s_...`` or ``s<library name>`` (``sskew``, ``sadjoint``: the old local sympy helpers), and
+  none of the retired copies (``fmt``, ``shorthand``, ``short_trig``, ``is_zero_trig``).
 """
 
 from __future__ import annotations
@@ -37,6 +43,7 @@ _BOX = re.compile(r"\bverified\.box\(")
 _RECORD = re.compile(r"\bverified\(")
 _CHECK_PRINT = re.compile(r"""\bprint\(\s*[rRfFbBuU]{0,2}(?:'{3}|"{3}|'|")\s*\u2713""")
 _NUMREF = re.compile(r"\{numref\}`(?:[^`<]*<)?([^`>]+)>?`")
+_CREATES_VERIFIED = re.compile(r"^\s*verified\s*=\s*Verified\(\)", re.M)
 
 
 @dataclass
@@ -262,7 +269,7 @@ def test_box_cells_hide_their_input_and_pages_with_boxes_are_set_up(path):
     front = yaml.safe_load(text.split("---", 2)[1]) if text.startswith("---") else {}
     if (front.get("mystnb") or {}).get("render_markdown_format") != "myst":
         problems.append("front matter lacks `mystnb: render_markdown_format: myst` (the boxes would show as raw text)")
-    if not any(re.search(r"^\s*verified\s*=\s*Verified\(\)", c.source, re.M) for c in nb.cells if c.cell_type == "code"):
+    if not any(_CREATES_VERIFIED.search(c.source) for c in nb.cells if c.cell_type == "code"):
         problems.append("no set-up cell creates `verified = Verified()`")
     assert not problems, f"{path.name}:\n  " + "\n  ".join(problems)
 
@@ -298,3 +305,83 @@ def test_every_figure_cell_has_a_name_and_a_caption_and_is_referenced(path):
         if not (isinstance(caption, str) and caption.strip()):
             problems.append(f"figure cell {where!r} ({name}): no caption")
     assert not problems, f"{path.name}:\n  " + "\n  ".join(problems)
+
+
+# ------------------------------------------------------------------ set-up cells and helpers (issue #12)
+
+SETUP_MAX_LINES = 15
+_RETIRED = {"fmt", "shorthand", "short_trig", "is_zero_trig", "sinv"}
+_DEFINES = re.compile(r"^[ \t]*(?:def[ \t]+(\w+)[ \t]*\(|(\w+)[ \t]*=[ \t]*lambda\b)", re.M)
+_TRY = re.compile(r"^[ \t]*(?:try[ \t]*:|except\b)", re.M)
+
+
+def _provided_names() -> set[str]:
+    import course.chapter
+    from jacobians import lie, symbolic
+
+    return {n for mod in (symbolic, lie, course.chapter) for n in getattr(mod, "__all__", ()) if n[0].islower()}
+
+
+def helper_copies(source: str, provided: set[str]) -> list[str]:
+    """Names of the functions a code cell defines that copy a provided helper (see the module doc)."""
+    found = []
+    for m in _DEFINES.finditer(source):
+        name = m.group(1) or m.group(2)
+        base = name[2:] if name.startswith("s_") else name[1:] if name.startswith("s") else None
+        if name in provided or name in _RETIRED or name.startswith("s_") or (base is not None and base in provided):
+            found.append(name)
+    return found
+
+
+def setup_problems(first_cell: str) -> list[str]:
+    """What is wrong with a page's set-up cell."""
+    problems = []
+    n = len(first_cell.strip("\n").splitlines())
+    if n > SETUP_MAX_LINES:
+        problems.append(f"the set-up cell has {n} lines (at most {SETUP_MAX_LINES}: import course.chapter)")
+    if _TRY.search(first_cell):
+        problems.append("the set-up cell has a try/except (no fallbacks: the library is always there)")
+    if not re.search(r"^from course\.chapter import\b", first_cell, re.M):
+        problems.append("the set-up cell does not import course.chapter")
+    return problems
+
+
+def test_the_setup_and_helper_rules_catch_the_old_patterns():
+    provided = _provided_names()
+    assert {"skew", "adjoint", "exp_se3", "matrix_to_twist", "clean", "show", "trig_shorthand",
+            "is_zero_matrix", "start_page"} <= provided
+    old = ("def s_skew(w):\n    return w\n\ndef sadjoint(T):\n    return T\n\ndef fmt(A, digits=4):\n    pass\n"
+           "sinv = lambda T: T\ndef is_zero_matrix(A):\n    pass\ndef shorthand(e, t):\n    pass\n"
+           "def sexp_se3(S, th):\n    pass\n")
+    assert helper_copies(old, provided) == ["s_skew", "sadjoint", "fmt", "sinv", "is_zero_matrix", "shorthand",
+                                            "sexp_se3"]
+    ok = "def body_columns(chain, theta):\n    pass\ndef spatial_twist(T, t):\n    pass\nsetup = 1\n"
+    assert helper_copies(ok, provided) == []
+    long_setup = "import numpy as np\ntry:\n    from jacobians.plotting import PALETTE\nexcept ImportError:\n" \
+        "    PALETTE = {}\n" + "x = 1\n" * 12
+    assert setup_problems(long_setup) == [
+        "the set-up cell has 17 lines (at most 15: import course.chapter)",
+        "the set-up cell has a try/except (no fallbacks: the library is always there)",
+        "the set-up cell does not import course.chapter"]
+    assert setup_problems("import numpy as np\nfrom course.chapter import Verified, clean, start_page\n\n"
+                          "rng = start_page(seed=1)\nverified = Verified()\n") == []
+
+
+CODE_CHAPTERS = [p for p in CHAPTERS if "```{code-cell}" in p.read_text(encoding="utf-8")]
+
+
+@pytest.mark.parametrize("path", CODE_CHAPTERS, ids=_ids(CODE_CHAPTERS))
+def test_the_setup_cell_is_one_short_import_of_course_chapter(path):
+    nb = jupytext.reads(path.read_text(encoding="utf-8"), fmt="md:myst")
+    first = next(c for c in nb.cells if c.cell_type == "code")
+    problems = setup_problems(first.source)
+    assert not problems, f"{path.name}:\n  " + "\n  ".join(problems)
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=_ids(CHAPTERS))
+def test_no_chapter_defines_a_copy_of_a_library_helper(path):
+    nb = jupytext.reads(path.read_text(encoding="utf-8"), fmt="md:myst")
+    provided = _provided_names()
+    found = [name for c in nb.cells if c.cell_type == "code" for name in helper_copies(c.source, provided)]
+    assert not found, (f"{path.name} defines {found}: use jacobians.symbolic / course.chapter "
+                       "(lib/course/chapter.py) instead")

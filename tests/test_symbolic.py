@@ -538,9 +538,9 @@ def test_conversions_and_jacobian_by_frame_against_numeric():
     num = jac.robots.spatial_rrp()
     theta = np.array([0.3, -0.8, 0.4])
     T = arm.fk(theta)
-    J_s, J_b, J = (sym.jacobian(arm, theta, f) for f in sym.FRAMES)
+    J_s, J_b, J = (sym.jacobian(arm, theta, f) for f in sym.SYMBOLIC_FRAMES)
     num_of = {"space": jac.space_jacobian, "body": jac.body_jacobian, "geometric": jac.geometric_jacobian}
-    for f, A in zip(sym.FRAMES, (J_s, J_b, J), strict=True):
+    for f, A in zip(sym.SYMBOLIC_FRAMES, (J_s, J_b, J), strict=True):
         assert np.allclose(np.array(A, dtype=float), num_of[f](num, theta), atol=1e-12), f
     pairs = [(sym.space_to_body(J_s, T), J_b), (sym.body_to_space(J_b, T), J_s),
              (sym.space_to_geometric(J_s, T), J), (sym.geometric_to_space(J, T), J_s),

@@ -34,7 +34,7 @@ Matrix([
 
 from .chain import SymbolicChain, planar_chain, to_numeric_chain
 from .jacobian import (
-    FRAMES,
+    SYMBOLIC_FRAMES,
     body_jacobian,
     body_to_geometric,
     body_to_space,
@@ -66,7 +66,7 @@ __all__ = [
     "SymbolicChain",
     "planar_chain",
     "to_numeric_chain",
-    "FRAMES",
+    "SYMBOLIC_FRAMES",
     "jacobian",
     "space_jacobian",
     "body_jacobian",

@@ -17,13 +17,14 @@ from __future__ import annotations
 
 import sympy as sp
 
+from ..frames import Frame, check_frame
 from ._checks import describe, matrix, transform
 from .chain import SymbolicChain, ad_apply
 from .lie import adjoint, exp_se3, inverse_transform
 from .simplify import tidy
 
 __all__ = [
-    "FRAMES",
+    "SYMBOLIC_FRAMES",
     "jacobian",
     "space_jacobian",
     "body_jacobian",
@@ -37,20 +38,14 @@ __all__ = [
     "geometric_to_body",
 ]
 
-FRAMES = ("space", "body", "geometric")
-"""The frames a symbolic Jacobian is given in (the analytic Jacobian is numeric only)."""
+SYMBOLIC_FRAMES: tuple[Frame, ...] = ("space", "body", "geometric")
+"""The frames (:mod:`jacobians.frames`) a symbolic Jacobian is given in; the analytic one is numeric only."""
 
 
 def _chain(chain: object) -> SymbolicChain:
     if not isinstance(chain, SymbolicChain):
         raise TypeError(f"Expected a jacobians.symbolic.SymbolicChain, got {describe(chain)}")
     return chain
-
-
-def _frame(frame: object) -> str:
-    if frame not in FRAMES:
-        raise ValueError(f"Expected frame 'space', 'body' or 'geometric', got {frame!r}")
-    return str(frame)
 
 
 def space_jacobian(chain: SymbolicChain, theta: object = None, simplify: bool = True) -> sp.Matrix:
@@ -128,20 +123,20 @@ def geometric_jacobian(chain: SymbolicChain, theta: object = None, simplify: boo
     return tidy(_shift_to_point(space_jacobian(chain, th, simplify), T[:3, 3]), simplify)
 
 
-def jacobian(chain: SymbolicChain, theta: object = None, frame: str = "space", simplify: bool = True) -> sp.Matrix:
-    """The Jacobian of the chain in ``frame`` (one of :data:`FRAMES`).
+def jacobian(chain: SymbolicChain, theta: object = None, frame: Frame = "space", simplify: bool = True) -> sp.Matrix:
+    """The Jacobian of the chain in ``frame``, one of :data:`SYMBOLIC_FRAMES`; numeric twin :func:`jacobians.jacobian`.
 
     >>> from jacobians.symbolic import planar_chain
     >>> arm, th, ls = planar_chain(2)
     >>> jacobian(arm, th, "body") == body_jacobian(arm, th)
     True
     """
-    f = _frame(frame)
+    f = check_frame(frame, SYMBOLIC_FRAMES)
     fn = {"space": space_jacobian, "body": body_jacobian, "geometric": geometric_jacobian}[f]
     return fn(chain, theta, simplify)
 
 
-def link_jacobians(chain: SymbolicChain, theta: object = None, frame: str = "space",
+def link_jacobians(chain: SymbolicChain, theta: object = None, frame: Frame = "space",
                    simplify: bool = True) -> tuple[sp.Matrix, ...]:
     r"""The Jacobians of the frames fixed to links 1..n, a tuple of n 6 x n matrices.
 
@@ -158,7 +153,7 @@ def link_jacobians(chain: SymbolicChain, theta: object = None, frame: str = "spa
     >>> link_jacobians(arm)[0][:, 1:].is_zero_matrix
     True
     """
-    f = _frame(frame)
+    f = check_frame(frame, SYMBOLIC_FRAMES)
     th = _chain(chain).joint_values(theta)
     n = chain.dof
     if f != "space" and chain.link_homes is None:

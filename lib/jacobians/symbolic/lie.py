@@ -16,6 +16,7 @@ from __future__ import annotations
 import sympy as sp
 
 from ._checks import check_unit_axis, is_revolute, matrix, scalar, transform, vector
+from .simplify import is_zero
 
 __all__ = [
     "skew",
@@ -46,13 +47,13 @@ def skew(omega: object) -> sp.Matrix:
 
 
 def unskew(W: object) -> sp.Matrix:
-    r"""The vector :math:`\omega` of a skew-symmetric :math:`[\omega]` (checked after simplification). MR: ``so3ToVec``.
+    r"""The vector :math:`\omega` of a skew-symmetric :math:`[\omega]` (checked with :func:`is_zero`). MR: ``so3ToVec``.
 
     >>> unskew(skew([1, 2, 3])).T
     Matrix([[1, 2, 3]])
     """
     A = matrix(W, "W", (3, 3))
-    if any(sp.simplify(e) != 0 for e in A + A.T):
+    if not all(is_zero(e) for e in A + A.T):
         raise ValueError("Expected W to be a skew-symmetric 3 x 3 matrix [w], got a matrix that is not skew-symmetric")
     return sp.Matrix([A[2, 1], A[0, 2], A[1, 0]])
 
@@ -153,16 +154,16 @@ def twist_to_matrix(twist: object) -> sp.Matrix:
 def matrix_to_twist(M: object) -> sp.Matrix:
     r"""The twist :math:`(\omega, v)` of an se(3) matrix :math:`[\mathcal V]`, a 6 x 1 matrix. MR: ``se3ToVec``.
 
-    The upper-left block must be skew-symmetric and the last row zero (checked after simplification).
+    The upper-left block must be skew-symmetric and the last row zero (checked with :func:`is_zero`).
 
     >>> matrix_to_twist(twist_to_matrix([1, 2, 3, 4, 5, 6])).T
     Matrix([[1, 2, 3, 4, 5, 6]])
     """
     A = matrix(M, "M", (4, 4))
     W = A[:3, :3]
-    if any(sp.simplify(e) != 0 for e in (W + W.T)):
+    if not all(is_zero(e) for e in W + W.T):
         raise ValueError("Expected M in se(3): its upper-left 3 x 3 block must be skew-symmetric")
-    if any(sp.simplify(e) != 0 for e in A[3, :]):
+    if not all(is_zero(e) for e in A[3, :]):
         raise ValueError(f"Expected M in se(3) with a zero last row, got {list(A[3, :])}")
     return sp.Matrix([W[2, 1], W[0, 2], W[1, 0], A[0, 3], A[1, 3], A[2, 3]])
 

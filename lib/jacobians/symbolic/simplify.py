@@ -110,11 +110,30 @@ def _reduces_to_zero(e: sp.Expr) -> bool:
     return bool(num == 0)
 
 
+def _clearly_not_zero(e: sp.Expr) -> bool:
+    """True if e takes a value far from 0 at one of a few points (which proves it is not identically 0).
+
+    The symbols get values in [0.5, 1.5], which meet the usual assumptions (real, positive).
+    """
+    symbols = sorted(e.free_symbols, key=str)
+    rng = np.random.default_rng(0)
+    for _ in range(3):
+        point = {x: sp.Float(v) for x, v in zip(symbols, rng.uniform(0.5, 1.5, len(symbols)), strict=True)}
+        try:
+            value = complex(e.xreplace(point).evalf(30))
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if np.isfinite(value) and abs(value) > 1e-9:
+            return True
+    return False
+
+
 def is_zero(expr: object) -> bool:
     """True if a sympy expression is identically zero; every test used is exact (no sampling).
 
     First the fast polynomial test (sines and cosines as symbols, reduced with
-    :math:`s^2 + c^2 = 1`), then ``sympy.simplify``, then a rewrite in complex
+    :math:`s^2 + c^2 = 1`); then, if the value at a few points is clearly not
+    zero, False; then ``sympy.simplify``, then a rewrite in complex
     exponentials. False means none of them proved it zero.
 
     >>> x = sp.Symbol("x")
@@ -128,6 +147,8 @@ def is_zero(expr: object) -> bool:
         raise TypeError(f"Expected a sympy expression, got {describe(expr)}")
     if e == 0 or _reduces_to_zero(e):
         return True
+    if _clearly_not_zero(e):
+        return False
     if sp.simplify(e) == 0:
         return True
     return bool(sp.expand(sp.expand_trig(e).rewrite(sp.exp)) == 0)

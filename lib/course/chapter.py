@@ -1,0 +1,196 @@
+r"""What every chapter's hidden set-up cell imports: one place instead of a copy per page.
+
+A chapter starts with one short cell::
+
+    import numpy as np
+    import sympy as sp
+    import jacobians as jac
+    from jacobians import lie, symbolic as sym
+    from course.chapter import C, Verified, animation_html, clean, is_zero_matrix, show, start_page
+
+    rng = start_page(seed=2)
+    verified = Verified()
+
+:func:`start_page` sets the print options and the figure style and returns the
+page's random generator; ``verified`` collects what the page's hidden checks
+proved (:mod:`jacobians.verified`).
+The rest are the small helpers the pages share: :func:`clean` (round for
+printing), :func:`show` (display LaTeX), :func:`trig_shorthand` (write
+:math:`\sin(\theta_1+\theta_2)` as :math:`s_{12}`), finite-difference Jacobians
+for independent checks, a random chain, and the exact zero tests of
+:mod:`jacobians.symbolic`, which the hidden checks assert.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import matplotlib
+import numpy as np
+import sympy as sp
+from IPython.display import Math, display
+from matplotlib.axes import Axes
+from matplotlib.legend import Legend
+from numpy.typing import ArrayLike, NDArray
+
+import jacobians as jac
+from jacobians import lie
+from jacobians.plotting import COLUMN_COLORS, PALETTE, animation_html, set_style
+from jacobians.symbolic import is_zero, is_zero_matrix
+from jacobians.verified import Verified
+
+__all__ = [
+    "C",
+    "PALETTE",
+    "COLUMN_COLORS",
+    "animation_html",
+    "Verified",
+    "start_page",
+    "clean",
+    "show",
+    "trig_shorthand",
+    "is_zero",
+    "is_zero_matrix",
+    "fd_space_jacobian",
+    "fd_body_jacobian",
+    "d_dt",
+    "random_chain",
+    "legend_clear",
+]
+
+C: dict[str, str] = {
+    "black": PALETTE["black"],
+    "orange": PALETTE["orange"],
+    "sky": PALETTE["sky_blue"],
+    "green": PALETTE["bluish_green"],
+    "blue": PALETTE["blue"],
+    "vermillion": PALETTE["vermillion"],
+    "purple": PALETTE["reddish_purple"],
+}
+"""Short names of the colour-blind-safe (Okabe–Ito) colours of :data:`jacobians.plotting.PALETTE`."""
+
+
+def start_page(seed: int | None = None, font_size: float | None = None,
+               lecture: bool = False) -> np.random.Generator:
+    """Print options and figure style for a page; returns the page's random generator.
+
+    Parameters
+    ----------
+    seed : int, optional
+        Seed of the page's random generator (each chapter its own, so its numbers stay put).
+    font_size : float, optional
+        Readable figures: text of ``font_size`` pt, titles one point larger,
+        ticks and legends at least 11 pt. Default: matplotlib's sizes.
+    lecture : bool
+        The lecture style of :func:`jacobians.plotting.set_style` (large fonts, thick lines) instead.
+    """
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int)):
+        raise TypeError(f"Expected an int seed, got {type(seed).__name__}")
+    if font_size is not None and lecture:
+        raise ValueError("Expected either font_size or lecture=True, got both")
+    np.set_printoptions(precision=4, suppress=True)
+    if lecture:
+        set_style()
+    elif font_size is not None:
+        s = float(font_size)
+        small = max(11.0, s - 1)
+        matplotlib.rcParams.update({"font.size": s, "axes.titlesize": s + 1, "axes.labelsize": s,
+                                    "xtick.labelsize": small, "ytick.labelsize": small,
+                                    "legend.fontsize": small, "figure.titlesize": s + 1})
+    return np.random.default_rng(seed)
+
+
+def clean(A: ArrayLike, digits: int = 4) -> NDArray[np.float64]:
+    """Round for printing; adding 0.0 turns -0.0 into 0.0, so no "-0." is printed.
+
+    >>> clean([-1e-9, 0.123456])
+    array([0.    , 0.1235])
+    """
+    return np.round(np.asarray(A, dtype=float), digits) + 0.0
+
+
+def show(latex: str) -> None:
+    """Display a LaTeX formula as an output."""
+    if not isinstance(latex, str):
+        raise TypeError(f"Expected LaTeX as a str, got {type(latex).__name__}")
+    display(Math(latex))
+
+
+def trig_shorthand(expr: sp.Basic, thetas: Sequence[sp.Symbol]) -> sp.Basic:
+    r"""Write the sine and cosine of a sum of joint angles as :math:`s_{12}`, :math:`c_{123}`, ... for display.
+
+    Only sums of distinct joint symbols (with coefficient 1) are replaced; the
+    index lists the joints in their order.
+
+    >>> t1, t2 = sp.symbols("theta1 theta2")
+    >>> trig_shorthand(sp.cos(t1 + t2) + sp.sin(t1), [t1, t2])
+    c_{12} + s_{1}
+    """
+    order = list(thetas)
+    if not all(isinstance(t, sp.Symbol) for t in order):
+        raise TypeError(f"Expected a sequence of sympy symbols for thetas, got {thetas!r}")
+
+    def index(arg: sp.Expr) -> str | None:
+        terms = sp.Add.make_args(arg)
+        if len(set(terms)) == len(terms) and all(t in order for t in terms):
+            return "".join(str(order.index(t) + 1) for t in sorted(terms, key=order.index))
+        return None
+
+    def swap(e: sp.Expr) -> sp.Expr:
+        k = index(e.args[0])
+        return sp.Symbol(("s" if isinstance(e, sp.sin) else "c") + "_{" + k + "}") if k else e
+
+    return sp.sympify(expr).replace(lambda e: isinstance(e, (sp.sin, sp.cos)), swap)
+
+
+def _fd_twists(chain: jac.SerialChain, theta: ArrayLike, side: str) -> NDArray[np.float64]:
+    th = np.asarray(theta, dtype=float)
+    dT = jac.numerical_jacobian(lambda q: chain.fk(q), th)  # (4, 4, n)
+    T_inv = lie.inverse_transform(chain.fk(th))
+    cols = [dT[..., i] @ T_inv if side == "space" else T_inv @ dT[..., i] for i in range(chain.dof)]
+    return np.stack([lie.matrix_to_twist(X) for X in cols], axis=1)
+
+
+def fd_space_jacobian(chain: jac.SerialChain, theta: ArrayLike) -> NDArray[np.float64]:
+    r"""Space Jacobian by finite differences of the forward kinematics, columns
+    :math:`(\partial T/\partial\theta_i) T^{-1}`."""
+    return _fd_twists(chain, theta, "space")
+
+
+def fd_body_jacobian(chain: jac.SerialChain, theta: ArrayLike) -> NDArray[np.float64]:
+    r"""Body Jacobian by finite differences of the forward kinematics, columns
+    :math:`T^{-1}\partial T/\partial\theta_i`."""
+    return _fd_twists(chain, theta, "body")
+
+
+def d_dt(f: Callable[[float], ArrayLike], t0: float = 0.0) -> NDArray[np.float64]:
+    """Central finite difference of ``f`` (a function of one number returning an array) at ``t0``."""
+    return jac.numerical_jacobian(lambda t: np.asarray(f(t[0])), np.array([t0]))[..., 0]
+
+
+def random_chain(n: int, rng: np.random.Generator) -> jac.SerialChain:
+    """A random chain of n joints, about 70 % revolute and 30 % prismatic, with a random home pose."""
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise ValueError(f"Expected a positive number of joints n, got {n!r}")
+    cols, types = [], rng.choice(["R", "P"], size=n, p=[0.7, 0.3])
+    for t in types:
+        u = rng.normal(size=3)
+        u /= np.linalg.norm(u)
+        cols.append(np.r_[u, -np.cross(u, rng.normal(size=3))] if t == "R" else np.r_[np.zeros(3), u])
+    M = lie.make_transform(lie.exp_so3(rng.normal(size=3)), rng.normal(size=3))
+    return jac.SerialChain(np.stack(cols, axis=1), M)
+
+
+def legend_clear(ax: Axes, legend: Legend, polylines: Sequence[ArrayLike]) -> bool:
+    """True if no point of any polyline (each (k, 2), data coordinates of ``ax``) lies under the legend box."""
+    ax.figure.canvas.draw()
+    box = legend.get_window_extent()
+    for polyline in polylines:
+        pts = np.asarray(polyline, dtype=float)
+        dense = np.concatenate([a + np.linspace(0, 1, 25)[:, None] * (b - a)
+                                for a, b in zip(pts[:-1], pts[1:], strict=True)] + [pts])
+        xy = ax.transData.transform(dense)
+        inside = (xy[:, 0] >= box.x0) & (xy[:, 0] <= box.x1) & (xy[:, 1] >= box.y0) & (xy[:, 1] <= box.y1)
+        if np.any(inside):
+            return False
+    return True
