@@ -503,6 +503,10 @@ def test_jacobian_functions_have_the_numeric_names_and_arguments(name):
     assert _params(getattr(sym, name)) == _params(getattr(jac, name))
 
 
+def test_jacobian_by_frame_takes_chain_theta_frame_like_the_numeric_one():
+    assert _params(sym.jacobian)[:3] == _params(jac.jacobian)[:3] == ["chain", "theta", "frame"]
+
+
 def test_exponentials_take_axis_then_angle():
     # the one documented difference: sympy cannot split a product omega*theta back into axis and angle
     assert _params(sym.exp_so3) == ["omega", "theta"]
@@ -572,6 +576,8 @@ def test_is_zero_decides_identities_exactly():
     assert not sym.is_zero(s(a + b) - s(a) - s(b))
     assert sym.is_zero_matrix(sp.Matrix([[0, s(a) ** 2 + c(a) ** 2 - 1]]))
     assert not sym.is_zero_matrix(sp.Matrix([[0, s(a)]]))
+    n = sp.Symbol("n", negative=True)  # no probe at positive values: the answer comes from simplify
+    assert not sym.is_zero(n + 1 + n**2) and sym.is_zero(sp.sqrt(n**2) + n)
     # the relations between the Jacobians of the 3R arm, decided without simplify_matrix
     arm, th, _ = sym.planar_chain(3)
     T = arm.fk(simplify=False)

@@ -113,9 +113,12 @@ def _reduces_to_zero(e: sp.Expr) -> bool:
 def _clearly_not_zero(e: sp.Expr) -> bool:
     """True if e takes a value far from 0 at one of a few points (which proves it is not identically 0).
 
-    The symbols get values in [0.5, 1.5], which meet the usual assumptions (real, positive).
+    The symbols get values in [0.5, 1.5], which meet the usual assumptions (real, positive); if a
+    symbol cannot be positive, nothing is tried.
     """
     symbols = sorted(e.free_symbols, key=str)
+    if any(x.is_positive is False for x in symbols):
+        return False
     rng = np.random.default_rng(0)
     for _ in range(3):
         point = {x: sp.Float(v) for x, v in zip(symbols, rng.uniform(0.5, 1.5, len(symbols)), strict=True)}
@@ -129,7 +132,7 @@ def _clearly_not_zero(e: sp.Expr) -> bool:
 
 
 def is_zero(expr: object) -> bool:
-    """True if a sympy expression is identically zero; every test used is exact (no sampling).
+    """True if a sympy expression is identically zero: True only when one of the tests below proves it.
 
     First the fast polynomial test (sines and cosines as symbols, reduced with
     :math:`s^2 + c^2 = 1`); then, if the value at a few points is clearly not
