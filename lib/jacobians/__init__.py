@@ -21,8 +21,7 @@ The submodule :mod:`jacobians.jacobian` is shadowed by the function
 space_to_body``).
 """
 
-from . import analysis, interop, lie, representations, robots
-from . import frames, statics, velocity
+from . import analysis, frames, interop, lie, representations, robots, statics, velocity
 from .chain import SerialChain
 from .frames import FRAMES, Frame
 from .jacobian import (
