@@ -376,8 +376,8 @@ def test_importing_jacobians_does_not_import_sympy():
     (lambda: sym.space_jacobian(_one_joint(), [1, 2]), ValueError, "1 joint variables"),
     (lambda: sym.SymbolicChain(sp.Matrix([0, 0, 0, 0, 0, 0]), sp.eye(4)), ValueError, "unit linear part"),
     (lambda: sym.SymbolicChain(np.ones((6, 2)) * (1 + 1j), sp.eye(4)), TypeError, "complex"),
-    (lambda: _one_joint().prefix_fk(2), ValueError, "0 <= i <= 1"),
-    (lambda: _one_joint().prefix_fk(1.0), ValueError, "0 <= i <= 1"),
+    (lambda: _one_joint().prefix_transforms([1, 2]), ValueError, "1 joint variables"),
+    (lambda: _one_joint().joint_transforms("t"), TypeError, "joint symbols"),
     (lambda: sym.link_jacobians(_one_joint(), [1], frame="body"), ValueError, "link_home"),
     (lambda: sym.link_jacobians(_one_joint(), [1], frame="world"), ValueError, "frame"),
     (lambda: sym.jacobian(_one_joint(), [1], frame="analytic"), ValueError, "frame"),
@@ -523,6 +523,8 @@ def test_symbolic_chain_is_read_only_like_serial_chain():
             setattr(arm, attr, None)
     with pytest.raises(TypeError):
         arm.screw_axes[0, 0] = 5  # an immutable matrix
+    for method in ("fk", "joint_transforms", "prefix_transforms", "link_poses"):
+        assert _params(getattr(arm, method)) == _params(getattr(num, method)) == ["theta"], method
     assert arm.joint_types == num.joint_types == "RR"
     assert arm.thetas == th and arm.params == ls
 
@@ -561,7 +563,11 @@ def test_link_poses_against_numeric():
     poses = arm.link_poses(theta)
     subs = dict(zip(ls, lengths, strict=True))
     assert np.allclose([np.array(P.subs(subs), dtype=float) for P in poses], num.link_poses(theta))
-    assert arm.prefix_fk(0) == sp.eye(4)
+    prefixes = arm.prefix_transforms(theta)
+    assert len(prefixes) == 4 and prefixes[0] == sp.eye(4)
+    assert np.allclose([np.array(P.subs(subs), dtype=float) for P in prefixes], num.prefix_transforms(theta))
+    assert np.allclose([np.array(E.subs(subs), dtype=float) for E in arm.joint_transforms(theta)],
+                       num.joint_transforms(theta))
     with pytest.raises(ValueError, match="link_homes"):
         sym.SymbolicChain(arm.screw_axes, arm.home).link_poses()
 

@@ -146,25 +146,30 @@ class SymbolicChain:
         partial products are simplified as they are built (fast, and the result
         reads like a textbook); with False every entry is the expanded product.
         """
-        return tidy(self.prefix_fk(self.dof, theta, simplify) * self._M, simplify)
+        return tidy(self.prefix_transforms(theta, simplify)[-1] * self._M, simplify)
 
-    def prefix_fk(self, i: int, theta: object = None, simplify: bool = True) -> sp.Matrix:
-        r"""The product :math:`e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_i]\theta_i}` of the first i joints."""
-        if isinstance(i, bool) or not isinstance(i, numbers.Integral) or not 0 <= i <= self.dof:
-            raise ValueError(f"Expected a number of joints i with 0 <= i <= {self.dof}, got {i!r}")
+    def joint_transforms(self, theta: object = None) -> tuple[sp.Matrix, ...]:
+        r"""The n exponentials :math:`e^{[\mathcal S_i]\theta_i}` (:meth:`jacobians.SerialChain.joint_transforms`)."""
         th = self.joint_values(theta)
+        return tuple(exp_se3(self._S[:, k], th[k]) for k in range(self.dof))
+
+    def prefix_transforms(self, theta: object = None, simplify: bool = True) -> tuple[sp.Matrix, ...]:
+        r"""The n + 1 partial products :math:`e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_i]\theta_i}`, i = 0..n.
+
+        Entry 0 is the identity; numeric twin :meth:`jacobians.SerialChain.prefix_transforms`.
+        """
         cache: dict[sp.Expr, sp.Expr] = {}
-        T = sp.eye(4)
-        for k in range(i):
-            T = tidy(T * exp_se3(self._S[:, k], th[k]), simplify, cache)
-        return T
+        out = [sp.eye(4)]
+        for E in self.joint_transforms(theta):
+            out.append(tidy(out[-1] * E, simplify, cache))
+        return tuple(out)
 
     def link_poses(self, theta: object = None, simplify: bool = True) -> tuple[sp.Matrix, ...]:
         r"""Poses :math:`T_{s,i} = e^{[\mathcal S_1]\theta_1}\cdots e^{[\mathcal S_i]\theta_i} M_i` of the links."""
         if self._link_homes is None:
             raise ValueError("This chain has no link_homes: give them to SymbolicChain(..., link_homes=...)")
-        return tuple(tidy(self.prefix_fk(i + 1, theta, simplify) * M_i, simplify)
-                     for i, M_i in enumerate(self._link_homes))
+        prefixes = self.prefix_transforms(theta, simplify)
+        return tuple(tidy(prefixes[i + 1] * M_i, simplify) for i, M_i in enumerate(self._link_homes))
 
     @classmethod
     def from_numeric(cls, chain: SerialChain, exact: bool = True, thetas: object = None) -> SymbolicChain:

@@ -159,12 +159,12 @@ def link_jacobians(chain: SymbolicChain, theta: object = None, frame: Frame = "s
     if f != "space" and chain.link_homes is None:
         raise ValueError(f"frame={f!r} needs the chain's link_homes (the home poses M_i of the link frames)")
     J_s = space_jacobian(chain, th, simplify)
+    poses = chain.link_poses(th, simplify) if f != "space" else ()
     out = []
     for i in range(1, n + 1):
         J = sp.Matrix.hstack(J_s[:, :i], sp.zeros(6, n - i))
         if f != "space":
-            assert chain.link_homes is not None
-            T_i = tidy(chain.prefix_fk(i, th, simplify) * chain.link_homes[i - 1], simplify)
+            T_i = poses[i - 1]
             if f == "geometric":
                 J = tidy(_shift_to_point(J, T_i[:3, 3]), simplify)
             else:
