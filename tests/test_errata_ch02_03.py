@@ -61,7 +61,7 @@ def prf_block(text: str, kind: str, label: str | None = None, after: str | None 
 def _explorer_frames(sweep):
     from jacobians import widgets
     arm = jac.robots.planar_2r(1.0, 1.0)
-    anim = widgets.planar_arm_explorer_animation(arm, theta=[0.0, 1.2], rates=[0.5, 0.5], kind="space",
+    anim = widgets.planar_arm_explorer_animation(arm, theta=[0.0, 1.2], rates=[0.5, 0.5], frame="space",
                                                  sweep=sweep, frames=9, dpi=40)
     ex = anim.explorer
     frame, n = anim.draw, anim.n_frames
