@@ -136,15 +136,18 @@ def test_animation_last_frame_state_matches_library():
     plt.close(anim.fig)
 
 
-def test_animation_accepts_the_former_parameter_name_jacobian():
+def test_animation_draws_the_columns_of_the_frame_given():
     arm = jac.robots.planar_2r()
     thetas = np.array([[0.0, 0.0], [0.5, -0.3]])
-    anim = P.planar_arm_animation(arm, thetas, jacobian="space", dpi=30)
+    anim = P.planar_arm_animation(arm, thetas, frame="space", dpi=30)
     arrows = [c for c in anim.fig.axes[0].collections if "column 1" in str(c.get_label())]
     assert len(arrows) == 1
     plt.close(anim.fig)
-    with pytest.raises(ValueError, match="frame"):
-        P.planar_arm_animation(arm, thetas, frame="space", jacobian="body")
+    with pytest.raises(ValueError, match="got 'spatial'"):
+        P.planar_arm_animation(arm, thetas, frame="spatial")
+    # the former parameter name jacobian= is gone
+    with pytest.raises(TypeError, match="jacobian"):
+        P.planar_arm_animation(arm, thetas, jacobian="space")
 
 
 def test_animation_rejects_bad_input():
@@ -217,9 +220,8 @@ def test_set_style_sets_readable_fonts():
         assert matplotlib.rcParams["axes.labelsize"] >= 14
 
 
-def test_blit_frames_gives_the_same_frames_as_a_full_redraw():
+def test_blitting_gives_the_same_frames_as_a_full_redraw():
     import matplotlib.pyplot as plt
-    from matplotlib.animation import FuncAnimation
 
     import jacobians as jac
     from jacobians import plotting
@@ -236,9 +238,9 @@ def test_blit_frames_gives_the_same_frames_as_a_full_redraw():
             art.update(thetas[k])
             return []
 
-        return fig, art, update, FuncAnimation(fig, update, frames=len(thetas))
+        return fig, art, update
 
-    fig, art, update, anim = make()
+    fig, art, update = make()
     full = []
     for k in range(len(thetas)):
         update(k)
@@ -246,7 +248,7 @@ def test_blit_frames_gives_the_same_frames_as_a_full_redraw():
         full.append(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
     plt.close(fig)
     # the interface: a FrameSource blitting the moving artists
-    fig, art, update, anim = make()
+    fig, art, update = make()
     source = plotting.FrameSource(fig, update, len(thetas), moving=art.artists)
     for k in range(len(thetas)):
         blitted = source.frame(k)
@@ -255,18 +257,21 @@ def test_blit_frames_gives_the_same_frames_as_a_full_redraw():
     assert html.count("frames[") >= len(thetas) and "http" not in html.split("<script")[0]
     with pytest.raises(ValueError):
         plotting.FrameSource(fig, update, 0, moving=art.artists)
-    # the former interface: blit_frames on a FuncAnimation, then animation_html of that animation
-    fig, art, update, anim = make()
-    legacy = plotting.blit_frames(anim, update, len(thetas), art.artists)
-    assert legacy.fig is fig and legacy.n_frames == len(thetas)
+    # a FrameSource rendering whatever state the figure is in (rgba), the background kept across frames
+    fig, art, update = make()
+    again = plotting.FrameSource(fig, update, len(thetas), interval=50, moving=art.artists)
+    assert again.fig is fig and again.n_frames == len(thetas) and again.interval == 50.0
     for k in range(len(thetas)):
         update(k)
-        blitted = legacy.rgba()
+        blitted = again.rgba()
         assert np.mean(np.abs(blitted.astype(int) - full[k].astype(int))) < 1.0
-    html = plotting.animation_html(anim).data
+    html = plotting.animation_html(again).data
     assert html.count("frames[") >= len(thetas) and "http" not in html.split("<script")[0]
-    with pytest.raises(ValueError):
-        plotting.blit_frames(anim, update, 0, art.artists)
+    # FrameSource is the one animation interface (the one before it, on a FuncAnimation, is gone)
+    from jacobians.plotting import animation
+
+    assert animation.__all__ == ["FrameSource", "animation_html", "compact_png"]
+    assert all(hasattr(plotting, name) for name in animation.__all__)
 
 
 def _old_ur5_figure():

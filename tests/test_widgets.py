@@ -192,17 +192,24 @@ def test_explorer_singular_and_extreme_values_do_not_raise():
         w.set(frame="spatial")
 
 
-def test_explorer_accepts_the_former_parameter_name_kind():
-    w = Wd.planar_arm_explorer(jac.robots.planar_2r(1.0, 1.0), kind="body")
-    assert w.frame == "body" and w.kind == "body"
+def test_explorer_takes_the_frame_shown():
+    w = Wd.planar_arm_explorer(jac.robots.planar_2r(1.0, 1.0), frame="body")
+    assert w.frame == "body"
     np.testing.assert_allclose(w.jacobian, jac.body_jacobian(w.chain, w.theta), atol=1e-12)
-    w.set(kind="geometric")
+    w.set(frame="geometric")
     assert w.frame == "geometric"
     np.testing.assert_allclose(w.jacobian, jac.geometric_jacobian(w.chain, w.theta), atol=1e-12)
-    with pytest.raises(ValueError, match="frame"):
-        w.set(frame="space", kind="body")
     with pytest.raises(ValueError, match="got 'spatial'"):
-        w.set(kind="spatial")
+        Wd.planar_arm_explorer(frame="spatial")
+    # the former parameter name "kind" (and the property of that name) are gone
+    former = {"kind": "body"}
+    with pytest.raises(TypeError, match="kind"):
+        Wd.planar_arm_explorer(**former)
+    with pytest.raises(TypeError, match="kind"):
+        w.set(**former)
+    with pytest.raises(TypeError, match="kind"):
+        Wd.planar_arm_explorer_animation(frames=2, dpi=30, **former)
+    assert w.frame == "geometric" and not hasattr(w, "kind")
 
 
 def test_explorer_play_sweeps_the_chosen_joint():
@@ -442,4 +449,4 @@ def test_static_explorer_animation_panel_shows_jacobian():
     np.testing.assert_allclose(anim.path[2], w.theta, atol=1e-12)
     with pytest.raises(ValueError, match="sweep"):
         Wd.planar_arm_explorer_animation(sweep=3)
-    assert Wd.planar_arm_explorer_animation(kind="geometric", frames=2, dpi=30).explorer.frame == "geometric"
+    assert Wd.planar_arm_explorer_animation(frame="geometric", frames=2, dpi=30).explorer.frame == "geometric"

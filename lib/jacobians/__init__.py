@@ -2,9 +2,10 @@
 
 Twists and every 6-row quantity are angular first, (omega, v); a chain's screw
 axes are the columns of a 6 x n array. Importing this package imports numpy
-only; :mod:`jacobians.symbolic`, :mod:`jacobians.plotting`,
-:mod:`jacobians.widgets` and :mod:`jacobians.grading` import sympy,
-matplotlib and ipywidgets when they are imported.
+only. The heavier libraries come with the subpackages that use them:
+:mod:`jacobians.symbolic` imports sympy, :mod:`jacobians.plotting` matplotlib,
+:mod:`jacobians.widgets` matplotlib and ipywidgets; :mod:`jacobians.grading`
+imports sympy only to grade a symbolic answer.
 
 >>> import numpy as np
 >>> import jacobians as jac

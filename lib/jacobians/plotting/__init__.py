@@ -33,7 +33,7 @@ distinguishable under the common colour-vision deficiencies; its semantic keys
 >>> plt.close(fig)
 """
 
-from .animation import FrameSource, animation_html, blit_frames, compact_png
+from .animation import FrameSource, animation_html, compact_png
 from .artists import (
     EllipseArtist,
     FrameArtist,
@@ -62,7 +62,6 @@ __all__ = [
     "planar_arm_animation",
     "FrameSource",
     "animation_html",
-    "blit_frames",
     "compact_png",
     "EllipseArtist",
     "draw_ellipse",

@@ -26,8 +26,7 @@ import io
 import re
 import tempfile
 import warnings
-import weakref
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -41,7 +40,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["FrameSource", "animation_html", "blit_frames", "compact_png"]
+__all__ = ["FrameSource", "animation_html", "compact_png"]
 
 
 @dataclass(eq=False)
@@ -139,39 +138,6 @@ class FrameSource:
         self._background = None
 
 
-# FuncAnimations given to blit_frames (the interface before FrameSource), and their sources
-_LEGACY: weakref.WeakKeyDictionary[_animation.Animation, FrameSource] = weakref.WeakKeyDictionary()
-
-
-def blit_frames(anim: _animation.Animation, update: Callable[[int], Any], n_frames: int,
-                artists: Iterable[Artist]) -> FrameSource:
-    """Make :func:`animation_html` render ``anim`` by blitting only the moving ``artists``.
-
-    The interface before :class:`FrameSource`, kept so that existing notebooks
-    run: returns ``FrameSource(fig, update, n_frames, interval=..., moving=artists)``
-    (the figure is that of the artists, the interval that of ``anim``), and
-    ``animation_html(anim)`` then renders that source. New code makes the
-    :class:`FrameSource` directly and needs no ``FuncAnimation``.
-    """
-    if not isinstance(anim, _animation.Animation):
-        raise TypeError(f"Expected a matplotlib Animation, got {type(anim).__name__}")
-    if not callable(update):
-        raise TypeError(f"Expected a callable update(k), got {type(update).__name__}")
-    if isinstance(n_frames, bool) or not isinstance(n_frames, (int, np.integer)) or n_frames < 1:
-        raise ValueError(f"Expected a positive number of frames, got {n_frames!r}")
-    artists = list(artists)
-    if not artists:
-        raise ValueError("Expected at least one moving artist, got none")
-    fig = artists[0].get_figure(root=True)
-    if not isinstance(fig, Figure):
-        raise ValueError(f"Expected artists drawn on a figure, got {artists[0]!r} on none")
-    timer: Any = anim.event_source  # a TimerBase: its interval is public
-    source = FrameSource(fig, update, int(n_frames), interval=timer.interval, moving=artists)
-    source.rgba()  # the background now, as before (this draw also counts as the animation's first)
-    _LEGACY[anim] = source
-    return source
-
-
 def compact_png(image: ArrayLike | bytes, colors: int = 96) -> bytes:
     """PNG bytes of an RGB(A) array or of PNG bytes, reduced to an adaptive palette of ``colors`` colours.
 
@@ -267,7 +233,7 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
 
     ``anim`` is a :class:`FrameSource` (what the course's animation makers
     return), or a matplotlib ``Animation`` (rendered by a full redraw of each
-    frame, unless :func:`blit_frames` was called on it). The player is
+    frame). The player is
     matplotlib's, whose control buttons link the font-awesome icon font from a
     CDN: that ``<link>`` goes and the buttons are written as Unicode symbols
     (▶, ❚❚, ...). Frames are palette PNGs (``colors`` colours, see
@@ -284,8 +250,6 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
 
     if default_mode not in ("loop", "once", "reflect"):
         raise ValueError(f"Expected default_mode 'loop', 'once' or 'reflect', got {default_mode!r}")
-    if isinstance(anim, _animation.Animation) and anim in _LEGACY:
-        anim = _LEGACY[anim]
     if isinstance(anim, _animation.Animation):
         html, reduced = _plain_animation_frames(anim, default_mode, colors)
         return HTML(_strip_cdn(_swap_frames(html, reduced)))

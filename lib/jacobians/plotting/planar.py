@@ -178,7 +178,7 @@ def column_arrows(chain: SerialChain, theta: ArrayLike,
 def planar_arm_animation(chain: SerialChain, thetas: ArrayLike, *, frame: Frame | None = None,
                          show_columns: bool = True, show_velocity: ArrayLike | None = None, title: str | None = None,
                          interval: float = 80, dpi: float = 72, figsize: tuple[float, float] = (5.6, 5.2),
-                         show_path: bool = True, jacobian: Frame | None = None) -> FrameSource:
+                         show_path: bool = True) -> FrameSource:
     r"""An animation of a planar arm moving through ``thetas``, for :func:`animation_html`.
 
     Parameters
@@ -190,7 +190,6 @@ def planar_arm_animation(chain: SerialChain, thetas: ArrayLike, *, frame: Frame 
         If given and ``show_columns``, draw the linear part of each Jacobian column
         as an arrow: for ``"space"`` at the origin of {s}, otherwise at the tool
         (body columns are turned into {s} axes, :math:`R_{sb}v_{b,i}`, to be drawn).
-        ``jacobian=`` is its former name.
     show_velocity : array_like, shape (n,) or (T, n), optional
         Joint rates; draws the tool velocity :math:`\dot p` (from the geometric Jacobian).
     title : str, optional
@@ -206,11 +205,6 @@ def planar_arm_animation(chain: SerialChain, thetas: ArrayLike, *, frame: Frame 
     FrameSource
         ``.fig`` is the figure, ``.draw(k)`` moves it to frame k, ``.path`` holds ``thetas``.
     """
-    if jacobian is not None:
-        if frame is not None and frame != jacobian:
-            raise ValueError(f"Expected one of frame and its former name jacobian, got frame={frame!r} "
-                             f"and jacobian={jacobian!r}")
-        frame = jacobian
     chain = check_planar(chain, "planar_arm_animation")
     th = theta_array(thetas, chain.dof, "thetas")
     if th.ndim != 2:

@@ -126,7 +126,7 @@ class SpatialChainArtist:
 
     @property
     def artists(self) -> list[Artist]:
-        """The artists that :meth:`update` moves (for :func:`blit_frames`)."""
+        """The artists that :meth:`update` moves (a :class:`~jacobians.plotting.FrameSource`'s ``moving``)."""
         out = [self.link_line, self.joint_markers, *self.axis_lines, *self.leader_lines, *self.axis_texts]
         if self.frames:
             out += self.frames[1].artists

@@ -30,8 +30,7 @@ Static book: each widget has a ``*_animation`` function returning a
 :class:`jacobians.plotting.FrameSource` of the same view (its ``explorer`` is
 the widget that draws the frames), for :func:`jacobians.plotting.animation_html`.
 
-Which Jacobian a widget shows is a ``frame`` (:mod:`jacobians.frames`); the
-former parameter name ``kind`` is still accepted.
+Which Jacobian a widget shows is a ``frame`` (:mod:`jacobians.frames`).
 
 The numbers come from the library: the ellipses from
 :func:`jacobians.analysis.velocity_ellipsoid` and

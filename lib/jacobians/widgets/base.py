@@ -15,7 +15,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._validation import theta_array
 from ..chain import SerialChain
-from ..frames import FRAMES, Frame, check_frame
 from ..plotting import (
     PALETTE,
 )
@@ -154,14 +153,3 @@ def _planar_theta(chain: SerialChain, theta: ArrayLike | None, default: list[flo
         base: NDArray[np.float64] = np.array(default + [0.4] * n)[:n]
         return base
     return theta_array(theta, n)
-
-
-def _frame_or_kind(frame: Frame | None, kind: Frame | None) -> Frame | None:
-    """``frame``, or ``kind`` (its former name), checked; None if neither is given."""
-    if kind is not None:
-        if frame is not None and frame != kind:
-            raise ValueError(f"Expected one of frame and its former name kind, got frame={frame!r} and kind={kind!r}")
-        frame = kind
-    if frame is None:
-        return None
-    return check_frame(frame, FRAMES)

@@ -13,7 +13,7 @@ from .. import robots
 from .._validation import theta_array
 from ..analysis import force_ellipsoid, velocity_ellipsoid
 from ..chain import SerialChain
-from ..frames import FRAMES, JACOBIAN_SYMBOLS, Frame
+from ..frames import FRAMES, JACOBIAN_SYMBOLS, Frame, check_frame
 from ..jacobian import geometric_jacobian, jacobian, space_jacobian
 from ..plotting import (
     COLUMN_COLORS,
@@ -32,7 +32,6 @@ from .base import (
     FONT,
     ROW_LABELS,
     _Explorer,
-    _frame_or_kind,
     _latex_block,
     _planar_theta,
     _slider,
@@ -76,14 +75,14 @@ class PlanarArmExplorer(_Explorer):
     def __init__(self, chain: SerialChain | None = None, theta: ArrayLike | None = None,
                  rates: ArrayLike | None = None, frame: Frame | None = None, *, static: bool = False,
                  show_ellipses: bool = True, figsize: tuple[float, float] = (5.6, 5.4), dpi: float = 80,
-                 matrix_panel: bool | None = None, kind: Frame | None = None) -> None:
+                 matrix_panel: bool | None = None) -> None:
         super().__init__()
         chain = robots.planar_2r() if chain is None else chain
         self.chain = check_planar(chain, "the planar arm explorer")
         n = self.chain.dof
         theta = _planar_theta(self.chain, theta, [0.5, 1.2, -0.8])
         rates = np.ones(n) * 0.5 if rates is None else theta_array(rates, n, "rates")
-        frame = _frame_or_kind(frame, kind) or "space"
+        frame = check_frame("space" if frame is None else frame, FRAMES)
         self.reach = arm_reach(self.chain)
         self.vel_scale = 0.35  # drawn metres per m/s
         self.force_scale = 0.1 * self.reach ** 2  # drawn metres per (N per N m)
@@ -183,18 +182,11 @@ class PlanarArmExplorer(_Explorer):
         frame: Frame = self.frame_dropdown.value
         return frame
 
-    @property
-    def kind(self) -> Frame:
-        """Former name of :attr:`frame`."""
-        return self.frame
-
-    def set(self, theta: ArrayLike | None = None, rates: ArrayLike | None = None, frame: Frame | None = None, *,
-            kind: Frame | None = None) -> PlanarArmExplorer:
-        """Set joint angles (rad), joint rates (rad/s) and/or the frame of the Jacobian shown; redraw once.
-
-        ``kind`` is the former name of ``frame``.
-        """
-        frame = _frame_or_kind(frame, kind)
+    def set(self, theta: ArrayLike | None = None, rates: ArrayLike | None = None,
+            frame: Frame | None = None) -> PlanarArmExplorer:
+        """Set joint angles (rad), joint rates (rad/s) and/or the frame of the Jacobian shown; redraw once."""
+        if frame is not None:
+            frame = check_frame(frame, FRAMES)
         with self.hold_updates():
             if theta is not None:
                 th = theta_array(theta, self.chain.dof)
@@ -321,7 +313,7 @@ def planar_arm_explorer(chain: SerialChain | None = None, theta: ArrayLike | Non
     theta, rates : array_like, shape (n,), optional
         Initial joint angles (rad) and rates (rad/s).
     frame : {"space", "body", "geometric", "analytic"}, default "space"
-        The Jacobian shown as a matrix (``kind=`` is its former name).
+        The Jacobian shown as a matrix.
 
     Returns
     -------
@@ -343,8 +335,7 @@ def planar_arm_explorer(chain: SerialChain | None = None, theta: ArrayLike | Non
 
 def planar_arm_explorer_animation(chain: SerialChain | None = None, theta: ArrayLike | None = None,
                                   rates: ArrayLike | None = None, frame: Frame | None = None, sweep: int | None = None,
-                                  frames: int = 36, dpi: float = 72, interval: float = 150, *,
-                                  kind: Frame | None = None) -> FrameSource:
+                                  frames: int = 36, dpi: float = 72, interval: float = 150) -> FrameSource:
     r"""The explorer's view as a :class:`~jacobians.plotting.FrameSource`, sweeping joint ``sweep``
     (1-based; default the last) over [-π, π].
 
@@ -352,9 +343,9 @@ def planar_arm_explorer_animation(chain: SerialChain | None = None, theta: Array
     the chosen Jacobian's numbers in a panel; embed with
     :func:`jacobians.plotting.animation_html`. ``.explorer`` is the
     :class:`PlanarArmExplorer` that draws the frames, ``.path`` the (frames, n)
-    joint angles of the frames; ``kind=`` is the former name of ``frame``.
+    joint angles of the frames.
     """
-    w = PlanarArmExplorer(chain, theta, rates, _frame_or_kind(frame, kind) or "space", static=True, dpi=dpi)
+    w = PlanarArmExplorer(chain, theta, rates, frame, static=True, dpi=dpi)
     n = w.chain.dof
     j = n - 1 if sweep is None else int(sweep) - 1
     if not 0 <= j < n:
