@@ -1,0 +1,57 @@
+"""tools/vendor.py: only the files pages load, one copy per site, stale trees removed."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from tools import vendor
+
+pytestmark = pytest.mark.skipif(not (vendor.NODE_MODULES / "mathjax").is_dir(),
+                                reason="node_modules is installed by `npm ci` (make setup)")
+
+
+def _tree(folder: Path) -> list[str]:
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
+
+
+def test_book_vendors_mathjax_only_and_clears_stale_trees(tmp_path):
+    dest, static = tmp_path / "_vendor", tmp_path / "html" / "_static"
+    (dest / "html-manager").mkdir(parents=True)            # left by an older vendor.py
+    for old in ("html-manager/embed-amd.js", "mathjax/es5/old.js", "require.js", "course.css"):
+        (static / old).parent.mkdir(parents=True, exist_ok=True)
+        (static / old).write_text("x")
+    vendor.book(dest, site_static=static)
+    files = _tree(dest)
+    assert [p.name for p in dest.iterdir()] == ["mathjax"]
+    assert "mathjax/es5/tex-mml-chtml.js" in files
+    assert all(f.startswith(("mathjax/es5/tex-mml-chtml.js", "mathjax/es5/output/chtml/fonts/woff-v2/",
+                             "mathjax/es5/input/tex/extensions/")) for f in files), files
+    assert sum((dest / f).stat().st_size for f in files) < 2_500_000
+    assert _tree(static) == ["course.css", "require.js"]     # the old trees went; Sphinx copies the new one
+
+
+def test_decks_in_the_book_share_its_mathjax(tmp_path):
+    site = tmp_path / "html"
+    vendor.MATHJAX.copy(site / "_static")
+    urls = vendor.deck_urls(site / "slides")
+    assert urls["mathjax"] == "../_static/mathjax/es5/tex-mml-chtml.js"
+    assert urls["reveal.js"] == "vendor/reveal.js/dist/reveal.js"
+    assert urls["requirejs"] == "vendor/requirejs/require.js"
+    assert sorted(p.name for p in (site / "slides" / "vendor").iterdir()) == ["requirejs", "reveal.js"]
+    for url in urls.values():
+        assert (site / "slides" / url).resolve().is_file(), url
+
+
+def test_decks_elsewhere_get_their_own_mathjax(tmp_path):
+    slides = tmp_path / "slides"
+    (slides / "vendor" / "mathjax2").mkdir(parents=True)   # left by an older build: removed
+    urls = vendor.deck_urls(slides)
+    assert urls["mathjax"] == "vendor/mathjax/es5/tex-mml-chtml.js"
+    assert sorted(p.name for p in (slides / "vendor").iterdir()) == ["mathjax", "requirejs", "reveal.js"]
+
+
+def test_missing_package_says_what_to_run(tmp_path):
+    missing = vendor.Package("no-such-package", "x", ("a.js",), "a.js")
+    with pytest.raises(FileNotFoundError, match="npm ci"):
+        missing.copy(tmp_path)
