@@ -39,7 +39,7 @@ $(NPM_STAMP): package.json package-lock.json
 setup: $(PY_STAMP) $(NPM_STAMP)
 
 vendor: setup
-	$(PY) tools/vendor.py
+	$(PY) -m tools.vendor
 
 # Debian's Chromium for the browser tests (never `playwright install`).
 browser:
@@ -50,10 +50,10 @@ browser:
 
 # ------------------------------------------------------------------ the book
 book: vendor
-	$(PY) tools/cache_guard.py _build/.jupyter_cache
+	$(PY) -m tools.cache_guard _build/.jupyter_cache
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
-	$(PY) tools/make_exercises.py _build/html/exercises/student
-	$(PY) tools/build_slides.py _build/html/slides
+	$(PY) -m tools.make_exercises _build/html/exercises/student
+	$(PY) -m tools.build_slides _build/html/slides
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
 
 # ------------------------------------------------------------------ tests
@@ -69,7 +69,7 @@ test-lib: setup
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
-	$(PY) tools/to_ipynb.py _build/nbval
+	$(PY) -m tools.to_ipynb _build/nbval
 	cd _build/nbval && ../../$(BIN)/pytest --nbval-lax -p no:cacheprovider -q .
 
 test-browser: setup browser
@@ -79,8 +79,8 @@ test-slides: setup browser
 	$(BIN)/pytest tests/slides -q
 
 bench: setup
-	$(PY) tools/bench.py
-	$(PY) tools/bench_widgets.py
+	$(PY) -m tools.bench
+	$(PY) -m tools.bench_widgets
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
 LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json
@@ -97,7 +97,7 @@ distclean: clean
 
 # ------------------------------------------------------------------ exercises and slides
 exercises: setup
-	$(PY) tools/make_exercises.py _build/exercises
+	$(PY) -m tools.make_exercises _build/exercises
 
 slides: vendor
-	$(PY) tools/build_slides.py _build/slides
+	$(PY) -m tools.build_slides _build/slides

@@ -27,7 +27,7 @@ For each source this script writes DEST/NN_name.ipynb with
   plain Markdown: the ``{exercise}`` block becomes a quoted task, ``{doc}`` and
   ``{ref}`` roles become plain text.
 
-Usage: python tools/make_exercises.py DEST   (``make exercises`` uses _build/exercises)
+Usage: python -m tools.make_exercises DEST   (``make exercises`` uses _build/exercises)
 """
 
 from __future__ import annotations

@@ -432,7 +432,7 @@ def check_lines_in(text: str, monospace: bool = False) -> list[str]:
     return out
 
 
-def _check_verdicts(page, report: "PageReport") -> None:
+def _check_verdicts(page, report: PageReport) -> None:
     v = page.evaluate(_VERDICTS_JS)
     report.counts["verdicts"] = len(v["verdicts"])
     shown_correct = [x for x in v["verdicts"] if x["kind"] == "correct" and not x["solution"]]
@@ -447,7 +447,7 @@ def _check_verdicts(page, report: "PageReport") -> None:
                            f"(section {x['where']!r}): in the book the check cell must show nothing")
 
 
-def _check_figures(page, report: "PageReport") -> None:
+def _check_figures(page, report: PageReport) -> None:
     f = page.evaluate(_FIGURES_JS)
     report.counts["figures"] = f["numbered"]
     for x in f["out"]:
@@ -455,7 +455,7 @@ def _check_figures(page, report: "PageReport") -> None:
                    "animation needs a numbered caption (cell metadata mystnb: figure: name, caption)")
 
 
-def _check_text(page, report: "PageReport") -> None:
+def _check_text(page, report: PageReport) -> None:
     t = page.evaluate(_TEXT_JS)
     for block in t["text"]:
         for snip in negative_zeros_in(block["text"]):
@@ -468,7 +468,7 @@ def _check_text(page, report: "PageReport") -> None:
             report.add("negative_zero", f"a negative zero in a formula: {snip!r} (section {formula['where']!r})")
 
 
-def _check_layout(page, report: "PageReport", width: int) -> None:
+def _check_layout(page, report: PageReport, width: int) -> None:
     o = page.evaluate(_OVERFLOW_JS)
     for x in o["boxes"]:
         how = "is cut off (overflow: hidden)" if x["clipped"] else "spills out (not a scroll container)"
@@ -482,7 +482,7 @@ def _check_layout(page, report: "PageReport", width: int) -> None:
                    f"{o['window']} px window): {what}")
 
 
-def _check_phone_math(page, report: "PageReport", width: int) -> None:
+def _check_phone_math(page, report: PageReport, width: int) -> None:
     for x in page.evaluate(_MATH_FIT_JS):
         kind = "display equation" if x["display"] else "inline formula"
         report.add("phone_math", f"at {width} px a {kind} {x['why']}: {x['tex']!r} (section {x['where']!r})")
@@ -582,7 +582,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     url = base + path
     try:
         page.goto(url, wait_until="load", timeout=30_000)
-    except Exception as exc:  # noqa: BLE001 - a page that does not load is the finding
+    except Exception as exc:
         report.add("load", f"could not load {url}: {exc}")
         page.close()
         return report
@@ -592,11 +592,11 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     if has_mathjax:
         try:
             page.evaluate("() => MathJax.startup.promise.then(() => true)")
-        except Exception as exc:  # noqa: BLE001
+        except Exception as exc:
             report.add("math", f"MathJax did not finish typesetting: {exc}")
     try:
         page.wait_for_load_state("networkidle", timeout=10_000)
-    except Exception:  # noqa: BLE001
+    except Exception:
         report.notes.append("network did not go idle within 10 s")
     page.wait_for_timeout(settle_ms)
 
@@ -686,7 +686,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
             continue
         try:
             a.scroll_into_view_if_needed(timeout=5_000)
-        except Exception:  # noqa: BLE001 - a hidden animation is still played below
+        except Exception:
             pass
         before = img.evaluate("i => i.src")
         if not before.startswith("data:image"):
@@ -703,7 +703,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
                 pause.click(timeout=5_000)
             if slider.count() and slider.input_value() == v0:
                 report.add("animations", f"animation {k + 1}: the frame changed but the slider did not move")
-        except Exception as exc:  # noqa: BLE001
+        except Exception as exc:
             report.add("animations", f"animation {k + 1}: pressing play did not change the frame ({exc.__class__.__name__})")
 
     _lap("animations")
@@ -735,7 +735,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
                 page.keyboard.press("ArrowRight")
             page.wait_for_timeout(600)
             after = page.evaluate(snap, [sl.element_handle()])
-        except Exception as exc:  # noqa: BLE001
+        except Exception as exc:
             report.add("widgets", f"slider {k + 1}: could not be moved ({exc.__class__.__name__})")
             continue
         if before[2] == after[2]:
@@ -778,7 +778,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
             btn = opener.locator("button.toggle-button")
             (btn.first if btn.count() else opener).click(timeout=5_000)
             body.wait_for(state="visible", timeout=3_000)
-        except Exception as exc:  # noqa: BLE001
+        except Exception as exc:
             report.add("solutions", f"{label}: does not open when clicked ({exc.__class__.__name__})")
 
     _lap("dropdowns")
@@ -804,7 +804,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     for resp in responses:
         try:
             size = resp.request.sizes()["responseBodySize"]
-        except Exception:  # noqa: BLE001
+        except Exception:
             size = int(resp.headers.get("content-length", 0) or 0)
         total += size
         report.sizes.append((resp.url, size))

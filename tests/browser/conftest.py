@@ -10,16 +10,14 @@ from __future__ import annotations
 
 import os
 import shutil
-import sys
 from pathlib import Path
 
+import bookcheck
 import pytest
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
-sys.path.insert(0, str(HERE))
 
-import bookcheck  # noqa: E402
 
 
 def _env_path(name: str, default: Path) -> Path:

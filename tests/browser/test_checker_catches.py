@@ -12,13 +12,10 @@ import re
 import sys
 from pathlib import Path
 
-import pytest
-
 import bookcheck
+import offline_fixes
+import pytest
 from conftest import ROOT
-
-sys.path.insert(0, str(ROOT / "_ext"))
-import offline_fixes  # noqa: E402
 
 CDN = "https://cdn.jsdelivr.net/npm/mathjax@3/es5/tex-mml-chtml.js"
 WIDE_TEX = " + ".join(f"a_{{{i}}} b_{{{i}}}" for i in range(1, 41))   # about 2000 px: wider than any screen

@@ -8,9 +8,8 @@ the aspect. The run prints each page's weight; screenshots at 1280 px and
 
 from __future__ import annotations
 
-import pytest
-
 import bookcheck
+import pytest
 from conftest import BOOK_TOC
 
 PAGES = bookcheck.pages_from_toc(BOOK_TOC)
