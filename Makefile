@@ -14,11 +14,11 @@ JB_FLAGS := -W -n --keep-going
 # inline backend, or plt.show() draws nothing into the book and the slides)
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
-.PHONY: help setup book test test-lib test-notebooks test-browser test-slides bench lab slides exercises clean distclean vendor browser
+.PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides bench lab slides exercises clean distclean vendor browser
 
 help:
 	@echo "make book       build the book into _build/html"
-	@echo "make test       run every test (library, notebooks, book build, browser)"
+	@echo "make test       run every test (static checks, library, notebooks, book build, browser, decks)"
 	@echo "make lab        JupyterLab on the chapters, live widgets"
 	@echo "make slides     reveal.js decks into _build/slides"
 	@echo "make exercises  student notebooks into _build/exercises"
@@ -58,14 +58,19 @@ book: vendor
 
 # ------------------------------------------------------------------ tests
 test: setup
+	$(MAKE) lint
 	$(MAKE) test-lib
 	$(MAKE) test-notebooks
 	$(MAKE) book
 	$(MAKE) test-browser
 	$(MAKE) test-slides
 
+lint: setup
+	$(BIN)/ruff check lib tools _ext
+	$(BIN)/mypy
+
 test-lib: setup
-	MPLBACKEND=Agg $(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --cov=jacobians --cov-report=term:skip-covered -q lib/jacobians tests
+	MPLBACKEND=Agg $(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
