@@ -2,7 +2,7 @@
 
 Jupyter Book's cache (``_build/.jupyter_cache``) keys each notebook on its own
 code cells, not on the ``jacobians`` library the cells import, so after a
-change in ``lib/jacobians`` it would keep serving outputs computed by the old
+change in ``lib/`` (the library and the course content) it would keep serving outputs computed by the old
 library. ``make book`` runs this first: it hashes every file of the library
 (and ``pyproject.toml``) and, when the hash differs from the one stored beside
 the cache, empties the cache so that every page is executed again.
@@ -18,7 +18,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-LIBRARY = ROOT / "lib" / "jacobians"
+LIBRARY = ROOT / "lib"
 STAMP_NAME = ".library-hash"
 
 
@@ -51,7 +51,7 @@ def guard(cache: Path, digest: str) -> bool:
 def main(argv: list[str]) -> int:
     cache = Path(argv[0]) if argv else ROOT / "_build" / ".jupyter_cache"
     if guard(cache, library_hash()):
-        print(f"cache_guard: lib/jacobians changed since the last build; emptied {cache} so every page re-executes")
+        print(f"cache_guard: lib/ changed since the last build; emptied {cache} so every page re-executes")
     return 0
 
 
