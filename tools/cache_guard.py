@@ -25,7 +25,8 @@ STAMP_NAME = ".library-hash"
 def library_hash(library: Path = LIBRARY, extra: tuple[Path, ...] = (ROOT / "pyproject.toml",)) -> str:
     """SHA-256 over the library's files (path and bytes), in a fixed order."""
     h = hashlib.sha256()
-    files = sorted(p for p in library.rglob("*") if p.is_file() and "__pycache__" not in p.parts)
+    files = sorted(p for p in library.rglob("*") if p.is_file()
+                   and not any(part == "__pycache__" or part.endswith(".egg-info") for part in p.parts))
     for path in [*files, *(p for p in extra if p.is_file())]:
         h.update(path.relative_to(library.parent).as_posix().encode() if path.is_relative_to(library.parent)
                  else path.name.encode())
