@@ -1,0 +1,482 @@
+// Front-end kinematics of the live views (issue #13): a plain ES module, no
+// dependencies, no build step. It mirrors the course library `jacobians`
+// (Modern Robotics conventions: twists (ω, v), angular rows first, screw axes
+// as the columns of a 6×n matrix). The library is the reference:
+// tests/browser/test_live_kinematics.py compares every function below with it
+// at 200 random configurations of each teaching arm.
+//
+// Matrices are plain arrays of rows (S[r][i] is row r, column i; T[r][c]).
+// Vectors are arrays (or typed arrays) of numbers. Results are new plain arrays.
+//
+// Mapping to the library (same argument order; `chain` is makeChain(S, M)):
+//   makeChain(S, M)                         SerialChain(screw_axes, home)
+//   expSE3(xi)                              lie.exp_se3(twist_theta)
+//   fk(chain, theta)                        chain.fk(theta)
+//   spaceJacobian(chain, theta)             space_jacobian(chain, theta)
+//   bodyJacobian(chain, theta)              body_jacobian(chain, theta)
+//   geometricJacobian(chain, theta)         geometric_jacobian(chain, theta)
+//   jacobian(chain, theta, frame, rep, tol) jacobian(chain, theta, frame, rep) (analytic: see below)
+//   evaluate(chain, theta)                  fk + the three Jacobians above in one sweep
+//   analyticJacobian(chain, theta, rep, tol)
+//       analytic_jacobian(chain, theta, rep, on_singularity="nan", tol); returns
+//       {J, phi, margin, singular}: at a representation singularity J is null and
+//       singular is true (never NaN, never a throw).
+//   coordinatesFromRotation(R, rep)         representations.coordinates_from_rotation
+//   rateToAngularVelocity(phi, rep)         representations.rate_to_angular_velocity (B(φ))
+//   representationSingularityMargin(phi, rep)  representations.representation_singularity_margin
+//   pinvRates(J, V, rcond)                  velocity.pinv_rates
+//   dlsRates(J, V, damping)                 velocity.dls_rates
+//   singularValues(A)                       analysis.singular_values
+//   velocityEllipsoid(A)                    analysis.velocity_ellipsoid -> {axes, directions}
+//   forceEllipsoid(A, rtol)                 analysis.force_ellipsoid    -> {axes, directions}
+// Representations: "zyx" and "zyz" ("exp" is not needed by a view: it throws).
+// Bad input (wrong shape, non-finite number, unknown name) throws an Error that
+// says what was expected and what came. The SVD is a one-sided Jacobi
+// (Hestenes) iteration on the smaller side: small matrices, full accuracy.
+
+const EPS = 2.220446049250313e-16;
+const SMALL = 1e-4; // lie._SMALL: below this angle the series expansions are used
+const UNIT_TOL = 1e-6; // _validation.UNIT_TOL
+const REPRESENTATIONS = ["zyx", "zyz"];
+const FRAMES = ["space", "body", "geometric", "analytic"];
+
+// ------------------------------------------------------------ validation
+
+function describe(x) {
+  if (Array.isArray(x)) {
+    if (x.length && Array.isArray(x[0])) return `an array of ${x.length} rows of ${x[0].length}`;
+    return `an array of length ${x.length}`;
+  }
+  if (ArrayBuffer.isView(x)) return `a typed array of length ${x.length}`;
+  if (x === null) return "null";
+  return `${typeof x} ${String(x).slice(0, 60)}`;
+}
+
+function vector(x, name, len) {
+  const ok = Array.isArray(x) || (ArrayBuffer.isView(x) && !(x instanceof DataView));
+  if (!ok || (len !== undefined && x.length !== len) || x.length === 0) {
+    const want = len === undefined ? "a non-empty array of numbers" : `an array of ${len} numbers`;
+    throw new Error(`Expected ${name} as ${want}, got ${describe(x)}`);
+  }
+  const out = new Array(x.length);
+  for (let i = 0; i < x.length; i++) {
+    const v = x[i];
+    if (typeof v !== "number" || !Number.isFinite(v)) {
+      throw new Error(`Expected finite numbers in ${name}, got ${String(v)} at index ${i}`);
+    }
+    out[i] = v;
+  }
+  return out;
+}
+
+function matrix(A, name, rows, cols) {
+  const shape = `${rows ?? "m"}×${cols ?? "n"}`;
+  if (!Array.isArray(A) || A.length === 0 || (rows !== undefined && A.length !== rows)) {
+    throw new Error(`Expected ${name} with shape ${shape} (an array of rows), got ${describe(A)}`);
+  }
+  const c = cols ?? (A[0] && A[0].length);
+  const out = new Array(A.length);
+  for (let r = 0; r < A.length; r++) {
+    const row = A[r];
+    const isRow = Array.isArray(row) || (ArrayBuffer.isView(row) && !(row instanceof DataView));
+    if (!isRow || row.length !== c || c === 0) {
+      throw new Error(`Expected ${name} with shape ${shape} (an array of rows), got row ${r} as ${describe(row)}`);
+    }
+    out[r] = vector(row, `${name}[${r}]`, c);
+  }
+  return out;
+}
+
+function nonNegative(x, name, allowZero) {
+  if (typeof x !== "number" || !Number.isFinite(x) || x < 0 || (!allowZero && x === 0)) {
+    throw new Error(`Expected ${name} as a ${allowZero ? "non-negative" : "positive"} finite number, got ${String(x)}`);
+  }
+  return x;
+}
+
+function representation(rep) {
+  if (!REPRESENTATIONS.includes(rep)) {
+    throw new Error(`Unknown representation ${JSON.stringify(rep)}: expected one of ${REPRESENTATIONS.join(", ")}`);
+  }
+  return rep;
+}
+
+function checkChain(chain) {
+  if (!chain || chain.kind !== "chain") {
+    throw new Error(`Expected a chain made by makeChain(S, M), got ${describe(chain)}`);
+  }
+  return chain;
+}
+
+// ------------------------------------------------------------ 3-vectors, 3×3
+
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const mulMv = (R, x) => [
+  R[0][0] * x[0] + R[0][1] * x[1] + R[0][2] * x[2],
+  R[1][0] * x[0] + R[1][1] * x[1] + R[1][2] * x[2],
+  R[2][0] * x[0] + R[2][1] * x[1] + R[2][2] * x[2],
+];
+const mulMtv = (R, x) => [
+  R[0][0] * x[0] + R[1][0] * x[1] + R[2][0] * x[2],
+  R[0][1] * x[0] + R[1][1] * x[1] + R[2][1] * x[2],
+  R[0][2] * x[0] + R[1][2] * x[1] + R[2][2] * x[2],
+];
+function mulMM(A, B) {
+  const C = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
+  for (let i = 0; i < 3; i++) {
+    for (let j = 0; j < 3; j++) C[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j] + A[i][2] * B[2][j];
+  }
+  return C;
+}
+const skew = (w) => [[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]];
+const norm = (x) => Math.hypot(...x);
+
+function transform(R, p) {
+  return [[R[0][0], R[0][1], R[0][2], p[0]], [R[1][0], R[1][1], R[1][2], p[1]],
+    [R[2][0], R[2][1], R[2][2], p[2]], [0, 0, 0, 1]];
+}
+
+// ------------------------------------------------------------ chain
+
+/** A chain from its screw axes S (6×n, columns (ω, v)) and home pose M (4×4), checked once. */
+export function makeChain(S, M) {
+  const s = matrix(S, "S", 6);
+  const m = matrix(M, "M", 4, 4);
+  const n = s[0].length;
+  const joints = [];
+  for (let i = 0; i < n; i++) {
+    const w = [s[0][i], s[1][i], s[2][i]];
+    const v = [s[3][i], s[4][i], s[5][i]];
+    const wn = norm(w);
+    const vn = norm(v);
+    if (wn > UNIT_TOL) {
+      if (Math.abs(wn - 1) > UNIT_TOL) {
+        throw new Error(`Expected column ${i} of S (a revolute joint) to have a unit angular part, got |ω| = ${wn}`);
+      }
+    } else if (vn <= UNIT_TOL) {
+      throw new Error(`Column ${i} of S is zero: a screw axis must not be zero`);
+    } else if (Math.abs(vn - 1) > UNIT_TOL) {
+      throw new Error(`Expected column ${i} of S (a prismatic joint, ω = 0) to have a unit linear part, got |v| = ${vn}`);
+    }
+    const K = skew(w);
+    const K2 = mulMM(K, K);
+    joints.push({ w, v, K, K2, Kv: mulMv(K, v), K2v: mulMv(K2, v) });
+  }
+  const bottom = m[3];
+  const R = [m[0].slice(0, 3), m[1].slice(0, 3), m[2].slice(0, 3)];
+  const RtR = mulMM([[R[0][0], R[1][0], R[2][0]], [R[0][1], R[1][1], R[2][1]], [R[0][2], R[1][2], R[2][2]]], R);
+  let off = Math.abs(bottom[0]) + Math.abs(bottom[1]) + Math.abs(bottom[2]) + Math.abs(bottom[3] - 1);
+  for (let i = 0; i < 3; i++) for (let j = 0; j < 3; j++) off = Math.max(off, Math.abs(RtR[i][j] - (i === j ? 1 : 0)));
+  if (off > UNIT_TOL) throw new Error("Expected M as a homogeneous transform (R orthonormal, last row 0 0 0 1)");
+  return Object.freeze({ kind: "chain", n, joints, R, p: [m[0][3], m[1][3], m[2][3]] });
+}
+
+/** e^{[ξ]} of a 6-vector ξ = (ω, v)θ, closed form with the series of lie._coefficients near θ = 0. */
+export function expSE3(xi) {
+  const x = vector(xi, "xi", 6);
+  const w = [x[0], x[1], x[2]];
+  const v = [x[3], x[4], x[5]];
+  const t = norm(w);
+  const t2 = t * t;
+  let A, B, C;
+  if (t < SMALL) {
+    A = 1 - t2 / 6; B = 0.5 - t2 / 24; C = 1 / 6 - t2 / 120;
+  } else {
+    const s = Math.sin(t), c = Math.cos(t);
+    A = s / t; B = (1 - c) / (t * t); C = (t - s) / (t * t * t);
+  }
+  const K = skew(w);
+  const K2 = mulMM(K, K);
+  const R = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
+  const G = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
+  for (let i = 0; i < 3; i++) {
+    for (let j = 0; j < 3; j++) {
+      const d = i === j ? 1 : 0;
+      R[i][j] = d + A * K[i][j] + B * K2[i][j];
+      G[i][j] = d + B * K[i][j] + C * K2[i][j];
+    }
+  }
+  return transform(R, mulMv(G, v));
+}
+
+// One sweep (as _kernels.prefixes_single / space_columns_single): the pose and
+// the space Jacobian's columns (ω_s, v_s), one per joint.
+function sweep(chain, theta) {
+  const c = checkChain(chain);
+  const th = vector(theta, "theta", c.n);
+  let R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+  let p = [0, 0, 0];
+  const ws = [];
+  const vs = [];
+  for (let i = 0; i < c.n; i++) {
+    const j = c.joints[i];
+    const wi = mulMv(R, j.w);
+    ws.push(wi);
+    const vr = mulMv(R, j.v);
+    const pw = cross(p, wi);
+    vs.push([vr[0] + pw[0], vr[1] + pw[1], vr[2] + pw[2]]);
+    // e^{[S_i]θ_i} for a unit screw: R_i = I + s K + (1-c) K², p_i = θ v + (1-c) K v + (θ-s) K² v
+    const t = th[i], s = Math.sin(t), omc = 1 - Math.cos(t), tms = t - s;
+    const Ri = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
+    for (let a = 0; a < 3; a++) {
+      for (let b = 0; b < 3; b++) Ri[a][b] = (a === b ? 1 : 0) + s * j.K[a][b] + omc * j.K2[a][b];
+    }
+    const pi = [0, 1, 2].map((k) => t * j.v[k] + omc * j.Kv[k] + tms * j.K2v[k]);
+    const Rp = mulMv(R, pi);
+    p = [Rp[0] + p[0], Rp[1] + p[1], Rp[2] + p[2]];
+    R = mulMM(R, Ri);
+  }
+  const Rsb = mulMM(R, c.R);
+  const Rm = mulMv(R, c.p);
+  const psb = [Rm[0] + p[0], Rm[1] + p[1], Rm[2] + p[2]];
+  return { n: c.n, R: Rsb, p: psb, ws, vs };
+}
+
+const columnsToRows = (cols) => [0, 1, 2, 3, 4, 5].map((r) => cols.map((col) => col[r]));
+
+function spaceRows(sw) {
+  return columnsToRows(sw.ws.map((w, i) => [...w, ...sw.vs[i]]));
+}
+
+// lin = v_s - p × ω_s: the velocity of the tool point (the geometric Jacobian's linear rows)
+function linear(sw, i) {
+  const pw = cross(sw.p, sw.ws[i]);
+  const v = sw.vs[i];
+  return [v[0] - pw[0], v[1] - pw[1], v[2] - pw[2]];
+}
+
+function geometricRows(sw) {
+  return columnsToRows(sw.ws.map((w, i) => [...w, ...linear(sw, i)]));
+}
+
+function bodyRows(sw) {
+  return columnsToRows(sw.ws.map((w, i) => [...mulMtv(sw.R, w), ...mulMtv(sw.R, linear(sw, i))]));
+}
+
+/** Forward kinematics T_sb(θ) = e^{[S_1]θ_1} ⋯ e^{[S_n]θ_n} M, 4×4. */
+export function fk(chain, theta) {
+  const sw = sweep(chain, theta);
+  return transform(sw.R, sw.p);
+}
+
+/** Space Jacobian J_s (6×n): V_s = J_s θ̇. */
+export function spaceJacobian(chain, theta) {
+  return spaceRows(sweep(chain, theta));
+}
+
+/** Body Jacobian J_b (6×n) = [Ad_{T_bs}] J_s. */
+export function bodyJacobian(chain, theta) {
+  return bodyRows(sweep(chain, theta));
+}
+
+/** Geometric Jacobian (6×n): rows (ω_s, ṗ), ṗ the velocity of {b}'s origin in {s}. */
+export function geometricJacobian(chain, theta) {
+  return geometricRows(sweep(chain, theta));
+}
+
+/** FK and the space, body and geometric Jacobians in one sweep: {T, Js, Jb, Jg}. */
+export function evaluate(chain, theta) {
+  const sw = sweep(chain, theta);
+  return { T: transform(sw.R, sw.p), Js: spaceRows(sw), Jb: bodyRows(sw), Jg: geometricRows(sw) };
+}
+
+// ------------------------------------------------------------ representations
+
+function coords(R, rep) {
+  if (rep === "zyx") {
+    const h = Math.hypot(R[0][0], R[1][0]);
+    const pitch = Math.atan2(-R[2][0], h);
+    const lock = h < 1e-12;
+    const yaw = lock ? Math.atan2(-R[0][1], R[1][1]) : Math.atan2(R[1][0], R[0][0]);
+    const roll = lock ? 0 : Math.atan2(R[2][1], R[2][2]);
+    return [yaw + 0, pitch + 0, roll + 0]; // + 0: no -0 for a view to print
+  }
+  const sb = Math.hypot(R[2][0], R[2][1]);
+  const b = Math.atan2(sb, R[2][2]);
+  const lock = sb < 1e-12;
+  let a = lock ? Math.atan2(R[1][0], R[0][0]) : Math.atan2(R[1][2], R[0][2]);
+  const c = lock ? 0 : Math.atan2(R[2][1], -R[2][0]);
+  if (lock && R[2][2] < 0) a = Math.atan2(-R[1][0], -R[0][0]);
+  return [a + 0, b + 0, c + 0];
+}
+
+function margin(phi, rep) {
+  return rep === "zyx" ? Math.abs(Math.cos(phi[1])) : Math.abs(Math.sin(phi[1]));
+}
+
+/** Coordinates φ of a rotation (3×3) in "zyx" (yaw, pitch, roll) or "zyz"; at a lock the last angle is 0. */
+export function coordinatesFromRotation(R, rep = "zyx") {
+  representation(rep);
+  return coords(matrix(R, "R", 3, 3), rep);
+}
+
+/** B(φ) with ω_s = B(φ) φ̇, 3×3. det B = -cos φ_2 (zyx), -sin φ_2 (zyz). */
+export function rateToAngularVelocity(phi, rep = "zyx") {
+  representation(rep);
+  const f = vector(phi, "phi", 3);
+  const ca = Math.cos(f[0]), sa = Math.sin(f[0]), cb = Math.cos(f[1]), sb = Math.sin(f[1]);
+  if (rep === "zyx") return [[0, -sa, ca * cb], [0, ca, sa * cb], [1, 0, -sb]];
+  return [[0, -sa, ca * sb], [0, ca, sa * sb], [1, 0, cb]];
+}
+
+/** Distance from the representation's singularity: |cos φ_2| (zyx), |sin φ_2| (zyz). */
+export function representationSingularityMargin(phi, rep = "zyx") {
+  representation(rep);
+  return margin(vector(phi, "phi", 3), rep);
+}
+
+function Binv(phi, rep) {
+  const ca = Math.cos(phi[0]), sa = Math.sin(phi[0]), cb = Math.cos(phi[1]), sb = Math.sin(phi[1]);
+  if (rep === "zyx") return [[ca * sb / cb, sa * sb / cb, 1], [-sa, ca, 0], [ca / cb, sa / cb, 0]];
+  return [[-ca * cb / sb, -sa * cb / sb, 1], [-sa, ca, 0], [ca / sb, sa / sb, 0]];
+}
+
+/**
+ * Analytic Jacobian J_a = diag(B(φ)⁻¹, I) J for x = (φ, p), φ the coordinates of R_sb.
+ * Returns {J, phi, margin, singular}; where margin < tol, J is null and singular is true.
+ */
+export function analyticJacobian(chain, theta, rep = "zyx", tol = 1e-9) {
+  representation(rep);
+  nonNegative(tol, "tol", false);
+  const sw = sweep(chain, theta);
+  const phi = coords(sw.R, rep);
+  const m = margin(phi, rep);
+  if (!(m >= tol)) return { J: null, phi, margin: m, singular: true };
+  const J = geometricRows(sw);
+  const Bi = Binv(phi, rep);
+  for (let i = 0; i < sw.n; i++) {
+    const w = mulMv(Bi, [J[0][i], J[1][i], J[2][i]]);
+    J[0][i] = w[0]; J[1][i] = w[1]; J[2][i] = w[2];
+  }
+  return { J, phi, margin: m, singular: false };
+}
+
+/** The Jacobian in frame "space", "body", "geometric" (a 6×n matrix) or "analytic" (as analyticJacobian). */
+export function jacobian(chain, theta, frame, rep = "zyx", tol = 1e-9) {
+  if (!FRAMES.includes(frame)) {
+    throw new Error(`Expected frame ${FRAMES.map((f) => `"${f}"`).join(", ")}, got ${JSON.stringify(frame)}`);
+  }
+  if (frame === "analytic") return analyticJacobian(chain, theta, rep, tol);
+  const sw = sweep(chain, theta);
+  return frame === "space" ? spaceRows(sw) : frame === "body" ? bodyRows(sw) : geometricRows(sw);
+}
+
+// ------------------------------------------------------------ SVD (one-sided Jacobi)
+
+function rotate(x, y, c, s) {
+  for (let i = 0; i < x.length; i++) {
+    const xi = x[i], yi = y[i];
+    x[i] = c * xi - s * yi;
+    y[i] = s * xi + c * yi;
+  }
+}
+
+// Orthogonalise the vectors xs (k vectors of one length) by plane rotations:
+// [b_1 … b_k] = [x_1 … x_k] W with W (k×k, columns w_i) orthogonal and the b_i
+// mutually orthogonal. σ_i = |b_i|, sorted in descending order.
+function jacobi(xs) {
+  const k = xs.length;
+  const b = xs.map((x) => x.slice());
+  const W = Array.from({ length: k }, (_, i) => Array.from({ length: k }, (_, j) => (i === j ? 1 : 0)));
+  const dot = (x, y) => { let s = 0; for (let i = 0; i < x.length; i++) s += x[i] * y[i]; return s; };
+  for (let sweepNo = 0; sweepNo < 60; sweepNo++) {
+    let rotated = false;
+    for (let p = 0; p < k - 1; p++) {
+      for (let q = p + 1; q < k; q++) {
+        const alpha = dot(b[p], b[p]), beta = dot(b[q], b[q]), gamma = dot(b[p], b[q]);
+        if (gamma === 0 || Math.abs(gamma) <= EPS * Math.sqrt(alpha * beta)) continue;
+        rotated = true;
+        const zeta = (beta - alpha) / (2 * gamma);
+        const t = (zeta >= 0 ? 1 : -1) / (Math.abs(zeta) + Math.hypot(1, zeta));
+        const c = 1 / Math.hypot(1, t), s = c * t;
+        rotate(b[p], b[q], c, s);
+        rotate(W[p], W[q], c, s);
+      }
+    }
+    if (!rotated) break;
+  }
+  // W is stored by columns: W[i] is w_i.
+  const order = b.map((x, i) => [norm(x), i]).sort((u, v) => v[0] - u[0]);
+  return { sigma: order.map((o) => o[0]), b: order.map((o) => b[o[1]]), w: order.map((o) => W[o[1]]) };
+}
+
+// The vectors of the smaller side of A (m×n): its rows if m <= n (then w_i are
+// the left singular vectors u_i and b_i = Aᵀ u_i = σ_i v_i), else its columns
+// (then w_i are the right singular vectors v_i and b_i = A v_i = σ_i u_i).
+function svd(A) {
+  const m = A.length, n = A[0].length;
+  if (m <= n) return { rowsSide: true, ...jacobi(A) };
+  return { rowsSide: false, ...jacobi(Array.from({ length: n }, (_, j) => A.map((row) => row[j]))) };
+}
+
+/** Singular values of A (m×n), min(m, n) of them, descending. */
+export function singularValues(A) {
+  return svd(matrix(A, "A")).sigma;
+}
+
+// θ̇ = Σ_i h(σ_i) ... with h(σ) = gain(σ)/σ; the thin SVD of J, V the wanted velocity.
+function svdSolve(J, V, h) {
+  const A = matrix(J, "J");
+  const m = A.length, n = A[0].length;
+  const b = vector(V, "V", m);
+  const d = svd(A);
+  const hs = h(d.sigma);
+  const out = new Array(n).fill(0);
+  for (let i = 0; i < d.sigma.length; i++) {
+    if (hs[i] === 0) continue;
+    if (d.rowsSide) {
+      // J = Σ σ_i u_i v_iᵀ, u_i = w_i, σ_i v_i = b_i
+      let uv = 0;
+      for (let r = 0; r < m; r++) uv += d.w[i][r] * b[r];
+      for (let j = 0; j < n; j++) out[j] += hs[i] * uv * d.b[i][j];
+    } else {
+      // v_i = w_i, σ_i u_i = b_i
+      let uv = 0;
+      for (let r = 0; r < m; r++) uv += d.b[i][r] * b[r];
+      for (let j = 0; j < n; j++) out[j] += hs[i] * uv * d.w[i][j];
+    }
+  }
+  return out;
+}
+
+/** Damped least squares θ̇ = (JᵀJ + λ²I)⁻¹JᵀV (m×n J, m-vector V), λ = damping >= 0, as velocity.dls_rates. */
+export function dlsRates(J, V, damping) {
+  const lam = nonNegative(damping, "damping", true);
+  const lam2 = lam * lam;
+  return svdSolve(J, V, (sigma) => sigma.map((s) => { const den = s * s + lam2; return den > 0 ? 1 / den : 0; }));
+}
+
+/** Pseudo-inverse rates J⁺V; singular values below rcond·σ_max count as zero (velocity.pinv_rates). */
+export function pinvRates(J, V, rcond = 1e-10) {
+  nonNegative(rcond, "rcond", false);
+  return svdSolve(J, V, (sigma) => sigma.map((s) => (s > rcond * sigma[0] ? 1 / (s * s) : 0)));
+}
+
+function ellipsoid(A) {
+  const a = matrix(A, "A");
+  const k = a.length, n = a[0].length;
+  const d = jacobi(a); // the rows of A: w_i are its left singular vectors, |b_i| = σ_i
+  const axes = d.sigma.map((s, i) => (i < Math.min(k, n) ? s : 0));
+  const directions = Array.from({ length: k }, (_, r) => d.w.map((w) => w[r]));
+  return { axes, directions, k, n };
+}
+
+/**
+ * Velocity ellipsoid of a k×n block A (e.g. the x, y rows of the geometric Jacobian):
+ * {axes: σ_i descending (k of them, 0 where k > n), directions: k×k, column i the direction of axis i}.
+ */
+export function velocityEllipsoid(A) {
+  const { axes, directions } = ellipsoid(A);
+  return { axes, directions };
+}
+
+/**
+ * Force ellipsoid: the same directions, semi-axes 1/σ_i, Infinity where σ_i <= rtol·σ_max
+ * (default rtol = max(k, n)·ε), as analysis.force_ellipsoid. A view must clip Infinity.
+ */
+export function forceEllipsoid(A, rtol = null) {
+  const { axes, directions, k, n } = ellipsoid(A);
+  const tol = rtol === null ? Math.max(k, n) * EPS : nonNegative(rtol, "rtol", false);
+  const smax = axes[0];
+  return { axes: axes.map((s) => (s <= tol * smax ? Infinity : 1 / s)), directions };
+}

@@ -1,0 +1,290 @@
+"""The live views' kinematics (``_theme/live/kinematics.js``) give the library's numbers, in Chromium.
+
+For 200 random configurations (seeded) of each teaching arm, the ES module's
+forward kinematics, space, body, geometric and analytic Jacobians, B(φ), DLS
+and pseudo-inverse steps and ellipse axes are compared with ``jacobians``.
+
+Tolerance: ``|js - lib| <= TOL * max(1, max |lib|)`` over each returned
+matrix or vector, i.e. absolute for entries of size up to 1 and relative to
+the largest entry beyond (the analytic Jacobian grows like 1/cos φ₂). Angles
+are compared modulo 2π; ellipse directions up to the sign of each column.
+
+Needs no built book: it serves the repository on 127.0.0.1 and opens
+``tests/browser/live_harness.html``, which imports the module.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from urllib.parse import urlsplit
+
+import bookcheck
+import numpy as np
+import pytest
+
+import jacobians as jac
+
+ROOT = Path(__file__).resolve().parents[2]
+TOL = 1e-12
+N_CONFIGS = 200
+LAMBDAS = [0.0, 0.01, 0.1, 1.0]
+ARMS = {
+    "planar_2r": jac.robots.planar_2r,
+    "planar_3r": jac.robots.planar_3r,
+    "spatial_5r": jac.robots.spatial_5r,
+    "zyz_wrist": jac.robots.zyz_wrist,
+    "ur5": jac.robots.ur5,
+}
+PLANAR = ("planar_2r", "planar_3r")
+
+# Everything the views compute, for every configuration, in one evaluate.
+BATCH_JS = """({S, M, thetas, phis, twists, vels, lambdas, planar}) => {
+  const K = window.K;
+  const chain = K.makeChain(S, M);
+  return thetas.map((th, k) => {
+    const e = K.evaluate(chain, th);
+    const r = {
+      T: e.T, Js: e.Js, Jb: e.Jb, Jg: e.Jg,
+      fk: K.fk(chain, th), space: K.spaceJacobian(chain, th), body: K.bodyJacobian(chain, th),
+      geometric: K.geometricJacobian(chain, th), viaFrame: K.jacobian(chain, th, "body"),
+      zyx: K.analyticJacobian(chain, th, "zyx"), zyz: K.analyticJacobian(chain, th, "zyz"),
+      Bzyx: K.rateToAngularVelocity(phis[k], "zyx"), Bzyz: K.rateToAngularVelocity(phis[k], "zyz"),
+      dls: lambdas.map((l) => K.dlsRates(e.Js, twists[k], l)),
+      pinv: K.pinvRates(e.Js, twists[k]),
+      sv: K.singularValues(e.Js),
+    };
+    if (planar) {
+      const Jv = [e.Jg[3], e.Jg[4]];
+      r.vel = K.velocityEllipsoid(Jv);
+      r.force = K.forceEllipsoid(Jv);
+      r.dlsv = lambdas.map((l) => K.dlsRates(Jv, vels[k], l));
+      r.pinvv = K.pinvRates(Jv, vels[k]);
+    }
+    return r;
+  });
+}"""
+
+# One bad call per kind of input; each must throw an Error whose message contains the text.
+BAD_INPUT = [
+    ("K.makeChain(S.slice(0, 5), M)", "Expected S with shape 6×n"),
+    ("K.makeChain(S, [[1, 0, 0], [0, 1, 0], [0, 0, 1]])", "Expected M with shape 4×4"),
+    ("K.makeChain(S.map((row, r) => r === 2 ? row.map((x) => 2 * x) : row), M)", "unit angular part"),
+    ("K.fk(chain, [0.1])", "Expected theta as an array of 2 numbers"),
+    ("K.spaceJacobian(chain, [NaN, 0])", "Expected finite numbers in theta"),
+    ("K.bodyJacobian({S, M}, [0, 0])", "makeChain(S, M)"),
+    ("K.jacobian(chain, [0, 0], 'world')", "Expected frame"),
+    ("K.analyticJacobian(chain, [0, 0], 'exp')", "Unknown representation"),
+    ("K.rateToAngularVelocity([0.1, 0.2], 'zyx')", "Expected phi as an array of 3 numbers"),
+    ("K.dlsRates([[1, 0], [0, 1]], [1, 2, 3], 0.1)", "Expected V as an array of 2 numbers"),
+    ("K.dlsRates([[1, 0], [0, 1]], [1, 2], -1)", "Expected damping as a non-negative"),
+    ("K.velocityEllipsoid([1, 2])", "Expected A with shape m×n"),
+    ("K.forceEllipsoid([[1, 2], [3]])", "Expected A with shape m×n"),
+]
+
+
+def _err(js, ref) -> float:
+    js = np.asarray(js, dtype=float)
+    ref = np.asarray(ref, dtype=float)
+    assert js.shape == ref.shape, f"shape {js.shape} from the module, {ref.shape} from the library"
+    return float(np.max(np.abs(js - ref)) / max(1.0, float(np.max(np.abs(ref)))))
+
+
+def _angle_err(js, ref) -> float:
+    d = np.asarray(js, dtype=float) - np.asarray(ref, dtype=float)
+    return float(np.max(np.abs((d + np.pi) % (2 * np.pi) - np.pi)))
+
+
+def _direction_err(js, ref) -> float:
+    js = np.asarray(js, dtype=float)
+    ref = np.asarray(ref, dtype=float)
+    signs = np.where(np.sum(js * ref, axis=0) < 0, -1.0, 1.0)
+    return _err(js * signs, ref)
+
+
+@pytest.fixture(scope="module")
+def kin_page(browser_context):
+    with bookcheck.BookServer(ROOT) as server:
+        page = browser_context.new_page()
+        seen: dict[str, list[str]] = {"console": [], "requests": []}
+        page.on("console", lambda m: seen["console"].append(m.text) if m.type == "error" else None)
+        page.on("pageerror", lambda e: seen["console"].append(str(e)))
+        page.on("request", lambda r: seen["requests"].append(r.url))
+        page.goto(server.base + "tests/browser/live_harness.html", wait_until="load")
+        page.wait_for_selector("body[data-ready='1']", state="attached", timeout=10_000)
+        yield page, server.base, seen
+        page.close()
+
+
+def _random_inputs(name: str, n: int):
+    rng = np.random.default_rng(sum(map(ord, name)))
+    thetas = rng.uniform(-np.pi, np.pi, (N_CONFIGS, n))
+    phis = rng.uniform(-np.pi, np.pi, (N_CONFIGS, 3))
+    twists = rng.normal(size=(N_CONFIGS, 6))
+    vels = rng.normal(size=(N_CONFIGS, 2))
+    return thetas, phis, twists, vels
+
+
+MAX_ERR: dict[str, float] = {}
+
+
+@pytest.mark.parametrize("name", list(ARMS))
+def test_module_matches_library(kin_page, name):
+    page = kin_page[0]
+    arm = ARMS[name]()
+    thetas, phis, twists, vels = _random_inputs(name, arm.dof)
+    out = page.evaluate(BATCH_JS, {
+        "S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "thetas": thetas.tolist(), "phis": phis.tolist(),
+        "twists": twists.tolist(), "vels": vels.tolist(), "lambdas": LAMBDAS, "planar": name in PLANAR,
+    })
+    assert len(out) == N_CONFIGS
+    T = arm.fk(thetas)
+    Js = jac.space_jacobian(arm, thetas)
+    Jb = jac.body_jacobian(arm, thetas)
+    Jg = jac.geometric_jacobian(arm, thetas)
+    with np.errstate(invalid="ignore"):  # the library's NaN at a representation singularity
+        Ja = {rep: jac.analytic_jacobian(arm, thetas, rep, on_singularity="nan") for rep in ("zyx", "zyz")}
+    phi = {rep: jac.pose_coordinates(T, rep)[:, :3] for rep in ("zyx", "zyz")}
+    B = {rep: jac.representations.rate_to_angular_velocity(phis, rep) for rep in ("zyx", "zyz")}
+    dls = [jac.velocity.dls_rates(Js, twists, lam) for lam in LAMBDAS]
+    pinv = jac.velocity.pinv_rates(Js, twists)
+    sv = jac.analysis.singular_values(Js)
+    errs: dict[str, list[float]] = {}
+    nonsingular = {"zyx": 0, "zyz": 0}
+
+    def note(key: str, value: float) -> None:
+        errs.setdefault(key, []).append(value)
+
+    for k, r in enumerate(out):
+        for key, ref in (("T", T[k]), ("Js", Js[k]), ("Jb", Jb[k]), ("Jg", Jg[k]), ("fk", T[k]),
+                         ("space", Js[k]), ("body", Jb[k]), ("geometric", Jg[k]), ("viaFrame", Jb[k]),
+                         ("Bzyx", B["zyx"][k]), ("Bzyz", B["zyz"][k]), ("pinv", pinv[k]), ("sv", sv[k])):
+            note(key, _err(r[key], ref))
+        for i, lam in enumerate(LAMBDAS):
+            note(f"dls λ={lam}", _err(r["dls"][i], dls[i][k]))
+        for rep in ("zyx", "zyz"):
+            got = r[rep]
+            lib_singular = bool(np.isnan(Ja[rep][k]).any())
+            assert got["singular"] is lib_singular, (
+                f"{name} θ={thetas[k].tolist()}: {rep} singular flag {got['singular']}, library {lib_singular}")
+            note(f"phi {rep}", _angle_err(got["phi"], phi[rep][k]))
+            note(f"margin {rep}", abs(got["margin"] - float(
+                jac.representations.representation_singularity_margin(phi[rep][k], rep))))
+            if lib_singular:
+                assert got["J"] is None
+            else:
+                nonsingular[rep] += 1
+                note(f"Ja {rep}", _err(got["J"], Ja[rep][k]))
+        if name in PLANAR:
+            Jv = Jg[k][3:5]
+            axes, dirs = jac.analysis.velocity_ellipsoid(Jv)
+            faxes, fdirs = jac.analysis.force_ellipsoid(Jv)
+            note("ellipse axes", _err(r["vel"]["axes"], axes))
+            note("ellipse directions", _direction_err(r["vel"]["directions"], dirs))
+            note("force axes", _err(r["force"]["axes"], faxes))
+            note("force directions", _direction_err(r["force"]["directions"], fdirs))
+            for i, lam in enumerate(LAMBDAS):
+                note(f"dls J_v λ={lam}", _err(r["dlsv"][i], jac.velocity.dls_rates(Jv, vels[k], lam)))
+            note("pinv J_v", _err(r["pinvv"], jac.velocity.pinv_rates(Jv, vels[k])))
+    # The analytic Jacobian must have been compared, not only flagged: ZYX is
+    # never singular for these random draws; ZYZ is singular everywhere for a
+    # planar arm (φ₂ = 0), and the flag was checked at each configuration.
+    assert nonsingular["zyx"] > 0.95 * N_CONFIGS
+    if name not in PLANAR:
+        assert nonsingular["zyz"] > 0.95 * N_CONFIGS
+    else:
+        assert nonsingular["zyz"] == 0
+    worst = {key: max(v) for key, v in errs.items()}
+    for key, value in worst.items():
+        MAX_ERR[f"{name}: {key}"] = value
+    print(f"\n{name}: largest difference from the library, per quantity")
+    for key, value in worst.items():
+        print(f"  {key:22s} {value:.2e}")
+    bad = {key: value for key, value in worst.items() if not value <= TOL}
+    assert not bad, f"{name}: differences above {TOL}: {bad}"
+
+
+def test_representation_singularity_is_a_flag_not_nan(kin_page):
+    """The ZYZ wrist at θ₂ = ±π/2, θ₃ = 0 has ZYX pitch ±π/2: the library has no J_a there; the module says so."""
+    page = kin_page[0]
+    arm = jac.robots.zyz_wrist()
+    thetas = [[0.3, math.pi / 2, 0.0], [-1.1, -math.pi / 2, 0.0], [2.0, math.pi / 2, 1e-12]]
+    with pytest.raises(jac.RepresentationSingularityError):
+        jac.analytic_jacobian(arm, thetas[0], "zyx")
+    with np.errstate(invalid="ignore"):
+        lib = jac.analytic_jacobian(arm, thetas, "zyx", on_singularity="nan")
+    assert np.isnan(lib).all(axis=(1, 2)).all()
+    got = page.evaluate("""({S, M, thetas}) => {
+      const chain = window.K.makeChain(S, M);
+      return thetas.map((th) => window.K.analyticJacobian(chain, th, "zyx"));
+    }""", {"S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "thetas": thetas})
+    for th, r in zip(thetas, got, strict=True):
+        assert r["singular"] is True and r["J"] is None, (th, r)
+        assert r["margin"] < 1e-9 and abs(abs(r["phi"][1]) - math.pi / 2) < 1e-9, (th, r)
+        assert all(math.isfinite(x) for x in r["phi"]), (th, r)
+
+
+def test_singular_arm_gives_no_nan(kin_page):
+    """At the stretched-out planar arm (σ_min = 0) every quantity is finite, except the documented ∞ force axis."""
+    page = kin_page[0]
+    arm = jac.robots.planar_2r()
+    got = page.evaluate("""({S, M}) => {
+      const K = window.K, chain = K.makeChain(S, M), e = K.evaluate(chain, [0.4, 0]);
+      const Jv = [e.Jg[3], e.Jg[4]];
+      return {e, Ja: K.analyticJacobian(chain, [0.4, 0]).J, vel: K.velocityEllipsoid(Jv),
+              force: K.forceEllipsoid(Jv), dls: K.dlsRates(Jv, [0.3, -0.2], 0.05), pinv: K.pinvRates(Jv, [0.3, -0.2]),
+              exp0: K.expSE3([0, 0, 0, 1, 2, 3])};
+    }""", {"S": arm.screw_axes.tolist(), "M": arm.home.tolist()})
+    flat = np.concatenate([np.ravel(got["e"][k]) for k in ("T", "Js", "Jb", "Jg")]
+                          + [np.ravel(got["Ja"]), got["vel"]["axes"], np.ravel(got["vel"]["directions"]),
+                             got["dls"], got["pinv"], np.ravel(got["exp0"])])
+    assert np.isfinite(flat).all()
+    Jv = jac.geometric_jacobian(arm, [0.4, 0.0])[3:5]
+    assert _err(got["dls"], jac.velocity.dls_rates(Jv, [0.3, -0.2], 0.05)) <= TOL
+    assert _err(got["pinv"], jac.velocity.pinv_rates(Jv, [0.3, -0.2])) <= TOL
+    assert got["vel"]["axes"][1] == 0.0 or got["vel"]["axes"][1] < 1e-15
+    assert got["force"]["axes"][1] == math.inf and math.isfinite(got["force"]["axes"][0])
+    assert _err(got["force"]["axes"][0], jac.analysis.force_ellipsoid(Jv)[0][0]) <= TOL
+
+
+def test_exp_se3_matches_library_near_and_away_from_zero(kin_page):
+    page = kin_page[0]
+    rng = np.random.default_rng(13)
+    xis = []
+    for scale in (0.0, 1e-9, 1e-6, 5e-5, 1e-4, 2e-4, 1e-2, 1.0, 3.0, 6.0):
+        for _ in range(20):
+            w = rng.normal(size=3)
+            w *= scale / np.linalg.norm(w)
+            xis.append(np.concatenate([w, rng.normal(size=3)]))
+    xis_a = np.array(xis)
+    got = page.evaluate("(xis) => xis.map((xi) => window.K.expSE3(xi))", xis_a.tolist())
+    ref = jac.lie.exp_se3(xis_a)
+    worst = max(_err(g, r) for g, r in zip(got, ref, strict=True))
+    print(f"\nexpSE3: largest difference {worst:.2e}")
+    assert worst <= TOL
+
+
+def test_bad_input_throws_a_clear_error(kin_page):
+    page = kin_page[0]
+    arm = jac.robots.planar_2r()
+    results = page.evaluate("""({S, M, calls}) => {
+      const K = window.K, chain = K.makeChain(S, M);
+      return calls.map((call) => {
+        try { new Function("K", "S", "M", "chain", `return ${call};`)(K, S, M, chain); return {thrown: false}; }
+        catch (e) { return {thrown: true, isError: e instanceof Error, message: String(e.message)}; }
+      });
+    }""", {"S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "calls": [c for c, _ in BAD_INPUT]})
+    for (call, expected), r in zip(BAD_INPUT, results, strict=True):
+        assert r["thrown"] and r["isError"], f"{call} did not throw an Error: {r}"
+        assert expected in r["message"], f"{call} threw {r['message']!r}, expected it to say {expected!r}"
+
+
+def test_no_console_error_and_no_foreign_request(kin_page):
+    """Runs last in this file (pytest keeps definition order): everything above went through this page."""
+    page, base, seen = kin_page
+    assert seen["requests"], "the harness page made no request at all"
+    host = urlsplit(base).netloc
+    foreign = [u for u in seen["requests"] if urlsplit(u).scheme != "data" and urlsplit(u).netloc != host]
+    assert not foreign, f"requests to another host: {foreign}"
+    assert any(u.endswith("_theme/live/kinematics.js") for u in seen["requests"])
+    assert not seen["console"], f"console errors: {seen['console']}"
