@@ -9,14 +9,15 @@
 // Vectors are arrays (or typed arrays) of numbers. Results are new plain arrays.
 //
 // Mapping to the library (same argument order; `chain` is makeChain(S, M)):
-//   makeChain(S, M)                         SerialChain(screw_axes, home)
+//   makeChain(S, M, jointPoints)            SerialChain(screw_axes, home, joint_points=...)
 //   expSE3(xi)                              lie.exp_se3(twist_theta)
 //   fk(chain, theta)                        chain.fk(theta)
 //   spaceJacobian(chain, theta)             space_jacobian(chain, theta)
 //   bodyJacobian(chain, theta)              body_jacobian(chain, theta)
 //   geometricJacobian(chain, theta)         geometric_jacobian(chain, theta)
 //   jacobian(chain, theta, frame, rep, tol) jacobian(chain, theta, frame, rep) (analytic: see below)
-//   evaluate(chain, theta)                  fk + the three Jacobians above in one sweep
+//   jointPositions(chain, theta)            chain.joint_positions(theta): (n+1)×3, to draw the arm
+//   evaluate(chain, theta)                  fk, the three Jacobians above and the joint positions in one sweep
 //   analyticJacobian(chain, theta, rep, tol)
 //       analytic_jacobian(chain, theta, rep, on_singularity="nan", tol); returns
 //       {J, phi, margin, singular}: at a representation singularity J is null and
@@ -138,12 +139,19 @@ function transform(R, p) {
 
 // ------------------------------------------------------------ chain
 
-/** A chain from its screw axes S (6×n, columns (ω, v)) and home pose M (4×4), checked once. */
-export function makeChain(S, M) {
+/**
+ * A chain from its screw axes S (6×n, columns (ω, v)) and home pose M (4×4), checked once.
+ * jointPoints (n×3, optional): a point on each joint's axis at home, where the view draws
+ * the joint; pass the library's chain.axis_points(). Default as SerialChain's: the point of a
+ * revolute axis closest to the origin (ω × v), for a prismatic joint the previous such point.
+ */
+export function makeChain(S, M, jointPoints = null) {
   const s = matrix(S, "S", 6);
   const m = matrix(M, "M", 4, 4);
   const n = s[0].length;
   const joints = [];
+  const q = jointPoints === null ? null : matrix(jointPoints, "jointPoints", n, 3);
+  let prev = [0, 0, 0];
   for (let i = 0; i < n; i++) {
     const w = [s[0][i], s[1][i], s[2][i]];
     const v = [s[3][i], s[4][i], s[5][i]];
@@ -158,9 +166,22 @@ export function makeChain(S, M) {
     } else if (Math.abs(vn - 1) > UNIT_TOL) {
       throw new Error(`Expected column ${i} of S (a prismatic joint, ω = 0) to have a unit linear part, got |v| = ${vn}`);
     }
+    let point = wn > UNIT_TOL ? cross(w, v) : prev;
+    if (wn > UNIT_TOL) prev = point;
+    if (q !== null) {
+      const qi = q[i];
+      if (wn > UNIT_TOL) {
+        const d = w[0] * qi[0] + w[1] * qi[1] + w[2] * qi[2];
+        const off = norm([0, 1, 2].map((k) => qi[k] - w[k] * d - point[k]));
+        if (off > 1e-6 * Math.max(1, norm(qi))) {
+          throw new Error(`Expected jointPoints[${i}] on the axis of revolute joint ${i}, got a point ${off} away from it`);
+        }
+      }
+      point = qi;
+    }
     const K = skew(w);
     const K2 = mulMM(K, K);
-    joints.push({ w, v, K, K2, Kv: mulMv(K, v), K2v: mulMv(K2, v) });
+    joints.push({ w, v, K, K2, Kv: mulMv(K, v), K2v: mulMv(K2, v), point });
   }
   const bottom = m[3];
   const R = [m[0].slice(0, 3), m[1].slice(0, 3), m[2].slice(0, 3)];
@@ -208,8 +229,11 @@ function sweep(chain, theta) {
   let p = [0, 0, 0];
   const ws = [];
   const vs = [];
+  const points = [];
   for (let i = 0; i < c.n; i++) {
     const j = c.joints[i];
+    const pq = mulMv(R, j.point);
+    points.push([pq[0] + p[0], pq[1] + p[1], pq[2] + p[2]]);
     const wi = mulMv(R, j.w);
     ws.push(wi);
     const vr = mulMv(R, j.v);
@@ -229,7 +253,8 @@ function sweep(chain, theta) {
   const Rsb = mulMM(R, c.R);
   const Rm = mulMv(R, c.p);
   const psb = [Rm[0] + p[0], Rm[1] + p[1], Rm[2] + p[2]];
-  return { n: c.n, R: Rsb, p: psb, ws, vs };
+  points.push(psb);
+  return { n: c.n, R: Rsb, p: psb, ws, vs, points };
 }
 
 const columnsToRows = (cols) => [0, 1, 2, 3, 4, 5].map((r) => cols.map((col) => col[r]));
@@ -274,10 +299,15 @@ export function geometricJacobian(chain, theta) {
   return geometricRows(sweep(chain, theta));
 }
 
-/** FK and the space, body and geometric Jacobians in one sweep: {T, Js, Jb, Jg}. */
+/** Where each joint's point is at θ (carried by the joints before it), then {b}'s origin: (n+1)×3. */
+export function jointPositions(chain, theta) {
+  return sweep(chain, theta).points;
+}
+
+/** FK, the space, body and geometric Jacobians and the joint positions in one sweep: {T, Js, Jb, Jg, points}. */
 export function evaluate(chain, theta) {
   const sw = sweep(chain, theta);
-  return { T: transform(sw.R, sw.p), Js: spaceRows(sw), Jb: bodyRows(sw), Jg: geometricRows(sw) };
+  return { T: transform(sw.R, sw.p), Js: spaceRows(sw), Jb: bodyRows(sw), Jg: geometricRows(sw), points: sw.points };
 }
 
 // ------------------------------------------------------------ representations

@@ -39,13 +39,13 @@ ARMS = {
 PLANAR = ("planar_2r", "planar_3r")
 
 # Everything the views compute, for every configuration, in one evaluate.
-BATCH_JS = """({S, M, thetas, phis, twists, vels, lambdas, planar}) => {
+BATCH_JS = """({S, M, Q, thetas, phis, twists, vels, lambdas, planar}) => {
   const K = window.K;
-  const chain = K.makeChain(S, M);
+  const chain = K.makeChain(S, M, Q);
   return thetas.map((th, k) => {
     const e = K.evaluate(chain, th);
     const r = {
-      T: e.T, Js: e.Js, Jb: e.Jb, Jg: e.Jg,
+      T: e.T, Js: e.Js, Jb: e.Jb, Jg: e.Jg, points: e.points, pointsAlone: K.jointPositions(chain, th),
       fk: K.fk(chain, th), space: K.spaceJacobian(chain, th), body: K.bodyJacobian(chain, th),
       geometric: K.geometricJacobian(chain, th), viaFrame: K.jacobian(chain, th, "body"),
       zyx: K.analyticJacobian(chain, th, "zyx"), zyz: K.analyticJacobian(chain, th, "zyz"),
@@ -70,6 +70,7 @@ BAD_INPUT = [
     ("K.makeChain(S.slice(0, 5), M)", "Expected S with shape 6×n"),
     ("K.makeChain(S, [[1, 0, 0], [0, 1, 0], [0, 0, 1]])", "Expected M with shape 4×4"),
     ("K.makeChain(S.map((row, r) => r === 2 ? row.map((x) => 2 * x) : row), M)", "unit angular part"),
+    ("K.makeChain(S, M, [[0, 0, 0], [0.5, 0.5, 0]])", "Expected jointPoints[1] on the axis"),
     ("K.fk(chain, [0.1])", "Expected theta as an array of 2 numbers"),
     ("K.spaceJacobian(chain, [NaN, 0])", "Expected finite numbers in theta"),
     ("K.bodyJacobian({S, M}, [0, 0])", "makeChain(S, M)"),
@@ -134,11 +135,13 @@ def test_module_matches_library(kin_page, name):
     arm = ARMS[name]()
     thetas, phis, twists, vels = _random_inputs(name, arm.dof)
     out = page.evaluate(BATCH_JS, {
-        "S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "thetas": thetas.tolist(), "phis": phis.tolist(),
+        "S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "Q": arm.axis_points().tolist(),
+        "thetas": thetas.tolist(), "phis": phis.tolist(),
         "twists": twists.tolist(), "vels": vels.tolist(), "lambdas": LAMBDAS, "planar": name in PLANAR,
     })
     assert len(out) == N_CONFIGS
     T = arm.fk(thetas)
+    P = arm.joint_positions(thetas)
     Js = jac.space_jacobian(arm, thetas)
     Jb = jac.body_jacobian(arm, thetas)
     Jg = jac.geometric_jacobian(arm, thetas)
@@ -158,6 +161,7 @@ def test_module_matches_library(kin_page, name):
     for k, r in enumerate(out):
         for key, ref in (("T", T[k]), ("Js", Js[k]), ("Jb", Jb[k]), ("Jg", Jg[k]), ("fk", T[k]),
                          ("space", Js[k]), ("body", Jb[k]), ("geometric", Jg[k]), ("viaFrame", Jb[k]),
+                         ("points", P[k]), ("pointsAlone", P[k]),
                          ("Bzyx", B["zyx"][k]), ("Bzyz", B["zyz"][k]), ("pinv", pinv[k]), ("sv", sv[k])):
             note(key, _err(r[key], ref))
         for i, lam in enumerate(LAMBDAS):
