@@ -30,6 +30,10 @@
 //   singularValues(A)                       analysis.singular_values
 //   velocityEllipsoid(A)                    analysis.velocity_ellipsoid -> {axes, directions}
 //   forceEllipsoid(A, rtol)                 analysis.force_ellipsoid    -> {axes, directions}
+//   resolvedRate(chain, theta0, path, dt, method, damping, gain, targetVelocities)
+//                                           velocity.resolved_rate -> {thetas, rates, positions, errors, sigmaMin}
+//   resolvedRateStep(chain, theta, target, targetVelocity, dt, method, damping, gain)
+//                                           one iteration of its loop (a view steps once per frame)
 // Representations: "zyx" and "zyz" ("exp" is not needed by a view: it throws).
 // Bad input (wrong shape, non-finite number, unknown name) throws an Error that
 // says what was expected and what came. The SVD is a one-sided Jacobi
@@ -509,4 +513,72 @@ export function forceEllipsoid(A, rtol = null) {
   const tol = rtol === null ? Math.max(k, n) * EPS : nonNegative(rtol, "rtol", false);
   const smax = axes[0];
   return { axes: axes.map((s) => (s <= tol * smax ? Infinity : 1 / s)), directions };
+}
+
+// ------------------------------------------------------------ resolved-rate motion
+
+const METHODS = ["pinv", "dls"];
+
+function rateOptions(method, damping, gain) {
+  if (!METHODS.includes(method)) throw new Error(`Expected method "pinv" or "dls", got ${JSON.stringify(method)}`);
+  nonNegative(damping, "damping", true);
+  nonNegative(gain, "gain", true);
+}
+
+function step(chain, theta, target, targetVelocity, dt, method, damping, gain) {
+  const d = target.length;
+  const sw = sweep(chain, theta);
+  const J = geometricRows(sw).slice(3, 3 + d);
+  const p = sw.p.slice(0, d);
+  const v = target.map((x, i) => targetVelocity[i] + gain * (x - p[i]));
+  const rate = method === "pinv" ? pinvRates(J, v) : dlsRates(J, v, damping);
+  const sv = singularValues(J);
+  const sigmaMin = sv.length === d ? sv[d - 1] : 0;
+  return { theta: theta.map((t, i) => t + rate[i] * dt), rate, position: p, sigmaMin };
+}
+
+/**
+ * One step of resolved-rate motion of {b}'s origin (as one iteration of velocity.resolved_rate):
+ * θ̇ = J_v^# (ṗ_d + K (p_d - p)), θ_next = θ + θ̇ dt, J_v the x, y (d = 2) or x, y, z (d = 3)
+ * rows of the geometric Jacobian, # the pseudo-inverse ("pinv") or DLS ("dls", λ = damping).
+ * Returns {theta: θ_next, rate, position: p at θ, sigmaMin: σ_min of J_v (0 if n < d)}.
+ */
+export function resolvedRateStep(chain, theta, target, targetVelocity, dt, method = "pinv", damping = 0.05, gain = 2.0) {
+  const c = checkChain(chain);
+  const th = vector(theta, "theta", c.n);
+  const pd = vector(target, "target", target && target.length);
+  if (pd.length !== 2 && pd.length !== 3) throw new Error(`Expected target as (x, y) or (x, y, z), got ${pd.length} numbers`);
+  const vd = vector(targetVelocity, "targetVelocity", pd.length);
+  nonNegative(dt, "dt", false);
+  rateOptions(method, damping, gain);
+  return step(c, th, pd, vd, dt, method, damping, gain);
+}
+
+/**
+ * velocity.resolved_rate: follow targetPath (N×2 or N×3, N >= 2) from theta0 with time step dt.
+ * targetVelocities (N×d) default: forward differences of the path, zero at the end.
+ * Returns {thetas, rates, positions, errors, sigmaMin}, one entry per step.
+ */
+export function resolvedRate(chain, theta0, targetPath, dt, method = "pinv", damping = 0.05, gain = 2.0,
+  targetVelocities = null) {
+  const c = checkChain(chain);
+  let theta = vector(theta0, "theta0", c.n);
+  const P = matrix(targetPath, "targetPath");
+  const N = P.length, d = P[0].length;
+  if (N < 2 || (d !== 2 && d !== 3)) {
+    throw new Error(`Expected targetPath with shape N×2 or N×3, N >= 2, got ${N}×${d}`);
+  }
+  nonNegative(dt, "dt", false);
+  rateOptions(method, damping, gain);
+  const Pdot = targetVelocities === null
+    ? P.map((row, k) => (k + 1 < N ? row.map((x, i) => (P[k + 1][i] - x) / dt) : row.map(() => 0)))
+    : matrix(targetVelocities, "targetVelocities", N, d);
+  const out = { thetas: [], rates: [], positions: [], errors: [], sigmaMin: [] };
+  for (let k = 0; k < N; k++) {
+    const s = step(c, theta, P[k], Pdot[k], dt, method, damping, gain);
+    out.thetas.push(theta); out.rates.push(s.rate); out.positions.push(s.position); out.sigmaMin.push(s.sigmaMin);
+    out.errors.push(norm(P[k].map((x, i) => x - s.position[i])));
+    theta = s.theta;
+  }
+  return out;
 }

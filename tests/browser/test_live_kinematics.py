@@ -81,6 +81,8 @@ BAD_INPUT = [
     ("K.dlsRates([[1, 0], [0, 1]], [1, 2], -1)", "Expected damping as a non-negative"),
     ("K.velocityEllipsoid([1, 2])", "Expected A with shape m×n"),
     ("K.forceEllipsoid([[1, 2], [3]])", "Expected A with shape m×n"),
+    ("K.resolvedRate(chain, [0, 1], [[1, 1]], 0.1)", "Expected targetPath with shape N×2 or N×3, N >= 2"),
+    ("K.resolvedRateStep(chain, [0, 1], [1, 1], [0, 0], 0.1, 'newton')", 'Expected method "pinv" or "dls"'),
 ]
 
 
@@ -266,6 +268,65 @@ def test_exp_se3_matches_library_near_and_away_from_zero(kin_page):
     worst = max(_err(g, r) for g, r in zip(got, ref, strict=True))
     print(f"\nexpSE3: largest difference {worst:.2e}")
     assert worst <= TOL
+
+
+def _paths(arm, name: str):
+    """(label, θ0, path, dt, method, damping): a segment, a circle reaching near full stretch, a 3-D one."""
+    rng = np.random.default_rng(len(name))
+    t = np.linspace(0.0, 1.0, 81)
+    dt = float(t[1] - t[0])
+    out = []
+    for trial in range(3):
+        th0 = rng.uniform(-np.pi, np.pi, arm.dof)
+        p0 = arm.fk(th0)[:3, 3]
+        reach = float(np.linalg.norm(p0[:2]))
+        seg = p0[:2] + np.outer(t, rng.normal(size=2) * 0.3)
+        ang = 2 * np.pi * t
+        centre = p0[:2] * 1.1  # the circle's far side lies beyond the start: near or past full stretch
+        circle = centre + (p0[:2] - centre)[None, :] * np.cos(ang)[:, None] \
+            + np.array([-(p0[1] - centre[1]), p0[0] - centre[0]])[None, :] * np.sin(ang)[:, None]
+        space = p0 + np.outer(t, rng.normal(size=3) * 0.2)
+        for method, lam in (("pinv", 0.05), ("dls", 0.05), ("dls", 0.3)):
+            out.append((f"segment {trial} {method} {lam}", th0, seg, dt, method, lam))
+            out.append((f"circle {trial} r={reach:.2f} {method} {lam}", th0, circle, dt, method, lam))
+            out.append((f"3-D {trial} {method} {lam}", th0, space, dt, method, lam))
+    return out
+
+
+@pytest.mark.parametrize("name", ["planar_2r", "planar_3r", "ur5"])
+def test_resolved_rate_matches_library(kin_page, name):
+    """The loop of the resolved-rate view: every step's θ, θ̇, p, |error| and σ_min, as velocity.resolved_rate."""
+    page = kin_page[0]
+    arm = ARMS[name]()
+    cases = _paths(arm, name)
+    got = page.evaluate("""({S, M, cases}) => {
+      const K = window.K, chain = K.makeChain(S, M);
+      return cases.map(([th0, path, dt, method, lam]) => K.resolvedRate(chain, th0, path, dt, method, lam));
+    }""", {"S": arm.screw_axes.tolist(), "M": arm.home.tolist(),
+           "cases": [[c[1].tolist(), c[2].tolist(), c[3], c[4], c[5]] for c in cases]})
+    worst: dict[str, float] = {}
+    widened = []
+    for (label, th0, path, dt, method, lam), r in zip(cases, got, strict=True):
+        ref = jac.velocity.resolved_rate(arm, th0, path, dt, method=method, damping=lam)
+        # A run through a near-singularity (the pseudo-inverse's rates ~ 1/σ_min) is ill-conditioned:
+        # the library's own answer moves when θ0 moves by one ulp. The module may differ by ten times that.
+        ulp = jac.velocity.resolved_rate(arm, np.nextafter(th0, np.inf), path, dt, method=method, damping=lam)
+        for key, js in (("thetas", r["thetas"]), ("rates", r["rates"]), ("positions", r["positions"]),
+                        ("errors", r["errors"]), ("sigma_min", r["sigmaMin"])):
+            e = _err(js, getattr(ref, key))
+            sensitivity = _err(getattr(ulp, key), getattr(ref, key))
+            allowed = max(TOL, 10 * sensitivity)
+            if allowed > TOL:
+                widened.append(f"{label} {key}: {e:.1e} (library vs itself at θ0 + 1 ulp: {sensitivity:.1e})")
+            else:
+                worst[key] = max(worst.get(key, 0.0), e)
+            assert e <= allowed, (f"{name} {label}: {key} differs by {e:.2e} (relative to max(1, |lib|)); "
+                                  f"the library moves by {sensitivity:.1e} when θ0 moves by one ulp")
+    print(f"\nresolved rate {name}, {len(cases)} runs of 81 steps, well-conditioned: "
+          + ", ".join(f"{k} {v:.1e}" for k, v in worst.items()))
+    for line in widened:
+        print(f"  ill-conditioned, {line}")
+    assert len(widened) < len(cases), "every run was ill-conditioned: nothing was checked at 1e-12"
 
 
 def test_bad_input_throws_a_clear_error(kin_page):
