@@ -86,6 +86,7 @@ test-slides: setup browser
 bench: setup
 	$(PY) -m tools.bench
 	$(PY) -m tools.bench_widgets
+	$(PY) -m tools.bench_live
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
 LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json
