@@ -66,8 +66,9 @@ test: setup
 	$(MAKE) test-slides
 
 lint: setup
-	$(BIN)/ruff check lib tools _ext
+	$(BIN)/ruff check lib tools _ext tests
 	$(BIN)/mypy
+	$(BIN)/mypy _ext
 
 test-lib: setup
 	MPLBACKEND=Agg $(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests

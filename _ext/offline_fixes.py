@@ -192,9 +192,9 @@ def default_theme_mode(app: Sphinx, config: Config) -> None:
     layout = _theme_file("layout.html").read_text(encoding="utf-8")
     if '|| "{{ default_mode }}"' not in layout:
         raise ProblemGone("default_theme_mode", "the theme's layout.html no longer reads default_mode")
-    if config.html_context is None:
-        config.html_context = {}
-    config.html_context.setdefault("default_mode", "auto")
+    context: dict[str, object] = dict(config.html_context or {})
+    context.setdefault("default_mode", "auto")
+    config.html_context = context
 
 
 def default_favicon(app: Sphinx, config: Config) -> None:

@@ -148,7 +148,7 @@ def test_no_checked_prints(page):
 def _sections(src: str):
     """(title, body) of each ## section."""
     parts = re.split(r"^## (.*)$", src, flags=re.M)
-    return list(zip(parts[1::2], parts[2::2]))
+    return list(zip(parts[1::2], parts[2::2], strict=True))
 
 
 @pytest.mark.parametrize("page", ["01_twists.md", "conventions.md"])

@@ -255,7 +255,7 @@ def test_every_animation_has_a_numbered_caption_and_a_readable_size(name):
         if "animation_html(" in cell and "def animation_html" not in cell:
             head = cell.split("\n---\n", 1)[0] if cell.startswith("---") else ""
             assert "figure:" in head and f"name: ch{name}-fig-" in head and "caption:" in head
-    for w, h in re.findall(r"figsize=\(([\d.]+), ([\d.]+)\)", text) + re.findall(r"set_size_inches\(([\d.]+), ([\d.]+)\)", text):
+    for w, _h in re.findall(r"figsize=\(([\d.]+), ([\d.]+)\)", text) + re.findall(r"set_size_inches\(([\d.]+), ([\d.]+)\)", text):
         assert float(w) <= 8.5
     for dpi in re.findall(r"dpi=(\d+)", text):
         assert int(dpi) >= 80

@@ -104,7 +104,7 @@ def test_ch08_coaxial_counterexample_has_a_singular_mass_matrix():
 
 def test_ch08_generic_arm_has_full_rank_and_positive_definite_mass_matrix():
     arm = jac.robots.planar_3r(1.0, 0.8, 0.5)
-    G = [np.diag([m * l**2 / 12] * 3 + [m] * 3) for m, l in zip([2.0, 1.5, 1.0], [1.0, 0.8, 0.5])]
+    G = [np.diag([m * l**2 / 12] * 3 + [m] * 3) for m, l in zip([2.0, 1.5, 1.0], [1.0, 0.8, 0.5], strict=True)]
     M, J_b = _mass_matrix(arm, np.array([0.3, -1.0, 0.6]), G)
     A = np.vstack([np.sqrt(G[i]) @ J_b[i] for i in range(3)])
     assert np.linalg.matrix_rank(A) == 3 and np.linalg.eigvalsh(M)[0] > 1e-6

@@ -29,7 +29,7 @@ def test_pinocchio_reference_frames():
             pin.updateFramePlacements(model, data)
             assert np.allclose(data.oMf[fid].homogeneous, chain.fk(q), atol=1e-10)
             pin.computeJointJacobians(model, data, q)
-            get = lambda ref: pin.getFrameJacobian(model, data, fid, ref)
+            get = lambda ref, model=model, data=data, fid=fid: pin.getFrameJacobian(model, data, fid, ref)
             P = interop.SWAP
             assert np.allclose(get(pin.ReferenceFrame.WORLD), P @ jac.space_jacobian(chain, q), atol=1e-10)
             assert np.allclose(get(pin.ReferenceFrame.LOCAL), P @ jac.body_jacobian(chain, q), atol=1e-10)
