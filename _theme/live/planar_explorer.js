@@ -1,5 +1,6 @@
 // The planar arm explorer, live (issue #13): a 2R or 3R arm the reader moves
-// with one slider per joint; the chosen Jacobian's numbers, the linear parts
+// with one slider per joint, or by dragging the tool (mouse, pen or touch:
+// damped least squares on J_v); the chosen Jacobian's numbers, the linear parts
 // of its columns as arrows, the velocity ellipse of J_v (the x, y rows of the
 // geometric Jacobian, i.e. the tool point's (ẋ, ẏ)) and σ_min(J_v), with a
 // banner near a singularity. What is drawn follows the book's matplotlib
@@ -14,7 +15,7 @@
 // _ext/live_views.py writes the model and _theme/live/host.js mounts it.
 // Returns a cleanup function. Never throws at a singularity, never shows NaN.
 
-import { evaluate, makeChain, velocityEllipsoid } from "./kinematics.js";
+import { dlsRates, evaluate, makeChain, velocityEllipsoid } from "./kinematics.js";
 
 const SVGNS = "http://www.w3.org/2000/svg";
 const PALETTE = {
@@ -27,13 +28,15 @@ const SYMBOLS = { space: ["J", "s"], body: ["J", "b"], geometric: ["J", ""] };
 const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
 const DIGITS = 2;
 const STEP = 0.01; // rad, as the matplotlib explorer's sliders
+const MAX_STEP = 0.2; // rad, largest joint change of one DLS iteration of a tool drag
 const LIMIT = 3.14; // slider range ±LIMIT rad (a multiple of STEP: the initial θ keeps its value)
 const CSS = `
 .jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em}
 .jac-live *{box-sizing:border-box}
 .jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
-.jac-live .jl-plot svg{width:100%;height:auto;display:block;touch-action:none}
+.jac-live .jl-plot svg{width:100%;height:auto;display:block}
+.jac-live .jl-handle{cursor:grab;touch-action:none}
 .jac-live .jl-side{flex:1 1 260px;min-width:0}
 .jac-live label{display:block;font-size:16px}
 .jac-live input[type=range]{width:100%;margin:2px 0 8px}
@@ -188,6 +191,11 @@ function render({ model, el }) {
   const cols = [];
   for (let i = 0; i < n; i++) cols.push(makeArrow(world, COLUMN_COLORS[i % COLUMN_COLORS.length], 3));
   cols.forEach((a, i) => a.g.setAttribute("class", `jl-col jl-col-${i + 1}`));
+  // drag the tool: damped least squares on J_v (a ring to grab, wider than the dot)
+  const handle = svg("circle", { r: 0.1 * reach, fill: "#000000", "fill-opacity": 0.06, stroke: PALETTE.joint,
+    "stroke-opacity": 0.5, "stroke-dasharray": "3 3", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke",
+    class: "jl-handle" }, world);
+  svg("title", {}, handle).textContent = "drag the tool (inverse kinematics by damped least squares)";
 
   // ---- the controls
   const sliders = [];
@@ -227,6 +235,9 @@ function render({ model, el }) {
   const li = html("li", {}, legend);
   html("span", { class: "jl-key", style: `background:${PALETTE.velocity}` }, li);
   sub(li, ["velocity ellipse of J", "v"]).append(`: ‖θ̇‖ = 1 (×${velScale} s)`);
+  const li2 = html("li", {}, legend);
+  html("span", { class: "jl-key", style: `background:${PALETTE.muted}` }, li2);
+  li2.append("axes of {s} and {b}; drag the dashed ring at the tool");
 
   // ---- state -> picture
   function readTheta() {
@@ -253,6 +264,8 @@ function render({ model, el }) {
     const tip = [e.T[0][3], e.T[1][3]];
     tool.setAttribute("cx", tip[0]);
     tool.setAttribute("cy", tip[1]);
+    handle.setAttribute("cx", tip[0]);
+    handle.setAttribute("cy", tip[1]);
     setArrow(bx, tip, [0.8 * L * e.T[0][0], 0.8 * L * e.T[1][0]], head, tiny);
     setArrow(by, tip, [0.8 * L * e.T[0][1], 0.8 * L * e.T[1][1]], head, tiny);
     const { P, V } = linearColumns(e, frame, n);
@@ -322,6 +335,51 @@ function render({ model, el }) {
     model.set("frame", select.value);
     model.save_changes();
   };
+  // tool drag: θ moves by damped least-squares steps on J_v towards the pointer (never NaN: DLS is bounded)
+  const damping = 0.05 * reach;
+  function solve(target) {
+    const th = readTheta();
+    for (let k = 0; k < 60; k++) {
+      const e = evaluate(chain, th);
+      const err = [target[0] - e.T[0][3], target[1] - e.T[1][3]];
+      if (Math.hypot(err[0], err[1]) < 1e-7 * reach) break;
+      const d = dlsRates([e.Jg[3], e.Jg[4]], err, damping);
+      const big = Math.max(...d.map(Math.abs));
+      const scale = big > MAX_STEP ? MAX_STEP / big : 1; // small steps: the arm follows the pointer continuously
+      for (let i = 0; i < n; i++) th[i] = Math.min(LIMIT, Math.max(-LIMIT, th[i] + scale * d[i]));
+    }
+    return th;
+  }
+  let dragging = false;
+  const toWorld = (ev) => {
+    const m = root.getScreenCTM();
+    if (!m) return null;
+    const q = new DOMPoint(ev.clientX, ev.clientY).matrixTransform(m.inverse());
+    return [q.x, -q.y];
+  };
+  const onDown = (ev) => {
+    dragging = true;
+    try {
+      handle.setPointerCapture(ev.pointerId);
+    } catch {
+      // a synthetic event has no active pointer to capture
+    }
+    ev.preventDefault();
+  };
+  const onMove = (ev) => {
+    if (!dragging) return;
+    const target = toWorld(ev);
+    if (!target || !Number.isFinite(target[0]) || !Number.isFinite(target[1])) return;
+    model.set("theta", solve(target));
+    model.save_changes();
+  };
+  const onUp = () => {
+    dragging = false;
+  };
+  handle.addEventListener("pointerdown", onDown);
+  handle.addEventListener("pointermove", onMove);
+  handle.addEventListener("pointerup", onUp);
+  handle.addEventListener("pointercancel", onUp);
   sliders.forEach((s) => s.addEventListener("input", onInput));
   select.addEventListener("change", onFrame);
   model.on("change:theta", draw);
@@ -332,6 +390,10 @@ function render({ model, el }) {
     model.off("change:theta", draw);
     model.off("change:frame", draw);
     sliders.forEach((s) => s.removeEventListener("input", onInput));
+    handle.removeEventListener("pointerdown", onDown);
+    handle.removeEventListener("pointermove", onMove);
+    handle.removeEventListener("pointerup", onUp);
+    handle.removeEventListener("pointercancel", onUp);
     select.removeEventListener("change", onFrame);
     el.textContent = "";
   };

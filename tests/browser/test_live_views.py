@@ -147,6 +147,42 @@ def test_singularity_banner_and_no_nan(harness):
     _check_state(el, "planar_2r")
 
 
+SCREEN_JS = """([el, x, y]) => {
+  const m = el.querySelector("svg").getScreenCTM();
+  const p = new DOMPoint(x, -y).matrixTransform(m);
+  return [p.x, p.y];
+}"""
+
+
+@pytest.mark.parametrize("robot,theta", [("planar_2r", [0.3, 1.2]), ("planar_3r", [0.5, 1.2, -0.8])])
+def test_dragging_the_tool_moves_it_to_the_pointer(harness, robot, theta):
+    page, open_view, seen, _ = harness
+    el = open_view(robot, theta, "geometric")
+    box = el.query_selector("circle.jl-handle").bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    page.mouse.down()
+    chain = live_views.ROBOTS[robot]()
+    start = chain.fk(np.array(theta))[:2, 3]
+    target = np.array([1.2, 1.0])
+    for k in range(1, 6):  # along the straight line from the tool to the target, in 5 moves
+        page.mouse.move(*page.evaluate(SCREEN_JS, [el, *(start + (target - start) * k / 5)]))
+    page.mouse.up()
+    got = _check_state(el, robot)  # the table is the library's Jacobian at the new angles
+    reached = chain.fk(np.array(got["theta"]))[:2, 3]
+    assert np.linalg.norm(reached - target) < 0.015, (reached, target)  # a pixel is about 0.011 m here
+    assert not np.allclose(got["theta"], theta)
+    # beyond the reach: DLS stretches the arm towards the pointer, near or at the singularity, never NaN
+    box = el.query_selector("circle.jl-handle").bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    page.mouse.down()
+    page.mouse.move(*page.evaluate(SCREEN_JS, [el, 1.25 * chain.dof, 0.0]))  # inside the drawing
+    page.mouse.up()
+    far = _check_state(el, robot)
+    assert far["level"] in ("warning", "singular") and far["banner"] is not None, far["theta"]
+    assert chain.fk(np.array(far["theta"]))[0, 3] > 0.97 * chain.dof  # stretched along x (reach n m)
+    assert seen["console"] == []
+
+
 @pytest.mark.parametrize("robot", ["planar_2r", "planar_3r"])
 def test_fits_a_phone_with_readable_text(harness, robot):
     page, open_view, seen, _ = harness
