@@ -230,6 +230,46 @@ def drop_fontawesome_js(app: Sphinx, config: Config) -> None:
     config.templates_path = [str(dest), *(config.templates_path or [])]
 
 
+_SEARCH_TAGS = re.compile(r"[ \t]*<script src=\"\{\{ pathto\('(?:_static/searchtools\.js|_static/language_data\.js|"
+                          r"searchindex\.js)', 1\) \| e \}\}\"></script>\n?")
+
+
+def search_scripts_on_search_page_only(app: Sphinx, config: Config) -> None:
+    """pydata-sphinx-theme 0.17.1 loads the search index (80 KB) and Sphinx's search tools on every page.
+
+    Its layout loads them everywhere for its search-as-you-type box, which the
+    book leaves off (``search_as_you_type`` is false): the search field sends
+    the reader to ``search.html``, which loads them itself. The theme's
+    ``layout.html`` is overridden by a copy without those three tags, made from
+    the installed theme at build time. (If the book ever turns on search as you
+    type, this stops the build instead of breaking the box.)
+    """
+    options = (config.html_theme_options or {})
+    if str(options.get("search_as_you_type", False)).lower() == "true":
+        raise ProblemGone("search_scripts_on_search_page_only", "search_as_you_type is on: every page needs the index")
+    src = _theme_file("layout.html")
+    text = src.read_text(encoding="utf-8") if src.is_file() else ""
+    fixed, n = _SEARCH_TAGS.subn("", text)
+    if n != 3:
+        raise ProblemGone("search_scripts_on_search_page_only",
+                          f"{src} no longer loads searchtools.js, language_data.js and searchindex.js on every page")
+    dest = Path(app.doctreedir) / "offline_fixes_templates" / "pydata_sphinx_theme"
+    dest.mkdir(parents=True, exist_ok=True)
+    (dest / "layout.html").write_text(fixed, encoding="utf-8")
+    root = str(dest.parent)
+    if root not in (config.templates_path or []):
+        config.templates_path = [root, *(config.templates_path or [])]
+
+
+def plain_math_search_on_search_page_only(app: Sphinx, pagename: str, templatename: str,
+                                          context: dict[str, Any], doctree: Any) -> None:
+    """``_theme/search_plain_math.js`` acts on the search page only; other pages do not load it."""
+    if pagename == "search":
+        return
+    scripts = context.get("script_files") or []
+    context["script_files"] = [js for js in scripts if not _filename(js).endswith("search_plain_math.js")]
+
+
 #: files of the themes' static folders that no page loads (paths under _static; globs)
 UNLOADED_THEME_FILES: Sequence[str] = (
     "scripts/*.map", "styles/*.map",             # source maps, for the theme's developers
@@ -263,6 +303,61 @@ def remove_unloaded_theme_files(app: Sphinx, exception: Exception | None) -> Non
             path.unlink()
 
 
+_ICON_RULE = re.compile(r'((?:\.fa-[a-z0-9-]+:before,?)+)\{content:"\\([0-9a-f]+)"\}')
+_ICON_NAME = re.compile(r"fa-[a-z0-9-]+")
+_TRIMMED = "/* offline_fixes.trim_font_awesome: icon rules of unused icons removed */"
+THEME_CSS = "styles/pydata-sphinx-theme.css"
+SOLID_FONT = "vendor/fontawesome/webfonts/fa-solid-900.woff2"
+
+
+def trim_font_awesome(app: Sphinx, exception: Exception | None) -> None:
+    """pydata-sphinx-theme 0.17.1 ships all 1834 Font Awesome icon rules (85 KB of its CSS) and the
+    whole solid webfont (153 KB), which every page downloads; the book shows about a dozen icons.
+
+    The icons are found by name (``fa-bars``, ...) in every built page and in
+    every script of ``_static`` (a script may add an icon); the theme's CSS keeps
+    the rules of those icons only, and ``fa-solid-900.woff2`` keeps their glyphs
+    only (fontTools, written as woff2). The browser tests check that each icon
+    on a page still draws its glyph.
+    """
+    if exception is not None or app.builder.format != "html":
+        return
+    out = Path(app.outdir)
+    css_path, font_path = out / "_static" / THEME_CSS, out / "_static" / SOLID_FONT
+    if not css_path.is_file() or not font_path.is_file():
+        raise ProblemGone("trim_font_awesome", f"{css_path} or {font_path} is not in the build")
+    css = css_path.read_text(encoding="utf-8")
+    if _TRIMMED in css:  # Sphinx kept the copy trimmed by an earlier build
+        return
+    used: set[str] = set()
+    for path in [*out.rglob("*.html"), *(out / "_static").rglob("*.js")]:
+        used.update(_ICON_NAME.findall(path.read_text(encoding="utf-8", errors="replace")))
+    codepoints: set[int] = set()
+
+    def keep(m: re.Match[str]) -> str:
+        names = {sel[1:-len(":before")] for sel in m.group(1).rstrip(",").split(",")}
+        if names & used:
+            codepoints.add(int(m.group(2), 16))
+            return m.group(0)
+        return ""
+
+    trimmed, n = _ICON_RULE.subn(keep, css)
+    if n < 100 or not codepoints:
+        raise ProblemGone("trim_font_awesome", f"{css_path.name} holds {n} icon rules, {len(codepoints)} of them used")
+    css_path.write_text(trimmed + "\n" + _TRIMMED + "\n", encoding="utf-8")
+
+    from fontTools import subset  # matplotlib's dependency; woff2 needs brotli
+
+    options = subset.Options()
+    options.flavor = "woff2"
+    options.layout_features = ["*"]
+    font = subset.load_font(str(font_path), options)
+    subsetter = subset.Subsetter(options)
+    subsetter.populate(unicodes=sorted(codepoints))
+    subsetter.subset(font)
+    subset.save_font(font, str(font_path), options)
+
+
 # ---------------------------------------------------------------- alt text
 
 
@@ -283,12 +378,15 @@ def setup(app: Sphinx) -> dict[str, Any]:
     app.connect("config-inited", default_theme_mode)
     app.connect("config-inited", default_favicon)
     app.connect("config-inited", drop_fontawesome_js)
+    app.connect("config-inited", search_scripts_on_search_page_only)
     app.connect("builder-inited", _reset_tally)
     app.connect("html-page-context", _count_page, priority=900)
     app.connect("html-page-context", drop_duplicate_scripts, priority=900)
     app.connect("html-page-context", drop_thebe_assets, priority=901)
     app.connect("html-page-context", drop_unused_widget_assets, priority=902)
+    app.connect("html-page-context", plain_math_search_on_search_page_only, priority=903)
     app.connect("doctree-resolved", fill_alt_text)
     app.connect("build-finished", remove_unloaded_theme_files)
+    app.connect("build-finished", trim_font_awesome)
     app.connect("build-finished", check_tally, priority=900)
     return {"version": "2.0", "parallel_read_safe": True, "parallel_write_safe": True}

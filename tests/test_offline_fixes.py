@@ -138,18 +138,54 @@ def test_fontawesome_js_fix_fails_when_the_theme_no_longer_loads_it(tmp_path, mo
         fx.drop_fontawesome_js(a, a.config)  # type: ignore[arg-type]
 
 
+def test_search_scripts_leave_every_page_but_the_search_page(tmp_path):
+    a = app(tmp_path, templates_path=["_templates"])
+    fx.search_scripts_on_search_page_only(a, a.config)  # type: ignore[arg-type]
+    root = Path(a.config.templates_path[0])
+    assert a.config.templates_path[1:] == ["_templates"]
+    text = (root / "pydata_sphinx_theme" / "layout.html").read_text()
+    original = fx._theme_file("layout.html").read_text()
+    for name in ("searchtools.js", "language_data.js", "searchindex.js"):
+        assert name in original and name not in text
+    # only those three lines went
+    assert len(original.splitlines()) - len(text.splitlines()) == 3
+    fx.search_scripts_on_search_page_only(a, a.config)  # type: ignore[arg-type]
+    assert a.config.templates_path.count(str(root)) == 1
+
+
+def test_search_scripts_fix_fails_with_search_as_you_type_or_a_changed_theme(tmp_path, monkeypatch):
+    a = app(tmp_path, html_theme_options={"search_as_you_type": True})
+    with pytest.raises(fx.ProblemGone, match="search_as_you_type is on"):
+        fx.search_scripts_on_search_page_only(a, a.config)  # type: ignore[arg-type]
+    (tmp_path / "layout.html").write_text("{% block extrahead %}{% endblock %}\n")
+    monkeypatch.setattr(fx, "_theme_file", lambda *parts: tmp_path.joinpath(*parts))
+    b = app(tmp_path)
+    with pytest.raises(fx.ProblemGone, match="no longer loads searchtools.js"):
+        fx.search_scripts_on_search_page_only(b, b.config)  # type: ignore[arg-type]
+
+
+def test_plain_math_search_script_only_on_the_search_page(tmp_path):
+    scripts = [js("_static/a.js"), js("_static/search_plain_math.js"), js("_static/b.js")]
+    page: dict[str, Any] = {"script_files": list(scripts)}
+    fx.plain_math_search_on_search_page_only(app(tmp_path), "chapters/x", "page.html", page, None)  # type: ignore[arg-type]
+    assert [j.filename for j in page["script_files"]] == ["_static/a.js", "_static/b.js"]
+    search: dict[str, Any] = {"script_files": list(scripts)}
+    fx.plain_math_search_on_search_page_only(app(tmp_path), "search", "search.html", search, None)  # type: ignore[arg-type]
+    assert search["script_files"] == scripts
+
+
 def test_unloaded_theme_files_are_removed_and_loaded_ones_kept(tmp_path):
     static = tmp_path / "html" / "_static"
     files = ["scripts/bootstrap.js", "scripts/bootstrap.js.map", "styles/theme.css.map", "scripts/fontawesome.js",
              "scripts/fontawesome.js.map",
              "vendor/fontawesome/webfonts/fa-solid-900.woff2", "vendor/fontawesome/webfonts/fa-solid-900.ttf",
-             "locales/de/LC_MESSAGES/booktheme.mo", "mathjax/es5/tex-mml-chtml.js"]
+             "locales/de/LC_MESSAGES/booktheme.mo", "mathjax/es5/startup.js"]
     for name in files:
         (static / name).parent.mkdir(parents=True, exist_ok=True)
         (static / name).write_text("x")
     fx.remove_unloaded_theme_files(app(tmp_path), None)
     left = sorted(p.relative_to(static).as_posix() for p in static.rglob("*") if p.is_file())
-    assert left == ["mathjax/es5/tex-mml-chtml.js", "scripts/bootstrap.js",
+    assert left == ["mathjax/es5/startup.js", "scripts/bootstrap.js",
                     "vendor/fontawesome/webfonts/fa-solid-900.woff2"]
     with pytest.raises(fx.ProblemGone, match="remove_unloaded_theme_files"):
         fx.remove_unloaded_theme_files(app(tmp_path), None)  # a second time: nothing left to remove
@@ -205,6 +241,6 @@ def test_the_extension_registers_every_handler():
     handlers = {name for _, name in events}
     assert {"drop_duplicate_scripts", "drop_thebe_assets", "drop_unused_widget_assets", "default_theme_mode",
             "default_favicon", "drop_fontawesome_js", "remove_unloaded_theme_files", "fill_alt_text",
-            "check_tally"} <= handlers
+            "check_tally", "search_scripts_on_search_page_only", "plain_math_search_on_search_page_only"} <= handlers
     assert set(fx._PER_PAGE) <= handlers
     assert meta["parallel_read_safe"] is True

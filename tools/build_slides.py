@@ -112,13 +112,19 @@ def all_labels(root: Path = ROOT) -> dict:
     return labels
 
 
-def mathjax_macros(root: Path = ROOT) -> dict:
-    """The book's MathJax 3 macros (_config.yml), given to the decks' MathJax 3 as they are."""
+def mathjax_config(root: Path = ROOT) -> dict:
+    """The book's MathJax 3 set-up (_config.yml ``mathjax3_config``): the components
+    to load, the TeX packages and the macros, given to the decks' MathJax 3 as they are."""
     cfg = yaml.safe_load((root / "_config.yml").read_text(encoding="utf-8"))
     try:
-        return dict(cfg["sphinx"]["config"]["mathjax3_config"]["tex"]["macros"])
+        return dict(cfg["sphinx"]["config"]["mathjax3_config"])
     except (KeyError, TypeError):
         return {}
+
+
+def mathjax_macros(root: Path = ROOT) -> dict:
+    """The book's MathJax 3 macros (_config.yml), given to the decks' MathJax 3 as they are."""
+    return dict(mathjax_config(root).get("tex", {}).get("macros", {}))
 
 
 # ---------------------------------------------------------------- execution
@@ -316,7 +322,7 @@ def main(argv: list[str] | None = None) -> int:
             return 2
         sources = [s for s in sources if s.stem in args.only]
     labels = all_labels(root)
-    course = {"urls": urls, "macros": mathjax_macros(root)}
+    course = {"urls": urls, "macros": mathjax_macros(root), "mathjax": mathjax_config(root)}
     jobs = [(s, dest, labels, course, args.cache.resolve(), not args.no_book_cache) for s in sources]
     if args.jobs > 1 and len(jobs) > 1:
         with ProcessPoolExecutor(max_workers=args.jobs) as pool:

@@ -145,7 +145,7 @@ def _break(html: str, how: str, payload: str | None) -> str:
     if how == "insert_head":
         return html.replace("</head>", payload + "</head>", 1)
     if how == "drop_mathjax":
-        new, n = re.subn(r"<script[^>]*tex-mml-chtml\.js[^>]*></script>", "", html)
+        new, n = re.subn(r"<script[^>]*mathjax/es5/startup\.js[^>]*></script>", "", html)
         assert n == 1, "the page does not load MathJax"
         return new
     raise ValueError(how)
@@ -159,7 +159,7 @@ def broken_book(book_html, tmp_path_factory):
         pytest.fail(f"{book_html / base_page} is missing: the breakage tests copy that page", pytrace=False)
     root = _overlay(book_html, tmp_path_factory.mktemp("broken-book"))
     original = (book_html / base_page).read_text(encoding="utf-8")
-    assert "tex-mml-chtml.js" in original and 'class="math' in original, "conventions page should have math"
+    assert "mathjax/es5/startup.js" in original and 'class="math' in original, "conventions page should have math"
     for name, (how, payload, _aspect, _text) in BREAKAGES.items():
         (root / "chapters" / f"broken_{name}.html").write_text(_break(original, how, payload), encoding="utf-8")
     for name, (payload, _aspects) in NOT_BROKEN.items():

@@ -45,6 +45,18 @@ def test_search_page_shows_only_its_own_box_and_the_sidebar(book_url, browser_co
     assert n == 2, f"the search page shows {n} search fields, expected 2 (its own form and the sidebar's button)"
 
 
+def test_search_page_field_keeps_its_icon_clear_of_the_text(book_url, browser_context):
+    """The magnifying glass of the search page's field sits left of where typed text starts."""
+    page = _open(browser_context, f"{book_url}search.html?q=adjoint")
+    icon_right, text_left = page.evaluate(
+        """() => { const f = [...document.querySelectorAll('form.bd-search')]
+                     .find(f => f.querySelector('input').getBoundingClientRect().width > 0);
+                   const i = f.querySelector('i').getBoundingClientRect(), inp = f.querySelector('input');
+                   return [i.right, inp.getBoundingClientRect().left + parseFloat(getComputedStyle(inp).paddingLeft)]; }""")
+    page.close()
+    assert icon_right <= text_left, f"the icon ends at x={icon_right:.0f}, the typed text starts at x={text_left:.0f}"
+
+
 @pytest.mark.parametrize("query", ["torque", "adjoint", "jacobian"])
 def test_search_summaries_show_no_raw_tex(book_url, browser_context, query):
     page = _open(browser_context, f"{book_url}search.html?q={query}")

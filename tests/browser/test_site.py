@@ -20,7 +20,7 @@ COURSE_THEME = Path(__file__).resolve().parents[2] / "_theme"
 #: file names by which a front-end package is recognised wherever it is copied, and a
 #: text its first kilobyte holds (MathJax has a TeX extension also named require.js)
 PACKAGE_FILES = {
-    "MathJax": (("tex-mml-chtml.js", "tex-chtml.js", "tex-svg.js", "MathJax.js"), ""),
+    "MathJax": (("tex-mml-chtml.js", "tex-chtml.js", "tex-svg.js", "MathJax.js", "startup.js"), ""),
     "require.js": (("require.js",), "RequireJS"),
     "reveal.js": (("reveal.js", "reveal.esm.js"), "reveal.js"),
     "jupyter widget manager": (("embed-amd.js", "libembed-amd.js"), ""),
@@ -124,3 +124,34 @@ def test_vendored_package_is_in_package_json(package):
     root = Path(__file__).resolve().parents[2]
     deps = json.loads((root / "package.json").read_text())["dependencies"]
     assert package.npm in deps, f"{package.npm} is vendored but not pinned in package.json"
+
+
+def test_font_awesome_is_trimmed_to_the_icons_pages_show(book_html):
+    """``offline_fixes.trim_font_awesome``: the theme's CSS keeps the rules of the icons the site
+    names, the solid webfont their glyphs; every icon a page shows still has both."""
+    import offline_fixes as fx
+    from fontTools.ttLib import TTFont
+
+    original = fx._theme_file("static", fx.THEME_CSS).read_text(encoding="utf-8")
+    trimmed = (book_html / "_static" / fx.THEME_CSS).read_text(encoding="utf-8")
+
+    def rules(css: str) -> dict[str, int]:
+        out = {}
+        for m in fx._ICON_RULE.finditer(css):
+            for sel in m.group(1).rstrip(",").split(","):
+                out[sel[1:-len(":before")]] = int(m.group(2), 16)
+        return out
+
+    every, kept = rules(original), rules(trimmed)
+    assert len(every) > 1500 and 5 <= len(kept) < 100, (len(every), len(kept))
+    shown = set()
+    for page in _pages(book_html).values():
+        shown.update(fx._ICON_NAME.findall(page))
+    icons = shown & set(every)
+    assert {"fa-magnifying-glass", "fa-bars", "fa-sun", "fa-moon"} <= icons
+    assert icons <= set(kept), f"icons pages show whose CSS rule went: {sorted(icons - set(kept))}"
+    font = TTFont(book_html / "_static" / fx.SOLID_FONT)
+    cmap = font.getBestCmap()
+    missing = sorted(name for name in icons if kept[name] not in cmap)
+    assert not missing, f"icons whose glyph is not in the trimmed fa-solid font: {missing}"
+    assert (book_html / "_static" / fx.SOLID_FONT).stat().st_size < 10_000

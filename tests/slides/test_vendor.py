@@ -24,9 +24,12 @@ def test_book_vendors_mathjax_only_and_clears_stale_trees(tmp_path):
     vendor.book(dest, site_static=static)
     files = _tree(dest)
     assert [p.name for p in dest.iterdir()] == ["mathjax"]
-    assert "mathjax/es5/tex-mml-chtml.js" in files
-    assert all(f.startswith(("mathjax/es5/tex-mml-chtml.js", "mathjax/es5/output/chtml/fonts/woff-v2/",
-                             "mathjax/es5/input/tex/extensions/")) for f in files), files
+    assert "mathjax/es5/startup.js" in files and "mathjax/es5/tex-mml-chtml.js" not in files
+    components = tuple(f"mathjax/es5/{c}.js" for c in vendor.MATHJAX_COMPONENTS)
+    assert all(f in components or f.startswith(("mathjax/es5/output/chtml/fonts/woff-v2/",
+                                                "mathjax/es5/input/tex/extensions/")) for f in files), files
+    # what a page with math downloads at first: the components (the extensions load on demand)
+    assert sum((dest / f).stat().st_size for f in components) < 800_000
     assert sum((dest / f).stat().st_size for f in files) < 2_500_000
     assert _tree(static) == ["course.css", "require.js"]     # the old trees went; Sphinx copies the new one
 
@@ -35,7 +38,7 @@ def test_decks_in_the_book_share_its_mathjax(tmp_path):
     site = tmp_path / "html"
     vendor.MATHJAX.copy(site / "_static")
     urls = vendor.deck_urls(site / "slides")
-    assert urls["mathjax"] == "../_static/mathjax/es5/tex-mml-chtml.js"
+    assert urls["mathjax"] == "../_static/mathjax/es5/startup.js"
     assert urls["reveal.js"] == "vendor/reveal.js/dist/reveal.js"
     assert urls["requirejs"] == "vendor/requirejs/require.js"
     assert sorted(p.name for p in (site / "slides" / "vendor").iterdir()) == ["requirejs", "reveal.js"]
@@ -47,7 +50,7 @@ def test_decks_elsewhere_get_their_own_mathjax(tmp_path):
     slides = tmp_path / "slides"
     (slides / "vendor" / "mathjax2").mkdir(parents=True)   # left by an older build: removed
     urls = vendor.deck_urls(slides)
-    assert urls["mathjax"] == "vendor/mathjax/es5/tex-mml-chtml.js"
+    assert urls["mathjax"] == "vendor/mathjax/es5/startup.js"
     assert sorted(p.name for p in (slides / "vendor").iterdir()) == ["mathjax", "requirejs", "reveal.js"]
 
 
@@ -55,3 +58,28 @@ def test_missing_package_says_what_to_run(tmp_path):
     missing = vendor.Package("no-such-package", "x", ("a.js",), "a.js")
     with pytest.raises(FileNotFoundError, match="npm ci"):
         missing.copy(tmp_path)
+
+
+def test_the_books_mathjax_loader_names_only_vendored_components():
+    """Every component _config.yml asks MathJax to load is a vendored file (a missing one
+    would be a failed request and unrendered math), and every vendored one is asked for."""
+    from tools.build_slides import mathjax_config
+
+    cfg = mathjax_config()
+    load = cfg["loader"]["load"]
+    root = vendor.NODE_MODULES / "mathjax" / "es5"
+    files = []
+    for comp in load:
+        if comp.startswith("[tex]/"):
+            files.append(f"input/tex/extensions/{comp[6:]}.js")
+        else:
+            assert comp in vendor.MATHJAX_COMPONENTS, f"{comp} is loaded but not in vendor.MATHJAX_COMPONENTS"
+            files.append(f"{comp}.js")
+    for f in files:
+        assert (root / f).is_file(), f
+    # the loader fetches core and the CommonHTML font itself (dependencies of tex-base and chtml)
+    assert set(vendor.MATHJAX_COMPONENTS) == {"startup", "core", "output/chtml/fonts/tex"} | {
+        c for c in load if not c.startswith("[tex]/")}
+    packages = cfg["tex"]["packages"]["[+]"]
+    assert sorted(packages) == sorted(c[6:] for c in load if c.startswith("[tex]/"))
+    assert "configmacros" in packages, "the macros (Ad, ad) need the configmacros package"
