@@ -35,6 +35,10 @@ class Feedback:
     answer), ``"empty"`` (no answer yet), ``"invalid"`` (not something the
     checker can grade, such as text), and ``mistake`` names the catalogued
     mistake that was recognised (``None`` if none).
+
+    The catalogue also fills in which variant was graded: ``seed`` (the
+    student's seed as text, e.g. their ID), ``title`` and ``statement`` (the
+    Markdown statement of that variant, shown folded in the HTML box).
     """
 
     correct: bool
@@ -42,6 +46,9 @@ class Feedback:
     kind: str = "wrong"
     exercise_id: str = ""
     mistake: str | None = None
+    seed: str = ""
+    title: str = ""
+    statement: str = ""
 
     def __bool__(self) -> bool:
         return self.correct
@@ -58,11 +65,16 @@ class Feedback:
         border, bg, head = _BOXES.get(self.kind, _BOXES["wrong"])
         msg = html.escape(self.message).replace("\n", "<br>")
         ident = html.escape(self.exercise_id)
+        variant = ""
+        if self.statement:
+            who = f" for seed “{html.escape(self.seed)}”" if self.seed else ""
+            variant = (f'<details style="margin-top:0.4em"><summary>The exercise you answered{who}</summary>'
+                       f'<div class="jacobians-feedback-statement">{html.escape(self.statement)}</div></details>')
         return (
             f'<div class="jacobians-feedback jacobians-feedback-{self.kind}" role="status" '
             f'style="border-left:6px solid {border};background:{bg};color:#1a1a1a;'
             f'padding:0.6em 0.9em;margin:0.4em 0;border-radius:4px;font-family:sans-serif">'
-            f'<strong>{head}</strong> <span style="color:#555">({ident})</span><br>{msg}</div>'
+            f'<strong>{head}</strong> <span style="color:#555">({ident})</span><br>{msg}{variant}</div>'
         )
 
 
