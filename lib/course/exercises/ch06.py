@@ -33,8 +33,6 @@ def _ch06_ex1(rng: Generator) -> Exercise:
         Mistake("column_1_is_column_2", col1_eq_col2,
                 "Your column 1 repeats column 2: joint 1 moves the whole arm, link 1 included, so its column has "
                 "a term of its own."),
-        Mistake("transposed_jacobian", ref.T, "Your matrix is transposed: row i holds the derivatives of the "
-                "i-th coordinate (x, then y), column j those with respect to θj."),
         *theta_mixups(ref),
     ]
     if arm == ("R+", "R+"):

@@ -173,17 +173,18 @@ def compare(ans: NDArray[np.float64], ref: Any, mistakes: list[Mistake], rtol: f
     tol = tolerance(ref, decimals, rtol, atol)
     if _within(ans, ref, tol):
         return verdict(True, f"Your {what} matches the reference.")
-    k = given_decimals(ans, decimals) if decimals is not None and ans.shape == ref.shape else None
-    coarse = 0.5 * 10.0 ** (-k) * (1 + 1e-6) + 1e-5 * np.abs(ref) if k is not None else tol
-    if k is not None and decimals is not None and (k > 0 or np.any(ans != 0)) and _within(ans, ref, coarse):
-        return verdict(False, precision_message(what, k, decimals), mistake="too_few_decimals")
-    for m in mistakes:
-        mv = np.asarray(m.value, dtype=float)
-        if mv.shape != ans.shape:
-            continue
-        mtol = tolerance(mv, decimals, rtol, atol)
-        if _within(ans, mv, mtol) or (k is not None and _within(ans, mv, np.maximum(mtol, 0.5 * 10.0 ** (-k)))):
+    values = [(m, np.asarray(m.value, dtype=float)) for m in mistakes]
+    for m, mv in values:  # a catalogued mistake, to the precision asked
+        if mv.shape == ans.shape and _within(ans, mv, tolerance(mv, decimals, rtol, atol)):
             return verdict(False, m.message, mistake=m.name)
+    k = given_decimals(ans, decimals) if decimals is not None and ans.shape == ref.shape else None
+    if k is not None and decimals is not None and (k > 0 or np.any(ans != 0)):
+        half = 0.5 * 10.0 ** (-k) * (1 + 1e-6)
+        if _within(ans, ref, half + 1e-5 * np.abs(ref)):  # right to the decimals given, too few of them
+            return verdict(False, precision_message(what, k, decimals), mistake="too_few_decimals")
+        for m, mv in values:  # a catalogued mistake, to the decimals given
+            if mv.shape == ans.shape and _within(ans, mv, half + 1e-5 * np.abs(mv)):
+                return verdict(False, m.message, mistake=m.name)
     by_shape = _shape_feedback(ans, ref, tol, what)  # (a Feedback is falsy when wrong: test for None)
     return by_shape if by_shape is not None else _entries_feedback(ans, ref, tol, what, entry_hint)
 
