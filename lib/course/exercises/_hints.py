@@ -41,6 +41,21 @@ HINTS: dict[str, str] = {
                 "J_v's column for the wrong joint.",
     "ch09_ex3": "For a square J_v, w = |det J_v|, which for a planar 2R arm simplifies to the two link lengths "
                 "times one sine: check J_v's entries (derivatives of x and y) and that the angles are in radians.",
+    "ch01_ex4": "Compare your result block by block with the definition: the two diagonal blocks are rotations, "
+                "the lower-left block couples them through the position.",
+    "ch02_ex4": "Column i is Ad(e^[S1]θ1 ⋯ e^[S(i-1)]θ(i-1)) S_i: check the first wrong column's joint and the "
+                "running product of exponentials up to it.",
+    "ch03_ex4": "Column i is Ad(e^-[Bn]θn ⋯ e^-[B(i+1)]θ(i+1)) B_i: check the first wrong column's joint, walking "
+                "from the last joint back.",
+    "ch04_ex3": "The two Jacobians differ by the adjoint of T_sb or of its inverse: check the angular rows 1-3 "
+                "(a rotation only) before the linear rows 4-6 (rotation plus the p × ω term).",
+    "ch05_ex4": "J = blockdiag(R_sb, R_sb) J_b with R_sb the rotation of the tool at θ: check the angular rows "
+                "1-3 first, then the linear rows 4-6.",
+    "ch07_ex4": "Only the row order changes between the two conventions: check which rows hold ω.",
+    "ch08_ex4": "Entry [i] keeps the columns of joints 1..i+1 of J_s and zeroes the rest: check the first wrong "
+                "block's columns.",
+    "ch09_ex4": "Solve (J Jᵀ + damping I) y = V and return Jᵀ y, with the damping squared or not as your variant "
+                "says.",
     "ch09_ex5": "The semi-axes are the singular values of J_v (square roots of the eigenvalues of J_v J_vᵀ), "
                 "longest first; check J_v at this pose.",
 }

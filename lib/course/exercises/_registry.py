@@ -54,5 +54,6 @@ def register_code(exercise_id: str, title: str, variants: list[CodeVariant]) -> 
         ex = function_exercise(title, v.statement, reference=v.reference, make_case=v.make_case, fn_name=v.fn_name,
                                what=v.what)
         ex.given = dict(v.given)
+        ex.hint = HINTS.get(exercise_id, "")
         return ex
     CATALOGUE.register(exercise_id)(build)

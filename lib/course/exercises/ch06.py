@@ -130,9 +130,9 @@ RANGES = {
 
 
 def lock_angles(family: str) -> list[float]:
-    """The middle angles in [-2π, 2π] at which B(φ) of the family is singular."""
+    """The middle angles in [-4π, 4π] at which B(φ) of the family is singular."""
     base = np.pi / 2 if family == "tait-bryan" else 0.0
-    return [base + k * np.pi for k in range(-3, 3) if abs(base + k * np.pi) <= 2 * np.pi + 1e-9]
+    return [base + k * np.pi for k in range(-5, 5) if abs(base + k * np.pi) <= 4 * np.pi + 1e-9]
 
 
 @register("ch06_ex4")

@@ -94,8 +94,8 @@ def _ch09_ex3(rng: Generator) -> Exercise:
         degrees_mistake(np.sqrt(abs(np.linalg.det(Jd @ Jd.T)))),
         Mistake("trace", np.sqrt(np.trace(Jv @ Jv.T)), "You used the trace; the manipulability uses the determinant."),
         Mistake("theta1_for_theta2", ls[0] * ls[1] * abs(np.sin(th_deg[0] * DEG)),
-                "You used θ1 where θ2 belongs: for a planar 2R arm det J_v = l₁ l₂ sin θ₂ depends on the elbow "
-                "angle θ₂ only."),
+                "You used θ1 where θ2 belongs: det J_v of a planar 2R arm depends on the elbow angle θ2 only, "
+                "not on θ1."),
     ]
     st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Give Yoshikawa's "
           "manipulability $w = \\sqrt{\\det(J_v J_v^T)}$ of its $2\\times2$ position Jacobian $J_v$.")

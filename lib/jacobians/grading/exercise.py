@@ -226,8 +226,8 @@ class Exercise:
         free = _free_symbol_names(answer)
         wanted = sorted(str(s) for s in ref.free_symbols)
         numbers_only = verdict(False, "Your answer holds numbers only, but this exercise asks for a formula in "
-                               f"{', '.join(wanted)}: define them with sympy.symbols and build your matrix from "
-                               "them (no values substituted).", mistake="numbers_for_symbols")
+                               f"{', '.join(wanted)}: define the symbols with sympy.symbols and build your matrix "
+                               "from them (no values substituted).", mistake="numbers_for_symbols")
         catalogued = {m.name for m in self.mistakes}
         # Numeric route first (fast, and it names mistakes): evaluate at random points.
         rng = self._rng(77)
