@@ -208,3 +208,26 @@ def test_feedback_shows_the_statement_of_the_variant():
     html = fb._repr_html_()
     assert "<details" in html and "s1234567" in html and "planar 3R arm" in html
     assert "s1234567" in ex._repr_markdown_()
+
+
+def test_every_check_reaches_the_listeners_and_a_failing_listener_is_harmless():
+    seen = []
+
+    def record(fb):
+        seen.append((fb.exercise_id, fb.seed, fb.correct, fb.mistake))
+
+    def broken(fb):
+        raise RuntimeError("recorder bug")
+
+    exercises.on_check(record)
+    exercises.on_check(broken)
+    try:
+        ex = exercises.load("ch05_ex3", seed="s1234567")
+        assert exercises.check("ch05_ex3", ex.solution(), seed="s1234567").correct
+        assert not exercises.check("ch05_ex3", None, seed="s1234567").correct
+    finally:
+        exercises._LISTENERS.remove(record)
+        exercises._LISTENERS.remove(broken)
+    assert seen == [("ch05_ex3", "s1234567", True, None), ("ch05_ex3", "s1234567", False, None)]
+    with pytest.raises(TypeError):
+        exercises.on_check("not a function")

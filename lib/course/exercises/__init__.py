@@ -38,6 +38,9 @@ arm in sympy).
 
 from __future__ import annotations
 
+import importlib
+import importlib.util
+from collections.abc import Callable
 from typing import Any
 
 from jacobians.grading import Exercise, Feedback
@@ -45,7 +48,24 @@ from jacobians.grading import Exercise, Feedback
 from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09  # noqa: F401  (importing them registers the exercises)
 from ._registry import CATALOGUE
 
-__all__ = ["CATALOGUE", "check", "exercise_ids", "load"]
+__all__ = ["CATALOGUE", "check", "exercise_ids", "load", "on_check"]
+
+#: Functions called with every Feedback that :func:`check` returns (e.g. a session's progress record).
+_LISTENERS: list[Callable[[Feedback], None]] = []
+
+
+def on_check(listener: Callable[[Feedback], None]) -> Callable[[Feedback], None]:
+    """Register ``listener(feedback)`` to be called after every :func:`check` (usable as a decorator).
+
+    The feedback carries ``exercise_id``, ``seed`` (the student's seed as text), ``correct``, ``kind``,
+    ``mistake``, ``message``, ``title`` and ``statement``. A listener that raises is ignored: recording
+    must never break a student's check.
+    """
+    if not callable(listener):
+        raise TypeError(f"Expected a function of one Feedback, got {type(listener).__name__}")
+    if listener not in _LISTENERS:
+        _LISTENERS.append(listener)
+    return listener
 
 
 def exercise_ids() -> list[str]:
@@ -68,4 +88,14 @@ def check(exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Fe
     An unknown ``exercise_id`` or a bad seed also comes back as feedback (kind
     ``"invalid"``), so a typo in a notebook shows a box, not a traceback.
     """
-    return CATALOGUE.check(exercise_id, answer, seed=seed)
+    fb = CATALOGUE.check(exercise_id, answer, seed=seed)
+    for listener in list(_LISTENERS):
+        try:
+            listener(fb)
+        except Exception:  # a recorder's bug must not reach the student
+            pass
+    return fb
+
+
+if importlib.util.find_spec(f"{__name__}._progress") is not None:  # the session's progress record, if present
+    importlib.import_module(f"{__name__}._progress")
