@@ -51,7 +51,8 @@ def _shape_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], tol: NDA
     if ans.shape != ref.shape:
         if ref.ndim == 2 and ans.shape == ref.shape[::-1] and _close_tol(ans.T, ref, tol):
             return verdict(False, _TRANSPOSED, mistake="transposed")
-        layout = (" (6 rows (ω, v), one column per joint)." if ref.ndim == 2 and ref.shape[0] == 6
+        jacobian = ref.ndim == 2 and ref.shape[0] == 6 and "Jacobian" in what
+        layout = (" (6 rows (ω, v), one column per joint)." if jacobian
                   else ": check how many rows and columns the statement asks for.")
         return verdict(False, f"Your answer has shape {ans.shape}, but this {what} has shape {ref.shape}" + layout,
                        mistake="wrong_shape")

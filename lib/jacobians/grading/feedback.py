@@ -11,9 +11,10 @@
 from __future__ import annotations
 
 import html
+import re
 from dataclasses import dataclass
 
-__all__ = ["Feedback", "verdict"]
+__all__ = ["Feedback", "statement_html", "verdict"]
 
 #: Heading of the text form, by kind.
 _HEADS = {"correct": "Correct", "empty": "No answer yet", "invalid": "Cannot grade this"}
@@ -25,6 +26,26 @@ _BOXES = {
     "empty": ("#0072B2", "#e6f0f8", "&#8230; No answer yet"),
     "invalid": ("#E69F00", "#fdf4e3", "? Cannot grade this"),
 }
+
+
+_DISPLAY = re.compile(r"\$\$(.+?)\$\$", re.S)
+_INLINE = re.compile(r"\$(.+?)\$", re.S)
+_CODE = re.compile(r"`([^`]+)`")
+
+
+def statement_html(markdown: str) -> str:
+    r"""A statement (Markdown with ``$...$`` math) as HTML for the feedback box: escaped, math in the
+    ``\( \)`` and ``\[ \]`` delimiters MathJax reads in an HTML output (in Jupyter, and on the book page,
+    whose outputs MathJax only processes inside a ``mathjax_process`` element), code in ``<code>``.
+
+    >>> print(statement_html("Give $x < 1$ in `ans`."))
+    Give \(x &lt; 1\) in <code>ans</code>.
+    """
+    text = html.escape(markdown, quote=False)
+    text = _DISPLAY.sub(lambda m: "\\[" + m.group(1) + "\\]", text)
+    text = _INLINE.sub(lambda m: "\\(" + m.group(1) + "\\)", text)
+    text = _CODE.sub(lambda m: "<code>" + m.group(1) + "</code>", text)
+    return text.replace("\n\n", "<br>")
 
 
 @dataclass
@@ -69,7 +90,8 @@ class Feedback:
         if self.statement:
             who = f" for seed “{html.escape(self.seed)}”" if self.seed else ""
             variant = (f'<details style="margin-top:0.4em"><summary>The exercise you answered{who}</summary>'
-                       f'<div class="jacobians-feedback-statement">{html.escape(self.statement)}</div></details>')
+                       f'<div class="jacobians-feedback-statement mathjax_process">'
+                       f'{statement_html(self.statement)}</div></details>')
         return (
             f'<div class="jacobians-feedback jacobians-feedback-{self.kind}" role="status" '
             f'style="border-left:6px solid {border};background:{bg};color:#1a1a1a;'
