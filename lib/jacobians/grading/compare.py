@@ -9,7 +9,7 @@ tried: wrong shape, transposed, columns in the wrong order, one wrong entry
 >>> ref = np.array([[1.0, 2.0], [3.0, 4.0]])
 >>> compare(ref.T, ref, [], 1e-6, 1e-8, "matrix").mistake
 'transposed'
->>> compare(np.array([[1.0, 2.0], [3.0, 5.0]]), ref, [], 1e-6, 1e-8, "matrix").message[:59]
+>>> compare(np.array([[1.0, 2.0], [3.0, 5.0]]), ref, [], 1e-6, 1e-8, "matrix").message[:63]
 'Almost: the entry in row 2, column 2 (counting from 1) is wrong'
 >>> compare(np.array([1.23, 2.0]), np.array([1.23456, 2.0]), [], 0, 0, "vector", decimals=3).mistake
 'too_few_decimals'
