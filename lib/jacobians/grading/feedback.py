@@ -90,7 +90,7 @@ class Feedback:
         if self.statement:
             who = f" for seed “{html.escape(self.seed)}”" if self.seed else ""
             variant = (f'<details style="margin-top:0.4em"><summary>The exercise you answered{who}</summary>'
-                       f'<div class="jacobians-feedback-statement mathjax_process">'
+                       f'<div class="jacobians-feedback-statement mathjax_process" style="overflow-x:auto">'
                        f'{statement_html(self.statement)}</div></details>')
         return (
             f'<div class="jacobians-feedback jacobians-feedback-{self.kind}" role="status" '
