@@ -26,6 +26,8 @@ KINDS = {eid: exercises.load(eid).kind for eid in IDS}
 
 
 def _accepted_answer(ex):
+    if ex.kind == "scalar":
+        return ex.accepted[0]
     return ex.reference if ex.kind in ("function", "predicate") else ex.solution()
 
 
@@ -36,7 +38,7 @@ def test_at_least_four_exercises_per_chapter_and_a_mix_of_kinds():
     assert sorted(per_chapter) == [f"ch0{i}" for i in range(1, 10)]
     assert min(per_chapter.values()) >= 4
     kinds = Counter(KINDS.values())
-    assert kinds["numeric"] >= 20 and kinds["function"] >= 8 and kinds["symbolic"] >= 3 and kinds["predicate"] >= 2
+    assert kinds["numeric"] >= 20 and kinds["function"] >= 8 and kinds["symbolic"] >= 3 and kinds["scalar"] >= 2
 
 
 def test_every_exercise_appears_in_its_notebook():
@@ -60,7 +62,7 @@ def test_reference_accepted_for_several_seeds(eid):
 
 # ------------------------------------------------------------------ catalogue of mistakes
 
-@pytest.mark.parametrize("eid", [e for e in IDS if KINDS[e] in ("numeric", "symbolic")])
+@pytest.mark.parametrize("eid", [e for e in IDS if KINDS[e] in ("numeric", "symbolic", "scalar")])
 def test_each_catalogued_mistake_rejected_with_its_own_message(eid):
     seen = set()
     for seed in SEEDS:
@@ -100,15 +102,17 @@ def test_named_mistakes_of_the_issue_are_all_catalogued_somewhere():
             ex = exercises.load(eid, seed=seed)
             names |= {m.name for m in ex.mistakes}
             if ex.kind == "function":
-                rng = np.random.default_rng(ex.seed + 1000)
-                names |= {m.name for m in ex.make_case(rng)[2]}
+                names |= {m.name for m in ex.make_case(ex._rng(1000))[2]}
+    for seed in range(12):  # the asked velocity of ch04_ex4 varies: collect both directions of the issue's pair
+        names |= {m.name for m in exercises.load("ch04_ex4", seed=seed).mistakes}
     for required in ("body_for_space", "space_for_body", "v_omega_swapped", "home_axes", "home_axis_column_2",
-                     "sign_column_1", "R_missing", "only_angular_rotated", "degrees_for_radians", "frame_mismatch"):
+                     "sign_column_1", "R_missing", "only_angular_rotated", "degrees_for_radians", "frame_mismatch",
+                     "neighbour_column", "theta1_for_theta2", "geometric_for_space", "space_for_geometric"):
         assert required in names, required
 
 
 def _replayed_cases(ex):
-    rng = np.random.default_rng(ex.seed + 1000)
+    rng = ex._rng(1000)
     return [ex.make_case(rng) for _ in range(ex.n_cases)]
 
 
@@ -150,32 +154,63 @@ def test_a_realistic_wrong_space_jacobian_function():
             T = jac.lie.exp_se3(S[:, i] * theta[i]) @ T
         return J
 
-    assert exercises.check("ch02_ex4", forgot_adjoint).mistake == "home_axes"
-    fb = exercises.check("ch02_ex4", reversed_product, seed=1)
+    seed = next(s for s in range(50) if exercises.load("ch02_ex4", seed=s).given["layout"] == "columns")
+    assert exercises.check("ch02_ex4", forgot_adjoint, seed=seed).mistake == "home_axes"
+    fb = exercises.check("ch02_ex4", reversed_product, seed=seed)
     assert fb.mistake in ("product_order", "wrong_entries") and not fb.correct
 
 
-# ------------------------------------------------------------------ predicates
+# ------------------------------------------------------------------ scalar answers with a range
+
+def _euler_B(rep, phi):
+    """B(φ) of any Euler sequence, from its definition: column j is the j-th axis carried by the rotations
+    before it (independent of the exercise's code)."""
+    unit = {"x": np.array([1.0, 0, 0]), "y": np.array([0, 1.0, 0]), "z": np.array([0, 0, 1.0])}
+    cols, R = [], np.eye(3)
+    for axis, angle in zip(rep, phi, strict=True):
+        cols.append(R @ unit[axis])
+        R = R @ jac.lie.rotation_about(axis, angle)
+    return np.column_stack(cols)
+
 
 def test_gimbal_lock_exercise():
-    for seed in range(6):
+    reps, ranges = set(), set()
+    for seed in range(40):
         ex = exercises.load("ch06_ex4", seed=seed)
-        rep = ex.given["representation"]
-        right = np.pi / 2 if rep == "zyx" else np.pi
-        assert ex.check(right).correct and ex.check(right + 2 * np.pi).correct
+        rep, (low, high) = ex.given["representation"], ex.given["range"]
+        reps.add(rep)
+        ranges.add((rep[0] == rep[2], low, high))
+        (right,) = ex.accepted
+        assert low < right < high
+        assert abs(np.linalg.det(_euler_B(rep, [0.3, right, -0.2]))) < 1e-12
+        for phi2 in np.linspace(low, high, 41)[1:-1]:  # the only lock inside the range
+            if abs(phi2 - right) > 0.05:
+                assert abs(np.linalg.det(_euler_B(rep, [0.3, phi2, -0.2]))) > 1e-3
+        assert "decimals" in ex.statement
+        assert ex.check(right).correct and ex.check(round(right, 2)).correct
+        assert ex.check(round(right, 1)).mistake == "too_few_decimals"
         assert ex.check(np.degrees(right)).mistake == "degrees_for_radians"
-        other = np.pi if rep == "zyx" else np.pi / 2
-        assert ex.check(other).mistake == "other_representation"
-        assert ex.check(0.3).mistake == "not_singular"
+        assert ex.check(right + 2 * np.pi).mistake == "outside_range"
+        assert "range" in ex.check(right - 2 * np.pi).message
+        assert ex.check(low + 0.13 * (high - low)).mistake == "wrong_value"
         assert ex.check([1.0, 2.0]).mistake == "wrong_shape"
+    assert len(reps) >= 10 and len(ranges) == 6
 
 
 def test_singular_configuration_exercise():
     ex = exercises.load("ch09_ex6", seed=2)
-    assert ex.check(np.pi).correct and ex.check(-np.pi).correct
+    assert "(0, 2\\pi)" in ex.statement and "2 decimals" in ex.statement
+    assert ex.check(np.pi).correct and ex.check(3.14).correct
+    fb = ex.check(-np.pi)
+    assert fb.mistake == "outside_range" and "(0, 2π)" in fb.message
+    assert ex.check(3.1).mistake == "too_few_decimals"
     assert ex.check(0.0).mistake == "excluded_zero"
+    assert ex.check(2 * np.pi).mistake == "excluded_two_pi"
     assert ex.check(180).mistake == "degrees_for_radians"
-    assert ex.check(1.0).mistake == "not_singular"
+    fb = ex.check(1.0)
+    assert fb.mistake == "wrong_value" and "det J_v" in fb.message and "1.0" not in fb.message
+    th1 = np.radians(ex.given["theta1_deg"])
+    assert ex.check(th1).mistake == "theta1_for_theta2"
 
 
 # ------------------------------------------------------------------ references vs the library
@@ -210,10 +245,16 @@ def test_references_agree_with_the_library(seed):
     chain = jac.SerialChain(ex.given["S"], ex.given["M"])
     np.testing.assert_allclose(ex.solution(), chain.body_axes, atol=1e-12)
 
-    ex = g("ch04_ex4")
-    arm = jac.robots.planar(ex.given["lengths"])
-    th = np.radians(ex.given["theta_deg"])
-    np.testing.assert_allclose(ex.solution(), jac.body_jacobian(arm, th) @ ex.given["theta_dot"], atol=1e-12)
+    for s in range(6):  # each asked velocity
+        ex = exercises.load("ch04_ex4", seed=s)
+        arm = jac.robots.planar(ex.given["lengths"])
+        th = np.radians(ex.given["theta_deg"])
+        fn = {"body": jac.body_jacobian, "space": jac.space_jacobian, "geometric": jac.geometric_jacobian}
+        np.testing.assert_allclose(ex.solution(), fn[ex.given["asked"]](arm, th) @ ex.given["theta_dot"],
+                                   atol=1e-12)
+        if ex.given["asked"] == "geometric":  # the linear part is pdot of the tool: finite differences
+            pdot = jac.numerical_jacobian(lambda x, arm=arm: arm.fk(x)[:3, 3], th) @ ex.given["theta_dot"]
+            np.testing.assert_allclose(ex.solution()[3:], pdot, atol=1e-6)
 
     ex = g("ch05_ex1")
     arm = jac.robots.planar(ex.given["lengths"])
@@ -283,29 +324,48 @@ def test_conversion_references_agree_with_the_library():
         np.testing.assert_allclose(ex.solution(), jac.geometric_to_space(np.vstack([J0[3:], J0[:3]]), T), atol=2e-3)
 
 
-def test_symbolic_references_agree_with_the_library_numerically():
-    rng = np.random.default_rng(0)
-    for eid, fn in (("ch02_ex3", jac.space_jacobian), ("ch03_ex3", jac.body_jacobian)):
-        ex = exercises.load(eid)
-        syms = ex.symbols
-        for _ in range(3):
-            l1, l2 = rng.uniform(0.5, 2, size=2)
-            th = rng.uniform(-3, 3, size=2)
-            val = np.array(ex.reference.subs({syms["theta1"]: th[0], syms["theta2"]: th[1], syms["l1"]: l1,
-                                              syms["l2"]: l2}).evalf().tolist(), dtype=float)
-            np.testing.assert_allclose(val, fn(jac.robots.planar_2r(l1, l2), th), atol=1e-12)
-    ex = exercises.load("ch06_ex1")
-    s = ex.symbols
-    arm = jac.robots.planar_2r(0.7, 1.3)
-    th = np.array([0.4, -1.1])
-    val = np.array(ex.reference.subs({s["theta1"]: th[0], s["theta2"]: th[1], s["l1"]: 0.7, s["l2"]: 1.3})
-                   .evalf().tolist(), dtype=float)
-    np.testing.assert_allclose(val, jac.numerical_jacobian(lambda x: arm.fk(x)[:2, 3], th), atol=1e-6)
+def test_symbolic_references_agree_with_the_library_for_every_arm():
+    import jacobians.symbolic as jsym
+    from course.exercises._symbolic_2r import ARMS
+
+    seen = set()
+    for seed in range(60):
+        for eid, fn in (("ch02_ex3", jsym.space_jacobian), ("ch03_ex3", jsym.body_jacobian)):
+            ex = exercises.load(eid, seed=seed)
+            arm = ex.given["joints"]
+            if (eid, arm) in seen:
+                continue
+            seen.add((eid, arm))
+            s = ex.symbols
+            chain = jsym.SymbolicChain(ex.given["S"], ex.given["M"])
+            lib = fn(chain, [s["theta1"], s["theta2"]])
+            assert (lib - ex.reference).applyfunc(sp.simplify) == sp.zeros(6, 2), (eid, arm)
+    assert {a for _, a in seen} == set(ARMS)  # all 12 arms are drawn
+    for seed in range(8):  # the position Jacobian by finite differences of the numeric forward kinematics
+        ex = exercises.load("ch06_ex1", seed=seed)
+        s = ex.symbols
+        l1, l2 = 0.7, 1.3
+        S_sym = _sym_chain(ex.given["joints"])[0]
+        Snum = np.array(S_sym.subs({s["l1"]: l1}).evalf().tolist(), dtype=float)
+        M = np.eye(4)
+        M[0, 3] = l1 + l2
+        chain = jac.SerialChain(Snum, M)
+        th = np.array([0.4, -1.1])
+        val = np.array(ex.reference.subs({s["theta1"]: th[0], s["theta2"]: th[1], s["l1"]: l1, s["l2"]: l2})
+                       .evalf().tolist(), dtype=float)
+        np.testing.assert_allclose(val, jac.numerical_jacobian(lambda x, c=chain: c.fk(x)[:2, 3], th), atol=1e-6)
+
+
+def _sym_chain(arm):
+    from course.exercises._symbolic_2r import sym_arm
+    _, S, M, *_ = sym_arm(arm)
+    return S, M
 
 
 def test_symbolic_answers_in_other_forms():
     th1, th2, l1, l2 = sp.symbols("theta1 theta2 l1 l2")  # no assumptions: matched by name
-    ex = exercises.load("ch06_ex1", seed=3)
+    seed = next(s for s in range(200) if exercises.load("ch06_ex1", seed=s).given["joints"] == ("R+", "R+"))
+    ex = exercises.load("ch06_ex1", seed=seed)
     x = l1 * sp.cos(th1) + l2 * sp.cos(th1 + th2)
     y = l1 * sp.sin(th1) + l2 * sp.sin(th1 + th2)
     J = sp.Matrix([x, y]).jacobian([th1, th2])
@@ -320,6 +380,30 @@ def test_symbolic_answers_in_other_forms():
     wrong[1, 1] = l2 * sp.sin(th1 + th2)
     fb = ex.check(wrong)
     assert fb.mistake == "wrong_entry" and "row 2, column 2" in fb.message
+    assert ex.check(sp.ImmutableMatrix(J)).correct and ex.check(sp.Array(J.tolist())).correct
+    fb = ex.check(sp.Array(list(J)))
+    assert fb.kind == "invalid" and "sympy Array of shape (4,)" in fb.message
+    numbers = J.subs({th1: 0.3, th2: 0.5, l1: 1.0, l2: 0.8})
+    fb = ex.check(numbers)
+    assert fb.mistake == "numbers_for_symbols" and "theta1" in fb.message
+    assert ex.check(J.subs(th2, th1)).mistake == "theta1_for_theta2"
+
+
+def test_issue_named_faults_of_the_symbolic_jacobians():
+    """ch02_ex3: numbers for symbols are named, a sympy Array or ImmutableMatrix is accepted."""
+    for seed in range(4):
+        ex = exercises.load("ch02_ex3", seed=seed)
+        ref = ex.reference
+        s = ex.symbols
+        assert ex.check(sp.ImmutableMatrix(ref)).correct and ex.check(sp.Array(ref.tolist())).correct
+        point = {s["theta1"]: 0.4, s["theta2"]: -0.2, s["l1"]: 1.1, s["l2"]: 0.9}
+        fb = ex.check(ref.subs(point))
+        assert fb.mistake == "numbers_for_symbols" and "formula" in fb.message
+        assert ex.check(ref.xreplace({s["theta1"]: s["theta2"]})).mistake == "theta2_for_theta1"
+        ex3 = exercises.load("ch03_ex3", seed=seed)
+        t = ex3.symbols
+        if t["theta2"] in ex3.reference.free_symbols:
+            assert ex3.check(ex3.reference.xreplace({t["theta2"]: t["theta1"]})).mistake == "theta1_for_theta2"
 
 
 # ------------------------------------------------------------------ every exercise, garbage

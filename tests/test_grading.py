@@ -154,7 +154,9 @@ def test_unknown_exercise_is_feedback_from_check_but_error_from_load():
     with pytest.raises(KeyError):
         exercises.load("ch99_ex9")
     with pytest.raises(TypeError):
-        exercises.load("ch01_ex1", seed="3")
+        exercises.load("ch01_ex1", seed=3.5)
+    with pytest.raises(ValueError):
+        exercises.load("ch01_ex1", seed="  ")
     with pytest.raises(ValueError):
         exercises.load("ch01_ex1", seed=-1)
 
@@ -311,7 +313,7 @@ def test_catalogue_orders_ids_by_chapter_then_number_and_sets_id_and_seed():
     toy = _toy_catalogue()
     assert toy.ids() == ["ch01_ex2", "ch01_ex10"] and len(toy) == 2 and "ch01_ex2" in toy
     ex = toy.load("ch01_ex10", seed=4)
-    assert (ex.id, ex.seed) == ("ch01_ex10", 4)
+    assert (ex.id, ex.seed) == ("ch01_ex10", "4")
     assert toy.load("ch01_ex10", seed=4).given == ex.given
 
 

@@ -90,8 +90,9 @@ def student_notebook(path: Path) -> nbformat.NotebookNode:
     banner = nbformat.v4.new_markdown_cell(
         "*Student version, generated from `exercises/" + path.name + "` by `make exercises`. "
         "Run the cells from the top; put your answer in each `answer = ...` cell and run the check "
-        "cell below it. Set the environment variable `JACOBIANS_SEED` (or `SEED` in the first code "
-        "cell) to get your own numbers.*")
+        "cell below it. First put your student ID between the quotes of `SEED = \"student-id\"` in the "
+        "first code cell: it picks your own variant of every exercise, and your instructor grades that "
+        "variant.*")
     nb.cells = [banner] + cells
     nb.metadata.pop("mystnb", None)
     jt = nb.metadata.get("jupytext")
@@ -103,6 +104,10 @@ def student_notebook(path: Path) -> nbformat.NotebookNode:
 
 
 _LOAD = re.compile(r'exercises\.load\("(\w+)", seed=SEED\)')
+
+#: The set-up line that sets the student's seed; a grader finds it (with ``ast``) to regrade that variant.
+SEED_LINE = 'SEED = "student-id"  # your student ID (any text): it picks your variant of every exercise'
+
 _ANSWER = re.compile(r"^answer = None\b", re.M)
 
 
@@ -132,6 +137,8 @@ def check_student(nb: nbformat.NotebookNode) -> None:
             assert not cell.get("outputs"), "a code cell has outputs"
             assert cell.get("execution_count") is None, "a code cell has an execution count"
         assert "solution-start" not in cell.source and "solution-end" not in cell.source, "solution markup remains"
+    seed_cells = [c for c in nb.cells if c.cell_type == "code" and SEED_LINE in c.source.splitlines()]
+    assert len(seed_cells) == 1, f"expected the set-up line {SEED_LINE!r} in exactly one code cell"
     by_id = exercise_cells(nb)
     assert by_id, "no exercise (no exercises.load cell)"
     for eid, cells in by_id.items():

@@ -39,3 +39,12 @@ def degrees_mistake(value: Any) -> Mistake:
     return Mistake("degrees_for_radians", value,
                    "This is what comes out when the angles in degrees are fed to sin and cos as if they were "
                    "radians: convert degrees to radians first (multiply by π/180).")
+
+
+def neighbour_columns(J: ArrayLike, i: int, name: str) -> list[Mistake]:
+    """Columns i-1 and i+1 (1-based, those that exist) of ``J`` given for column i: the neighbouring column."""
+    J = np.asarray(J, float)
+    return [Mistake("neighbour_column", J[:, k - 1].copy(),
+                    f"This is column {k} of the {name}, the neighbouring column (joint {k}); the exercise asks for "
+                    f"column {i}, the one of joint {i}.")
+            for k in (i - 1, i + 1) if 1 <= k <= J.shape[1]]

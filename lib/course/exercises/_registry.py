@@ -3,25 +3,57 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from jacobians.grading import Case, Catalogue, Exercise, function_exercise
+from jacobians.grading.catalogue import Builder
 
-__all__ = ["CATALOGUE", "register", "register_code"]
+from ._hints import HINTS
+
+__all__ = ["CATALOGUE", "CodeVariant", "register", "register_code"]
 
 #: Every exercise of the course, by id.
 CATALOGUE = Catalogue()
 
-#: Decorator adding a builder ``rng -> Exercise`` under an id.
-register = CATALOGUE.register
 
 
-def register_code(exercise_id: str, title: str, statement: str, *, reference: Callable[..., Any],
-                  make_case: Callable[[np.random.Generator], Case], fn_name: str, what: str) -> None:
-    """Add a function exercise: the student writes ``fn_name``, tested on the cases ``make_case`` draws."""
+def register(exercise_id: str) -> Callable[[Builder], Builder]:
+    """Decorator adding a builder ``rng -> Exercise`` under an id; an exercise without a hint of its own gets
+    the one of :data:`~course.exercises._hints.HINTS` (what to check when no catalogued mistake matches)."""
+    def deco(builder: Builder) -> Builder:
+        def build(rng: np.random.Generator) -> Exercise:
+            ex = builder(rng)
+            if not ex.hint:
+                ex.hint = HINTS.get(exercise_id, "")
+            return ex
+        build.__doc__ = builder.__doc__
+        CATALOGUE.register(exercise_id)(build)
+        return builder
+    return deco
+
+
+class CodeVariant(NamedTuple):
+    """One variant of a function exercise: its statement, reference, test cases, the function's name,
+    what it returns, and the facts of the variant (its ``given``)."""
+
+    statement: str
+    reference: Callable[..., Any]
+    make_case: Callable[[np.random.Generator], Case]
+    fn_name: str
+    what: str
+    given: dict[str, Any]
+
+
+def register_code(exercise_id: str, title: str, variants: list[CodeVariant]) -> None:
+    """Add a function exercise: the seed picks one of ``variants``; the student writes its ``fn_name``,
+    tested on the cases its ``make_case`` draws (from the variant's own stream)."""
     def build(rng: np.random.Generator) -> Exercise:
-        return function_exercise(title, statement, reference=reference, make_case=make_case, fn_name=fn_name,
-                                 what=what)
-    register(exercise_id)(build)
+        v = variants[int(rng.integers(len(variants)))]
+        ex = function_exercise(title, v.statement, reference=v.reference, make_case=v.make_case, fn_name=v.fn_name,
+                               what=v.what)
+        ex.given = dict(v.given)
+        ex.hint = HINTS.get(exercise_id, "")
+        return ex
+    CATALOGUE.register(exercise_id)(build)

@@ -115,15 +115,31 @@ def spatial_5r_pose(rng: Generator, digits: int = 4) -> SpatialPose:
 CaseBody = Callable[[Array, Array, Array], tuple[tuple[Any, ...], Any, list[Mistake]]]
 
 
-def chain_case(body: CaseBody) -> Callable[[Generator], Case]:
+def chain_case(body: CaseBody, layout: str = "columns") -> Callable[[Generator], Case]:
     """A ``make_case`` for a function exercise on a random chain: ``body(S, M, theta)`` gives the
-    arguments, the reference and the mistakes; the case is labelled by the chain's number of joints."""
+    arguments, the reference and the mistakes; the case is labelled by the chain's number of joints.
+    With ``layout="rows"`` the first argument (the axes, 6 x n) is passed transposed, one axis per row."""
     def make_case(rng: Generator) -> Case:
         S, M, th = random_chain(rng)
         args, ref, mistakes = body(S, M, th)
+        if layout == "rows":
+            args = (np.asarray(args[0]).T.copy(), *args[1:])
         return Case(args, ref, mistakes, f"a random {S.shape[1]}-joint chain")
     make_case.__doc__ = body.__doc__
     return make_case
+
+
+#: How a variant of a Jacobian code exercise passes the screw axes, for its statement.
+LAYOUT_TEXT = {
+    "columns": "a $6\\times n$ numpy array whose columns are the screw axes $(\\omega, v)$",
+    "rows": ("an $n\\times 6$ numpy array whose rows are the screw axes $(\\omega, v)$, one row per joint (as "
+             "some libraries store them)"),
+}
+
+
+def layout_cases(body: CaseBody) -> dict[str, Callable[[Generator], Case]]:
+    """The ``make_case`` of each layout of the axes, for the two variants of a Jacobian code exercise."""
+    return {layout: chain_case(body, layout) for layout in LAYOUT_TEXT}
 
 
 def planar_column(rng: Generator, frame: str, low: int, high: int

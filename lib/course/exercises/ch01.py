@@ -11,7 +11,7 @@ from jacobians.grading import Case, Exercise, Mistake, numeric_exercise
 from ._kinematics import Array, adj, inv_T, swap
 from ._latex import bmatrix, vec
 from ._mistakes import swap_mistake
-from ._registry import register, register_code
+from ._registry import CodeVariant, register, register_code
 from ._variants import random_transform
 
 SKEW_HINT = "Recall [p] is the skew matrix with [p]x = p × x."
@@ -106,9 +106,36 @@ def _adj_case(rng: Generator) -> Case:
     return Case((T,), adj(T), _adj_mistakes(T), f"T with p = {vec(T[:3, 3], 2)}")
 
 
-register_code(
-    "ch01_ex4", "Code: the adjoint map",
-    "Write a function `my_adjoint(T)` that takes a $4\\times4$ transform (numpy array) and returns its "
-    "$6\\times 6$ adjoint $[\\mathrm{Ad}_T]$ for twists ordered $(\\omega, v)$. Set `answer = my_adjoint`. "
-    "It is tested on random transforms.",
-    reference=adj, make_case=_adj_case, fn_name="my_adjoint", what="adjoint matrix")
+def ref_adjoint_of_inverse(T: Array) -> Array:
+    """Reference of the second variant: [Ad_{T^-1}] = [[R^T, 0], [-R^T [p], R^T]]."""
+    return adj(inv_T(T))
+
+
+def _adj_inv_case(rng: Generator) -> Case:
+    T = random_transform(rng)
+    T[:3, 3] = rng.uniform(-2, 2, size=3)
+    Ti = inv_T(T)
+    R, p = T[:3, :3], T[:3, 3]
+    no_sign = adj(Ti)
+    no_sign[3:, :3] = R.T @ lie.skew(p)
+    mistakes = [
+        Mistake("not_inverted", adj(T), "Your function returns [Ad_T]; this variant asks for the adjoint of the "
+                "inverse, T⁻¹ = [[Rᵀ, -Rᵀp], [0, 1]]."),
+        Mistake("inverse_sign", no_sign, "The lower-left block has the wrong sign: for T⁻¹ the position is -Rᵀp, "
+                "so the block is [-Rᵀp]Rᵀ = -Rᵀ[p]."),
+        Mistake("transposed_only", adj(T).T, "You transposed [Ad_T]; that is not its inverse (only the rotation "
+                "blocks invert by transposing)."),
+    ]
+    return Case((T,), adj(Ti), mistakes, f"T with p = {vec(p, 2)}")
+
+
+_ADJ_TASK = ("Write a function `my_adjoint(T)` that takes a $4\\times4$ transform $T$ (numpy array) and returns ")
+register_code("ch01_ex4", "Code: the adjoint map", [
+    CodeVariant(_ADJ_TASK + "its $6\\times 6$ adjoint $[\\mathrm{Ad}_T]$ for twists ordered $(\\omega, v)$. "
+                "Set `answer = my_adjoint`. It is tested on random transforms.",
+                adj, _adj_case, "my_adjoint", "adjoint matrix", {"inverse": False}),
+    CodeVariant(_ADJ_TASK + "the $6\\times 6$ adjoint of its inverse, $[\\mathrm{Ad}_{T^{-1}}]$, for twists "
+                "ordered $(\\omega, v)$, written from $R$ and $p$ (do not call a matrix inverse). "
+                "Set `answer = my_adjoint`. It is tested on random transforms.",
+                ref_adjoint_of_inverse, _adj_inv_case, "my_adjoint", "adjoint matrix", {"inverse": True}),
+])

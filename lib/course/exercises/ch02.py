@@ -12,10 +12,10 @@ from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exer
 
 from ._kinematics import DEG, Array, adj, body_jac, expS, space_jac
 from ._latex import degs, num, vec
-from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
-from ._registry import register, register_code
-from ._symbolic_2r import SYM_NOTE, sym_catalogue, sym_names, sym_planar_2r
-from ._variants import angles_deg, chain_case, planar_column
+from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
+from ._registry import CodeVariant, register, register_code
+from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, sym_arm, sym_catalogue, sym_names
+from ._variants import LAYOUT_TEXT, angles_deg, layout_cases, planar_column
 
 
 @register("ch02_ex1")
@@ -24,8 +24,9 @@ def _ch02_ex1(rng: Generator) -> Exercise:
     ref = J_s[:, i - 1]
     mistakes = [
         Mistake("home_axis", S[:, i - 1],
-                f"This is the screw axis of joint {i} at the home pose. Joints 1..{i - 1} have moved it: carry it "
-                "along with the adjoint of the product of their exponentials."),
+                f"This is the screw axis of joint {i} at the home pose. "
+                + ("Joint 1 has" if i == 2 else f"Joints 1..{i - 1} have")
+                + " moved it: carry it along with the adjoint of the product of their exponentials."),
         Mistake("body_column", J_b[:, i - 1],
                 f"This is column {i} of the body Jacobian (seen from the tool frame). The space Jacobian "
                 "expresses the joint's screw in the fixed frame {s}."),
@@ -34,6 +35,7 @@ def _ch02_ex1(rng: Generator) -> Exercise:
         Mistake("v_sign", np.concatenate([ref[:3], -ref[3:]]),
                 f"The linear part has the wrong sign. It is -ω × q with q the current position of "
                 f"joint {i}."),
+        *neighbour_columns(J_s, i, "space Jacobian"),
     ]
     st = (f"A planar 3R arm (joints about $z$, links along $x$ at home) has link lengths "
           f"$L = {vec(ls, 1)}$ and is at $\\theta = {degs(th_deg)}$. Give column {i} of its space Jacobian, "
@@ -89,19 +91,22 @@ def _ch02_ex2(rng: Generator) -> Exercise:
 
 @register("ch02_ex3")
 def _ch02_ex3(rng: Generator) -> Exercise:
-    syms, S, M, J_s, J_b, B, T = sym_planar_2r()
+    arm = draw_arm(rng)
+    syms, S, M, J_s, J_b, B, T = sym_arm(arm)
     mistakes = sym_catalogue(
         J_s, J_b, "body_for_space",
         "This is the body Jacobian. The space Jacobian expresses each column in the fixed frame {s}.",
-        S, "Joint 2's axis moves when joint 1 turns: carry it with the adjoint of e^[S1]θ1.")
-    st = ("For the planar 2R arm with link lengths $l_1, l_2$ (joint 1 about $z$ at the origin, joint 2 about "
-          "$z$ through $(l_1, 0, 0)$ at home), give the space Jacobian $J_s(\\theta_1, \\theta_2)$ as a "
-          "$6\\times2$ symbolic matrix. " + SYM_NOTE)
-    return symbolic_exercise("Symbolic space Jacobian of the planar 2R arm", st, sym_names(syms), J_s, mistakes,
-                             what="space Jacobian")
+        S, "Joint 2's screw axis is carried along by joint 1's motion: carry it with the adjoint of e^[S1]θ1.")
+    st = (describe_arm(arm) + " Give the space Jacobian $J_s(\\theta_1, \\theta_2)$ as a $6\\times2$ symbolic "
+          "matrix in $\\theta_1, \\theta_2, l_1, l_2$. " + SYM_NOTE)
+    ex = symbolic_exercise("Symbolic space Jacobian of a planar two-joint arm", st, sym_names(syms), J_s, mistakes,
+                           what="space Jacobian")
+    ex.hint = ("Column 1 is S1; column 2 is Ad(e^[S1]θ1) S2. Check which column, and within it the angular "
+               "rows 1-3 or the linear rows 4-6.")
+    ex.given.update({"joints": arm, "S": S, "M": M})
+    return ex
 
 
-@chain_case
 def _space_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
     ref = space_jac(S, th)
     mistakes = [
@@ -125,10 +130,11 @@ def _own(S: Array, th: Array) -> Array:
     return adj(T) @ S
 
 
-register_code(
-    "ch02_ex4", "Code: the space Jacobian",
-    ("Write `my_space_jacobian(S, theta)`: `S` is a $6\\times n$ numpy array whose columns are the screw "
-     "axes $(\\omega, v)$ at home, `theta` a length-$n$ array of joint values; return $J_s(\\theta)$, "
-     "$6\\times n$. You may use `jacobians.lie.exp_se3` and `jacobians.lie.adjoint`, but not "
-     "`jacobians.space_jacobian`. Set `answer = my_space_jacobian`."),
-    reference=space_jac, make_case=_space_case, fn_name="my_space_jacobian", what="space Jacobian")
+_SPACE_CASES = layout_cases(_space_case)
+register_code("ch02_ex4", "Code: the space Jacobian", [
+    CodeVariant(f"Write `my_space_jacobian(S, theta)`: `S` is {LAYOUT_TEXT[layout]} at home, `theta` a length-$n$ "
+                "array of joint values; return $J_s(\\theta)$, $6\\times n$. You may use `jacobians.lie.exp_se3` and "
+                "`jacobians.lie.adjoint`, but not `jacobians.space_jacobian`. Set `answer = my_space_jacobian`.",
+                space_jac if layout == "columns" else (lambda S, th: space_jac(np.asarray(S).T, th)),
+                case, "my_space_jacobian", "space Jacobian", {"layout": layout})
+    for layout, case in _SPACE_CASES.items()])

@@ -12,10 +12,10 @@ from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exer
 
 from ._kinematics import Array, adj, body_jac, inv_T, space_jac
 from ._latex import bmatrix, degs, num, vec
-from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
-from ._registry import register, register_code
-from ._symbolic_2r import SYM_NOTE, sym_catalogue, sym_names, sym_planar_2r
-from ._variants import chain_case, planar_column
+from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
+from ._registry import CodeVariant, register, register_code
+from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, sym_arm, sym_catalogue, sym_names
+from ._variants import LAYOUT_TEXT, layout_cases, planar_column
 
 
 @register("ch03_ex1")
@@ -34,6 +34,7 @@ def _ch03_ex1(rng: Generator) -> Exercise:
         Mistake("v_sign", np.concatenate([ref[:3], -ref[3:]]),
                 "The linear part has the wrong sign: in {b} it is -ω_b × r with r the position of the joint "
                 "axis seen from the tool."),
+        *neighbour_columns(J_b, i, "body Jacobian"),
     ]
     st = (f"A planar 3R arm has link lengths $L = {vec(ls, 1)}$ (tool at the end of link 3) and is at "
           f"$\\theta = {degs(th_deg)}$. Give column {i} of its body Jacobian, $J_{{b{i}}}(\\theta)$, as a 6-vector.")
@@ -65,20 +66,23 @@ def _ch03_ex2(rng: Generator) -> Exercise:
 
 @register("ch03_ex3")
 def _ch03_ex3(rng: Generator) -> Exercise:
-    syms, S, M, J_s, J_b, B, T = sym_planar_2r()
+    arm = draw_arm(rng)
+    syms, S, M, J_s, J_b, B, T = sym_arm(arm)
     mistakes = sym_catalogue(
         J_b, J_s, "space_for_body",
         "This is the space Jacobian. The body Jacobian expresses each column in the tool frame {b}.",
-        B, "Joint 1's axis, seen from the tool, moves when joint 2 turns: carry B1 with the adjoint of "
+        B, "Joint 1's axis, seen from the tool, moves when joint 2 moves: carry B1 with the adjoint of "
         "e^-[B2]θ2.")
-    st = ("For the planar 2R arm with link lengths $l_1, l_2$ (tool frame at the end of link 2, oriented like "
-          "{s} at home), give the body Jacobian $J_b(\\theta_1, \\theta_2)$ as a $6\\times2$ symbolic matrix. "
-          + SYM_NOTE)
-    return symbolic_exercise("Symbolic body Jacobian of the planar 2R arm", st, sym_names(syms), J_b, mistakes,
-                             what="body Jacobian")
+    st = (describe_arm(arm) + " Give the body Jacobian $J_b(\\theta_1, \\theta_2)$ as a $6\\times2$ symbolic "
+          "matrix in $\\theta_1, \\theta_2, l_1, l_2$. " + SYM_NOTE)
+    ex = symbolic_exercise("Symbolic body Jacobian of a planar two-joint arm", st, sym_names(syms), J_b, mistakes,
+                           what="body Jacobian")
+    ex.hint = ("Column 2 is B2; column 1 is Ad(e^-[B2]θ2) B1, with B = Ad(M⁻¹) S. Check which column, and within "
+               "it the angular rows 1-3 or the linear rows 4-6.")
+    ex.given.update({"joints": arm, "S": S, "M": M})
+    return ex
 
 
-@chain_case
 def _body_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
     B = adj(inv_T(M)) @ S
     ref = body_jac(B, th)
@@ -96,9 +100,10 @@ def _body_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, lis
     return (B, th), ref, mistakes
 
 
-register_code(
-    "ch03_ex4", "Code: the body Jacobian",
-    ("Write `my_body_jacobian(B, theta)`: `B` is $6\\times n$ (body screw axes at home, $(\\omega, v)$), "
-     "`theta` length $n$; return $J_b(\\theta)$. Do not call `jacobians.body_jacobian`. "
-     "Set `answer = my_body_jacobian`."),
-    reference=body_jac, make_case=_body_case, fn_name="my_body_jacobian", what="body Jacobian")
+register_code("ch03_ex4", "Code: the body Jacobian", [
+    CodeVariant(f"Write `my_body_jacobian(B, theta)`: `B` is {LAYOUT_TEXT[layout].replace('screw', 'body screw')} "
+                "at home, `theta` a length-$n$ array; return $J_b(\\theta)$, $6\\times n$. Do not call "
+                "`jacobians.body_jacobian`. Set `answer = my_body_jacobian`.",
+                body_jac if layout == "columns" else (lambda B, th: body_jac(np.asarray(B).T, th)),
+                case, "my_body_jacobian", "body Jacobian", {"layout": layout})
+    for layout, case in layout_cases(_body_case).items()])

@@ -15,7 +15,7 @@ from jacobians.grading import Exercise, Mistake, numeric_exercise
 from ._kinematics import DEG, Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake, swap_mistake
-from ._registry import register, register_code
+from ._registry import CodeVariant, register, register_code
 from ._variants import chain_case, planar_pose
 
 
@@ -82,7 +82,11 @@ def ref_space_to_body(J_s: ArrayLike, T_sb: ArrayLike) -> Array:
     return np.asarray(adj(inv_T(T_sb)) @ np.asarray(J_s, float), dtype=float)
 
 
-@chain_case
+def ref_body_to_space(J_b: ArrayLike, T_sb: ArrayLike) -> Array:
+    """Reference of the second variant: J_s = Ad_{T_sb} J_b."""
+    return np.asarray(adj(T_sb) @ np.asarray(J_b, float), dtype=float)
+
+
 def _s2b_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
     J_s = space_jac(S, th)
     T = fk(S, M, th)
@@ -97,32 +101,86 @@ def _s2b_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list
     return (J_s, T), ref, mistakes
 
 
-register_code(
-    "ch04_ex3", "Code: space to body",
-    "Write `my_space_to_body(J_s, T_sb)` returning $J_b$ ($6\\times n$) from $J_s$ ($6\\times n$) and "
-    "$T_{sb}$ ($4\\times4$), numpy arrays. Do not call `jacobians.space_to_body`. "
-    "Set `answer = my_space_to_body`.",
-    reference=ref_space_to_body, make_case=_s2b_case, fn_name="my_space_to_body", what="body Jacobian")
+def _b2s_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
+    T = fk(S, M, th)
+    J_b = adj(inv_T(T)) @ space_jac(S, th)
+    ref = adj(T) @ J_b
+    mistakes = [
+        Mistake("wrong_adjoint", adj(inv_T(T)) @ J_b, "You used Ad of T_bs = T_sb⁻¹; J_s needs Ad of T_sb."),
+        Mistake("unchanged", J_b, "Your function returns J_b unchanged."),
+        Mistake("rotation_only", _rotonly(T[:3, :3], J_b),
+                "Your function only rotates the two halves (that gives the geometric Jacobian); J_s also needs "
+                "the p × ω term in the linear part."),
+        swap_mistake(ref),
+    ]
+    return (J_b, T), ref, mistakes
+
+
+register_code("ch04_ex3", "Code: change the frame of a Jacobian", [
+    CodeVariant("Write `my_change_frame(J, T_sb)` that takes the space Jacobian $J_s$ ($6\\times n$) and $T_{sb}$ "
+                "($4\\times4$), numpy arrays, and returns the body Jacobian $J_b$. Do not call "
+                "`jacobians.space_to_body`. Set `answer = my_change_frame`.",
+                ref_space_to_body, chain_case(_s2b_case), "my_change_frame", "body Jacobian",
+                {"direction": "space_to_body"}),
+    CodeVariant("Write `my_change_frame(J, T_sb)` that takes the body Jacobian $J_b$ ($6\\times n$) and $T_{sb}$ "
+                "($4\\times4$), numpy arrays, and returns the space Jacobian $J_s$. Do not call "
+                "`jacobians.body_to_space`. Set `answer = my_change_frame`.",
+                ref_body_to_space, chain_case(_b2s_case), "my_change_frame", "space Jacobian",
+                {"direction": "body_to_space"}),
+])
+
+
+#: The velocities ch04_ex4 may ask for: name, symbol, and how it comes from the joint rates.
+VELOCITIES = {
+    "body": ("the body twist $\\mathcal V_b = J_b\\dot\\theta$ of the tool frame", "body twist"),
+    "space": ("the spatial twist $\\mathcal V_s = J_s\\dot\\theta$ of the tool frame", "spatial twist"),
+    "geometric": ("the geometric velocity $(\\omega_s, \\dot p) = J\\dot\\theta$ of the tool point ($J$ the "
+                  "geometric Jacobian)", "geometric velocity"),
+}
+
+#: What each velocity is, for the message naming it when another was asked.
+_GIVEN_INSTEAD = {
+    "body": "This is the body twist V_b = J_b θ̇ (both halves in the tool frame {b}).",
+    "space": ("This is the spatial twist V_s = J_s θ̇: its linear part is the velocity of the body point at the "
+              "origin of {s}, not of the tool point."),
+    "geometric": ("This is the geometric velocity (ω_s, ṗ) = J θ̇: its linear part is the velocity ṗ of the tool "
+                  "point, in {s}."),
+}
 
 
 @register("ch04_ex4")
 def _ch04_ex4(rng: Generator) -> Exercise:
+    asked = str(rng.choice(list(VELOCITIES)))
     ls, th_deg, th, arm = planar_pose(rng, 3)
     dth = rng.integers(-3, 4, size=3).astype(float) / 2
     if not np.any(dth):
         dth[0] = 1.0
-    J_b = body_jac(arm.body_axes, th)
-    J_s = space_jac(arm.screw_axes, th)
-    ref = J_b @ dth
-    mistakes = [
-        Mistake("space_twist", J_s @ dth, "This is the spatial twist V_s = J_s θ̇. The body twist uses the "
-                "body Jacobian."),
-        degrees_mistake(body_jac(arm.body_axes, th_deg) @ dth),
+
+    def velocities(theta: Array) -> dict[str, Array]:
+        J_b = body_jac(arm.body_axes, theta)
+        R = fk(arm.screw_axes, arm.home, theta)[:3, :3]
+        return {"body": J_b @ dth, "space": space_jac(arm.screw_axes, theta) @ dth,
+                "geometric": blockdiag(R, R) @ J_b @ dth}
+
+    vel = velocities(th)
+    ref = vel[asked]
+    name = VELOCITIES[asked][1]
+    mistakes = [Mistake(f"{other}_for_{asked}", v, _GIVEN_INSTEAD[other] + f" The exercise asks for the {name}.")
+                for other, v in vel.items() if other != asked]
+    J_asked = {"body": body_jac(arm.body_axes, th), "space": space_jac(arm.screw_axes, th)}.get(asked)
+    mistakes += [
+        degrees_mistake(velocities(th_deg)[asked]),
         swap_mistake(ref),
-        Mistake("reversed_rates", J_b @ dth[::-1], "The joint rates seem to be taken in the reverse order: "
-                "column i of J_b multiplies θ̇_i."),
     ]
-    st = (f"A planar 3R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$ and its joints move at "
-          f"$\\dot\\theta = {vec(dth)}$ rad/s. Give the body twist $\\mathcal V_b$ of the tool frame (6-vector).")
-    return numeric_exercise("The body twist from joint rates", st,
-                            {"lengths": ls, "theta_deg": th_deg, "theta_dot": dth}, ref, mistakes, what="body twist")
+    if J_asked is not None:
+        mistakes.append(Mistake("reversed_rates", J_asked @ dth[::-1], "The joint rates seem to be taken in the "
+                                "reverse order: column i of the Jacobian multiplies θ̇_i."))
+    st = (f"A planar 3R arm with $L = {vec(ls, 1)}$ (tool frame at the end of link 3, oriented like link 3) is at "
+          f"$\\theta = {degs(th_deg)}$ and its joints move at $\\dot\\theta = {vec(dth)}$ rad/s. Give "
+          f"{VELOCITIES[asked][0]} as a 6-vector, angular part first.")
+    hint = {"body": "Both halves are in the tool frame {b}: check the linear rows 4-6 with V_b = J_b θ̇.",
+            "space": "The linear rows 4-6 are the velocity of the body point at the origin of {s}: v_s = ṗ - ω × p.",
+            "geometric": "The linear rows 4-6 are ṗ, the velocity of the tool point in {s}."}[asked]
+    return numeric_exercise(f"The {name} from joint rates", st,
+                            {"lengths": ls, "theta_deg": th_deg, "theta_dot": dth, "asked": asked}, ref, mistakes,
+                            what=name, hint=hint)

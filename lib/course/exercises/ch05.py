@@ -13,8 +13,8 @@ from jacobians.grading import Exercise, Mistake, numeric_exercise
 from ._kinematics import Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
-from ._registry import register, register_code
-from ._variants import chain_case, planar_pose, spatial_5r_pose
+from ._registry import CodeVariant, register, register_code
+from ._variants import LAYOUT_TEXT, layout_cases, planar_pose, spatial_5r_pose
 
 
 def _geo_catalogue(ref: Array, J_b: Array, R: Array, J_s: Array | None = None) -> list[Mistake]:
@@ -99,7 +99,6 @@ def ref_geometric_jacobian(S: ArrayLike, M: ArrayLike, theta: ArrayLike) -> Arra
     return blockdiag(R, R) @ body_jac(B, theta)
 
 
-@chain_case
 def _geo_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
     T = fk(S, M, th)
     B = adj(inv_T(M)) @ S
@@ -111,10 +110,13 @@ def _geo_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list
     return (S, M, th), ref, mistakes
 
 
-register_code(
-    "ch05_ex4", "Code: the geometric Jacobian",
-    "Write `my_geometric_jacobian(S, M, theta)` returning the geometric Jacobian $J(\\theta)$ "
-    "(rows $(\\omega_s, \\dot p)$) of the chain with space screw axes `S` ($6\\times n$) and home pose `M`. "
-    "You may use `jacobians.space_jacobian`/`body_jacobian` with `jacobians.SerialChain(S, M)`, but not "
-    "`geometric_jacobian` or the conversion functions. Set `answer = my_geometric_jacobian`.",
-    reference=ref_geometric_jacobian, make_case=_geo_case, fn_name="my_geometric_jacobian", what="geometric Jacobian")
+register_code("ch05_ex4", "Code: the geometric Jacobian", [
+    CodeVariant(f"Write `my_geometric_jacobian(S, M, theta)` returning the geometric Jacobian $J(\\theta)$ (rows "
+                f"$(\\omega_s, \\dot p)$, $6\\times n$) of the chain whose space screw axes `S` are "
+                f"{LAYOUT_TEXT[layout]}, with home pose `M`. You may use `jacobians.space_jacobian`/`body_jacobian` "
+                "with `jacobians.SerialChain(S, M)` (which wants the axes as columns), but not `geometric_jacobian` "
+                "or the conversion functions. Set `answer = my_geometric_jacobian`.",
+                ref_geometric_jacobian if layout == "columns"
+                else (lambda S, M, th: ref_geometric_jacobian(np.asarray(S).T, M, th)),
+                case, "my_geometric_jacobian", "geometric Jacobian", {"layout": layout})
+    for layout, case in layout_cases(_geo_case).items()])

@@ -7,38 +7,46 @@ import sympy as sp
 from numpy.random import Generator
 
 from jacobians import lie, robots
-from jacobians.grading import Exercise, Feedback, Mistake, numeric_exercise, predicate_exercise, symbolic_exercise
+from jacobians.grading import Exercise, Mistake, numeric_exercise, scalar_exercise, symbolic_exercise
+from jacobians.grading.exercise import Interval
 
 from ._kinematics import DEG, Array, blockdiag, body_jac, fk
 from ._latex import bmatrix, degs, num
 from ._mistakes import degrees_mistake, swap_mistake
 from ._registry import register
+from ._symbolic_2r import describe_arm, distinct_sym, draw_arm, sym_arm, sym_names, theta_mixups
 from ._variants import angles_deg
 
 
 @register("ch06_ex1")
 def _ch06_ex1(rng: Generator) -> Exercise:
-    th1, th2, l1, l2 = sp.symbols("theta1 theta2 l1 l2", real=True)
-    x = l1 * sp.cos(th1) + l2 * sp.cos(th1 + th2)
-    y = l1 * sp.sin(th1) + l2 * sp.sin(th1 + th2)
+    arm = draw_arm(rng)
+    syms, S, M, J_s, J_b, B, T = sym_arm(arm)
+    th1, th2, l1, l2 = syms
+    x, y = T[0, 3], T[1, 3]
     ref = sp.Matrix([[sp.diff(x, th1), sp.diff(x, th2)], [sp.diff(y, th1), sp.diff(y, th2)]])
     wrong_sign = sp.Matrix([[-ref[0, 0], -ref[0, 1]], [ref[1, 0], ref[1, 1]]])
     col1_eq_col2 = sp.Matrix([[ref[0, 1], ref[0, 1]], [ref[1, 1], ref[1, 1]]])
-    only_l2 = sp.Matrix([[-l1 * sp.sin(th1), -l2 * sp.sin(th2)], [l1 * sp.cos(th1), l2 * sp.cos(th2)]])
     mistakes = [
-        Mistake("sign_row_1", wrong_sign, "Row 1 has the wrong sign: differentiate cos carefully."),
-        Mistake("column_1_missing_l1", col1_eq_col2,
-                "Column 1 is missing the l1 term: joint 1 moves the whole arm, link 1 included."),
-        Mistake("relative_angle", only_l2,
-                "Link 2's direction is θ1 + θ2 (absolute angle), not θ2 alone."),
+        Mistake("sign_row_1", wrong_sign, "Row 1 (the derivatives of x) has the wrong sign: differentiate cos "
+                "carefully (d cos u = -sin u du)."),
+        Mistake("column_1_is_column_2", col1_eq_col2,
+                "Your column 1 repeats column 2: joint 1 moves the whole arm, link 1 included, so its column has "
+                "a term of its own."),
+        *theta_mixups(ref),
     ]
-    syms = {"theta1": th1, "theta2": th2, "l1": l1, "l2": l2}
-    st = ("The tool point of the planar 2R arm is at $x = l_1\\cos\\theta_1 + l_2\\cos(\\theta_1+\\theta_2)$, "
-          "$y = l_1\\sin\\theta_1 + l_2\\sin(\\theta_1+\\theta_2)$. Give the $2\\times2$ analytic (position) "
-          "Jacobian $\\partial(x, y)/\\partial(\\theta_1, \\theta_2)$ as a sympy Matrix in "
-          "`theta1, theta2, l1, l2` (real symbols).")
-    return symbolic_exercise("Position Jacobian of the planar 2R arm", st, syms, ref, mistakes,
-                             what="position Jacobian")
+    if arm == ("R+", "R+"):
+        only_l2 = sp.Matrix([[-l1 * sp.sin(th1), -l2 * sp.sin(th2)], [l1 * sp.cos(th1), l2 * sp.cos(th2)]])
+        mistakes.append(Mistake("relative_angle", only_l2,
+                                "Link 2's direction is θ1 + θ2 (absolute angle), not θ2 alone."))
+    st = (describe_arm(arm) + f" Its tool point is at $x = {sp.latex(x)}$, $y = {sp.latex(y)}$. Give the "
+          "$2\\times2$ analytic (position) Jacobian $\\partial(x, y)/\\partial(\\theta_1, \\theta_2)$ as a sympy "
+          "Matrix in `theta1, theta2, l1, l2` (real symbols).")
+    ex = symbolic_exercise("Position Jacobian of a planar two-joint arm", st, sym_names(syms), ref,
+                           distinct_sym(ref, mistakes), what="position Jacobian")
+    ex.hint = "Entry (i, j) is the derivative of coordinate i (x, then y) with respect to θj: check that entry."
+    ex.given.update({"joints": arm, "x": x, "y": y})
+    return ex
 
 
 def _B(phi: Array, rep: str) -> Array:
@@ -108,37 +116,55 @@ def _ch06_ex3(rng: Generator) -> Exercise:
                             what="analytic Jacobian")
 
 
+#: Euler-angle sequences: Tait-Bryan (three different axes) lock at φ2 = ±π/2, proper Euler (first axis =
+#: third) at φ2 = 0, π.
+TAIT_BRYAN = ("zyx", "xyz", "yzx", "zxy", "xzy", "yxz")
+PROPER = ("zyz", "zxz", "xyx", "xzx", "yxy", "yzy")
+
+#: The ranges asked for φ2, per family: (low, high, as the statement writes it). Each holds one lock angle.
+RANGES = {
+    "tait-bryan": [(0.0, np.pi, "(0, π)"), (np.pi, 2 * np.pi, "(π, 2π)"), (-np.pi, 0.0, "(−π, 0)")],
+    "proper": [(np.pi / 2, 3 * np.pi / 2, "(π/2, 3π/2)"), (-3 * np.pi / 2, -np.pi / 2, "(−3π/2, −π/2)"),
+               (0.0, 2 * np.pi, "(0, 2π)")],
+}
+
+
+def lock_angles(family: str) -> list[float]:
+    """The middle angles in [-4π, 4π] at which B(φ) of the family is singular."""
+    base = np.pi / 2 if family == "tait-bryan" else 0.0
+    return [base + k * np.pi for k in range(-5, 5) if abs(base + k * np.pi) <= 4 * np.pi + 1e-9]
+
+
 @register("ch06_ex4")
 def _ch06_ex4(rng: Generator) -> Exercise:
-    rep = "zyx" if rng.random() < 0.5 else "zyz"
-    other = "zyz" if rep == "zyx" else "zyx"
-
-    def margin(x: float, r: str) -> float:
-        return float(abs(np.cos(x)) if r == "zyx" else abs(np.sin(x)))
-
-    def predicate(arr: Array) -> Feedback:
-        if arr.size != 1:
-            return Feedback(False, f"Give one number (the angle φ₂ in radians); you gave {arr.size} values.",
-                            mistake="wrong_shape")
-        x = float(arr.ravel()[0])
-        if margin(x, rep) < 1e-3:
-            return Feedback(True, f"Right: at φ₂ = {x:.4g} rad the {rep.upper()} matrix B(φ) is singular "
-                            "(gimbal lock: the first and third rotation axes line up).", "correct")
-        if abs(x) > 2 * np.pi + 0.01 and margin(x * np.pi / 180, rep) < 1e-3:
-            return Feedback(False, "This looks like an angle in degrees; give it in radians.",
-                            mistake="degrees_for_radians")
-        if margin(x, other) < 1e-3:
-            return Feedback(False, f"That is where the {other.upper()} angles lock. For {rep.upper()} look at which "
-                            "value of φ₂ lines up the first and third axes (det B = 0).",
-                            mistake="other_representation")
-        return Feedback(False, f"At φ₂ = {x:.4g} rad, det B(φ) is not zero. Write B(φ) and find "
-                        "where its determinant vanishes.", mistake="not_singular")
-
-    ref = np.pi / 2 if rep == "zyx" else np.pi
-    st = (f"For the {rep.upper()} Euler angles, give a value of the middle angle $\\phi_2$ (in radians, "
-          f"not 0) at which $B(\\phi)$ is singular, so that the angle rates cannot follow some angular "
-          "velocities.")
-    return predicate_exercise("Where Euler angles lock", st, {"representation": rep}, ref, predicate, what="angle")
+    rep = str(rng.choice(TAIT_BRYAN + PROPER))
+    family = "tait-bryan" if rep in TAIT_BRYAN else "proper"
+    other = "proper" if family == "tait-bryan" else "tait-bryan"
+    low, high, text = RANGES[family][int(rng.integers(3))]
+    locks = lock_angles(family)
+    accepted = [a for a in locks if low < a < high]
+    outside = [a for a in locks if not low < a < high]
+    mistakes = [
+        *[Mistake("degrees_for_radians", a * 180 / np.pi,
+                  "This is the angle in degrees; the exercise asks for radians (multiply by π/180).")
+          for a in accepted],
+        *[Mistake("other_family", a,
+                  f"That is where {'proper Euler' if other == 'proper' else 'Tait-Bryan'} angles (like "
+                  f"{'ZYZ' if other == 'proper' else 'ZYX'}) lock. The sequence {rep.upper()} "
+                  f"{'repeats its first axis' if family == 'proper' else 'has three different axes'}: find where "
+                  "its B(φ) loses rank.")
+          for a in lock_angles(other) if low < a < high],
+    ]
+    word = " ".join(f"R_{a}" for a in rep)
+    tex = text.replace("π", "\\pi").replace("−", "-")
+    st = (f"For the {rep.upper()} Euler angles, $R = R_{rep[0]}(\\phi_1)R_{rep[1]}(\\phi_2)R_{rep[2]}(\\phi_3)$, "
+          f"give the value of the middle angle $\\phi_2$ in the range ${tex}$, in radians, at which $B(\\phi)$ "
+          "(with $\\omega_s = B(\\phi)\\dot\\phi$) is singular, so that the angle rates cannot follow some "
+          "angular velocities.")
+    return scalar_exercise("Where Euler angles lock", st, {"representation": rep, "range": (low, high)}, accepted,
+                           mistakes, interval=Interval(low, high, text), outside=outside, what="angle", decimals=2,
+                           hint=f"Write B(φ) for {word} (its columns are the rotation axes, each carried by the "
+                           "rotations before it) and find where det B, a function of φ2 only, vanishes.")
 
 
 @register("ch06_ex5")

@@ -10,9 +10,9 @@ from numpy.typing import ArrayLike
 
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
-from ._kinematics import Array, blockdiag, fk, space_jac, swap
+from ._kinematics import Array, adj, blockdiag, fk, inv_T, space_jac, swap
 from ._latex import bmatrix
-from ._registry import register, register_code
+from ._registry import CodeVariant, register, register_code
 from ._variants import chain_case, spatial_5r_pose
 
 V_FIRST = ("Rows 1-3 of your answer should be the angular part and rows 4-6 the linear part: Modern Robotics "
@@ -99,7 +99,6 @@ def ref_from_pinocchio_world(J_world: ArrayLike) -> Array:
     return swap(np.asarray(J_world, float))
 
 
-@chain_case
 def _world_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
     J_s = space_jac(S, th)
     J_world = swap(J_s)
@@ -114,10 +113,29 @@ def _world_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, li
     return (J_world,), J_s, mistakes
 
 
-register_code(
-    "ch07_ex4", "Code: from Pinocchio's WORLD frame",
-    "Pinocchio's `WORLD` Jacobian is the space Jacobian with rows $(v, \\omega)$. Write "
-    "`from_pinocchio_world(J_world)` returning the Modern Robotics space Jacobian $J_s$ ($6\\times n$, "
-    "numpy). Set `answer = from_pinocchio_world`.",
-    reference=ref_from_pinocchio_world, make_case=_world_case, fn_name="from_pinocchio_world",
-    what="space Jacobian")
+def _local_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
+    T = fk(S, M, th)
+    J_b = adj(inv_T(T)) @ space_jac(S, th)
+    J_local = swap(J_b)
+    R = T[:3, :3]
+    mistakes = [
+        Mistake("unchanged", J_local, "Your function returns its input unchanged: LOCAL rows are (v, ω). " + V_FIRST),
+        Mistake("rotated_to_world", blockdiag(R, R) @ J_b,
+                "Your function rotates the halves into the world axes. LOCAL is already expressed in the tool "
+                "frame, like J_b: only the row order differs."),
+    ]
+    return (J_local,), J_b, mistakes
+
+
+register_code("ch07_ex4", "Code: from Pinocchio's conventions", [
+    CodeVariant("Pinocchio's `WORLD` Jacobian is the space Jacobian with rows $(v, \\omega)$. Write "
+                "`from_pinocchio(J)` that takes it and returns the Modern Robotics space Jacobian $J_s$ "
+                "($6\\times n$, numpy). Set `answer = from_pinocchio`.",
+                ref_from_pinocchio_world, chain_case(_world_case), "from_pinocchio", "space Jacobian",
+                {"pinocchio_frame": "WORLD"}),
+    CodeVariant("Pinocchio's `LOCAL` Jacobian of the tool frame is the body Jacobian with rows $(v, \\omega)$. "
+                "Write `from_pinocchio(J)` that takes it and returns the Modern Robotics body Jacobian $J_b$ "
+                "($6\\times n$, numpy). Set `answer = from_pinocchio`.",
+                ref_from_pinocchio_world, chain_case(_local_case), "from_pinocchio", "body Jacobian",
+                {"pinocchio_frame": "LOCAL"}),
+])

@@ -13,8 +13,8 @@ from jacobians.grading import Exercise, Mistake, numeric_exercise
 from ._kinematics import DEG, Array, adj, blockdiag, expS, fk, inv_T, planar_chain, space_jac
 from ._latex import degs, vec
 from ._mistakes import degrees_mistake, swap_mistake
-from ._registry import register, register_code
-from ._variants import angles_deg, chain_case, lengths, planar_pose
+from ._registry import CodeVariant, register, register_code
+from ._variants import LAYOUT_TEXT, angles_deg, layout_cases, lengths, planar_pose
 
 
 def link_space_jacobians(S: ArrayLike, theta: ArrayLike) -> Array:
@@ -135,7 +135,6 @@ def _ch08_ex3(rng: Generator) -> Exercise:
                             {"lengths": ls, "masses": ms, "theta_deg": th_deg}, ref, mistakes, what="mass matrix")
 
 
-@chain_case
 def _links_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
     ref = link_space_jacobians(S, th)
     J_s = space_jac(S, th)
@@ -151,10 +150,12 @@ def _links_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, li
     return (S, th), ref, mistakes
 
 
-register_code(
-    "ch08_ex4", "Code: the Jacobians of every link",
-    "Write `my_link_jacobians(S, theta)` returning an array of shape $(n, 6, n)$ whose entry `[i]` is the "
-    "space Jacobian of link $i+1$ (0-based `i`). You may call `jacobians.space_jacobian` with "
-    "`jacobians.SerialChain(S, np.eye(4))`, but not `link_jacobians`. Set `answer = my_link_jacobians`.",
-    reference=link_space_jacobians, make_case=_links_case, fn_name="my_link_jacobians",
-    what="stack of link Jacobians")
+register_code("ch08_ex4", "Code: the Jacobians of every link", [
+    CodeVariant(f"Write `my_link_jacobians(S, theta)`: `S` is {LAYOUT_TEXT[layout]}, `theta` a length-$n$ array; "
+                "return an array of shape $(n, 6, n)$ whose entry `[i]` is the space Jacobian of link $i+1$ "
+                "(0-based `i`). You may call `jacobians.space_jacobian` with `jacobians.SerialChain(S, np.eye(4))` "
+                "(which wants the axes as columns), but not `link_jacobians`. Set `answer = my_link_jacobians`.",
+                link_space_jacobians if layout == "columns"
+                else (lambda S, th: link_space_jacobians(np.asarray(S).T, th)),
+                case, "my_link_jacobians", "stack of link Jacobians", {"layout": layout})
+    for layout, case in layout_cases(_links_case).items()])

@@ -6,12 +6,13 @@ import numpy as np
 from numpy.random import Generator
 from numpy.typing import ArrayLike
 
-from jacobians.grading import Case, Exercise, Feedback, Mistake, numeric_exercise, predicate_exercise
+from jacobians.grading import Case, Exercise, Mistake, numeric_exercise, scalar_exercise
+from jacobians.grading.exercise import Interval
 
 from ._kinematics import DEG, Array, adj
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake
-from ._registry import register, register_code
+from ._registry import CodeVariant, register, register_code
 from ._variants import angles_deg, lengths, spatial_5r_pose
 
 
@@ -92,6 +93,9 @@ def _ch09_ex3(rng: Generator) -> Exercise:
         Mistake("no_sqrt", np.linalg.det(Jv @ Jv.T), "You gave det(J Jᵀ); the manipulability is its square root."),
         degrees_mistake(np.sqrt(abs(np.linalg.det(Jd @ Jd.T)))),
         Mistake("trace", np.sqrt(np.trace(Jv @ Jv.T)), "You used the trace; the manipulability uses the determinant."),
+        Mistake("theta1_for_theta2", ls[0] * ls[1] * abs(np.sin(th_deg[0] * DEG)),
+                "You used θ1 where θ2 belongs: det J_v of a planar 2R arm depends on the elbow angle θ2 only, "
+                "not on θ1."),
     ]
     st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Give Yoshikawa's "
           "manipulability $w = \\sqrt{\\det(J_v J_v^T)}$ of its $2\\times2$ position Jacobian $J_v$.")
@@ -105,7 +109,7 @@ def ref_dls_rates(J: ArrayLike, V: ArrayLike, lam: float) -> Array:
     return J.T @ np.linalg.solve(J @ J.T + lam ** 2 * np.eye(J.shape[0]), np.asarray(V, float))
 
 
-def _dls_case(rng: Generator) -> Case:
+def _dls_case(rng: Generator, damping: str) -> Case:
     m = int(rng.integers(2, 7))
     n = int(rng.integers(2, 8))
     J = rng.normal(size=(m, n))
@@ -117,19 +121,37 @@ def _dls_case(rng: Generator) -> Case:
     mistakes = [
         Mistake("no_damping", np.linalg.pinv(J) @ V, "Your function returns the pseudoinverse solution: the "
                 "damping term is missing."),
-        Mistake("lambda_not_squared", ref_dls_rates(J, V, np.sqrt(lam)),
-                "The damping enters squared: Jᵀ(J Jᵀ + λ² I)⁻¹V."),
         Mistake("transpose_only", J.T @ V, "Your function returns JᵀV, without the inverse."),
     ]
-    return Case((J, V, lam), ref, mistakes, f"a random {m}x{n} J, lambda = {lam}")
+    if damping == "lambda":
+        mistakes.append(Mistake("lambda_not_squared", ref_dls_rates(J, V, np.sqrt(lam)),
+                                "The damping enters squared: Jᵀ(J Jᵀ + λ² I)⁻¹V."))
+        return Case((J, V, lam), ref, mistakes, f"a random {m}x{n} J, lam = {lam}")
+    mu = lam ** 2
+    mistakes.append(Mistake("mu_squared", ref_dls_rates(J, V, mu),
+                            "You squared μ: in this variant the argument is already μ = λ², so the matrix to "
+                            "invert is J Jᵀ + μ I."))
+    return Case((J, V, mu), ref, mistakes, f"a random {m}x{n} J, mu = {mu:g}")
 
 
-register_code(
-    "ch09_ex4", "Code: damped least squares",
-    "Write `my_dls_rates(J, V, lam)` returning the damped least-squares joint rates "
-    "$\\dot\\theta = J^T(JJ^T + \\lambda^2 I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ `V` and "
-    "damping `lam` > 0. Set `answer = my_dls_rates`.",
-    reference=ref_dls_rates, make_case=_dls_case, fn_name="my_dls_rates", what="joint rates")
+def ref_dls_rates_mu(J: ArrayLike, V: ArrayLike, mu: float) -> Array:
+    """Reference of the second variant: the damping given as mu = lambda^2."""
+    return ref_dls_rates(J, V, float(np.sqrt(mu)))
+
+
+register_code("ch09_ex4", "Code: damped least squares", [
+    CodeVariant("Write `my_dls_rates(J, V, lam)` returning the damped least-squares joint rates "
+                "$\\dot\\theta = J^T(JJ^T + \\lambda^2 I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ "
+                "`V` and damping `lam` $= \\lambda > 0$. Set `answer = my_dls_rates`.",
+                ref_dls_rates, lambda rng: _dls_case(rng, "lambda"), "my_dls_rates", "joint rates",
+                {"damping": "lambda"}),
+    CodeVariant("Write `my_dls_rates(J, V, mu)` returning the damped least-squares joint rates "
+                "$\\dot\\theta = J^T(JJ^T + \\mu I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ "
+                "`V` and damping `mu` $= \\mu = \\lambda^2 > 0$ (given already squared). "
+                "Set `answer = my_dls_rates`.",
+                ref_dls_rates_mu, lambda rng: _dls_case(rng, "mu"), "my_dls_rates", "joint rates",
+                {"damping": "mu"}),
+])
 
 
 @register("ch09_ex5")
@@ -154,27 +176,22 @@ def _ch09_ex5(rng: Generator) -> Exercise:
 def _ch09_ex6(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     th1 = float(angles_deg(rng, 1)[0])
-
-    def predicate(arr: Array) -> Feedback:
-        if arr.size != 1:
-            return Feedback(False, f"Give one number, θ₂ in radians; you gave {arr.size} values.",
-                            mistake="wrong_shape")
-        x = float(arr.ravel()[0])
-        s = abs(np.sin(x))
-        if s < 1e-3 and abs(np.cos(x) - 1) < 1e-3:
-            return Feedback(False, "θ₂ = 0 (arm stretched) is singular, but the exercise asks for the other "
-                            "one in (0, 2π).", mistake="excluded_zero")
-        if s < 1e-3:
-            return Feedback(True, "Right: with θ₂ = π the arm is folded back and det J_v = l1 l2 sin θ₂ = 0.",
-                            "correct")
-        if abs(x) > 2 * np.pi + 0.01 and abs(np.sin(x * DEG)) < 1e-3:
-            return Feedback(False, "This looks like an angle in degrees; give it in radians.",
-                            mistake="degrees_for_radians")
-        return Feedback(False, f"At θ₂ = {x:.4g} rad det J_v is not zero: write det J_v as a function of "
-                        "θ₂ and find where it vanishes.", mistake="not_singular")
-
+    mistakes = [
+        Mistake("excluded_zero", 0.0, "θ₂ = 0 (the arm stretched out) is singular, but the statement leaves it "
+                "out and asks for the other singular value, in (0, 2π)."),
+        Mistake("excluded_two_pi", 2 * np.pi, "θ₂ = 2π is the stretched-out arm again (the same as θ₂ = 0), which "
+                "the statement leaves out; the range (0, 2π) excludes it."),
+        Mistake("degrees_for_radians", 180.0, "This is the angle in degrees; the exercise asks for radians "
+                "(multiply by π/180)."),
+    ]
+    if abs(np.sin(th1 * DEG)) > 0.05:
+        mistakes.append(Mistake("theta1_for_theta2", th1 * DEG, "This is θ₁ (in radians), which the statement gives; "
+                                "the exercise asks for θ₂. The singularity depends on θ₂ only."))
     st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ has $\\theta_1 = {int(th1)}^\\circ$. Apart from $\\theta_2 = 0$, "
-          "give the value of $\\theta_2$ in radians, between 0 and $2\\pi$, at which its position Jacobian is "
+          "give the value of $\\theta_2$ in radians, in the range $(0, 2\\pi)$, at which its position Jacobian is "
           "singular.")
-    return predicate_exercise("A singular configuration", st, {"lengths": ls, "theta1_deg": th1}, np.pi, predicate,
-                              what="angle")
+    return scalar_exercise("A singular configuration", st, {"lengths": ls, "theta1_deg": th1}, [np.pi], mistakes,
+                           interval=Interval(0.0, 2 * np.pi, "(0, 2π)"), outside=[-np.pi, 3 * np.pi, -3 * np.pi],
+                           what="angle", decimals=2,
+                           hint="Write det J_v as a function of θ₂ (it is l₁ l₂ sin θ₂ for this arm) and find where it "
+                           "vanishes in the range asked.")

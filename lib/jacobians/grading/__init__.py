@@ -26,10 +26,16 @@ What the checker promises:
   loop): it returns a :class:`Feedback`;
 * it never evaluates text (a string answer is refused politely, never
   sympified) and never changes the answer it is given (it works on copies);
+* a numeric exercise states the precision it wants (``decimals``): an
+  answer rounded to it is right, and an answer right only to the fewer
+  decimals it was given in is asked for more decimals, not called wrong;
 * a wrong answer is compared with each mistake of the exercise's catalogue,
   computed from the reference for that variant; the message says what to
-  look at, not the answer. Otherwise a single wrong entry is located by row
-  and column.
+  look at, not the answer, and never repeats the student's value. Otherwise
+  the wrong entries are located by row and column, with what to check;
+* the seed may be any text (a student ID): it is hashed stably, and every
+  exercise draws from its own stream (a SeedSequence of the seed's hash and
+  the id's hash).
 
 Symbolic answers (sympy expressions or matrices in the exercise's symbols)
 are compared by simplification and by evaluation at random points; function
@@ -47,11 +53,20 @@ refusal), :mod:`~jacobians.grading.compare` (reference and mistakes),
 from __future__ import annotations
 
 from .answers import MAX_ENTRIES
-from .catalogue import SEED_ENV, Catalogue
+from .catalogue import Catalogue, exercise_entropy, seed_value, stable_hash
 from .compare import Mistake, compare
-from .exercise import Case, Exercise, function_exercise, numeric_exercise, predicate_exercise, symbolic_exercise
+from .exercise import (
+                       Case,
+                       Exercise,
+                       function_exercise,
+                       numeric_exercise,
+                       predicate_exercise,
+                       scalar_exercise,
+                       symbolic_exercise,
+)
 from .feedback import Feedback
 from .sandbox import TIME_LIMIT
 
-__all__ = ["MAX_ENTRIES", "SEED_ENV", "TIME_LIMIT", "Case", "Catalogue", "Exercise", "Feedback", "Mistake",
-           "compare", "function_exercise", "numeric_exercise", "predicate_exercise", "symbolic_exercise"]
+__all__ = ["MAX_ENTRIES", "TIME_LIMIT", "Case", "Catalogue", "Exercise", "Feedback", "Mistake", "compare",
+           "exercise_entropy", "function_exercise", "numeric_exercise", "predicate_exercise", "scalar_exercise",
+           "seed_value", "stable_hash", "symbolic_exercise"]

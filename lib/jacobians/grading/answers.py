@@ -102,7 +102,7 @@ def _sympy_number(x: Any, subs: dict[str, float] | None) -> float:
                 raise Refused(
                     f"Your answer uses the symbol(s) {', '.join(unknown)}, which this exercise does not "
                     f"define. Use only: {', '.join(sorted(subs))}.")
-            expr = expr.subs({s: subs[str(s)] for s in free})
+            expr = expr.xreplace({s: sp.Float(subs[str(s)]) for s in free})
         elif expr.free_symbols:
             names = ", ".join(sorted(str(s) for s in expr.free_symbols))
             raise Refused(f"This exercise wants numbers, but your answer still contains the symbol(s) "

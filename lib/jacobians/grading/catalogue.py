@@ -9,9 +9,11 @@ which fills a :class:`Catalogue`; this module only knows builders, seeds and ids
 ... def _double(rng):
 ...     x = float(rng.integers(1, 9))
 ...     return numeric_exercise("Double", f"Give $2 \\\\times {x:g}$.", {"x": x}, 2 * x, [])
->>> ex = toy.load("ch01_ex1", seed=3)
->>> toy.check("ch01_ex1", 2 * ex.given["x"], seed=3).correct
+>>> ex = toy.load("ch01_ex1", seed="s1234567")
+>>> toy.check("ch01_ex1", 2 * ex.given["x"], seed="s1234567").correct
 True
+>>> ex.seed, toy.load("ch01_ex1", seed=3).seed
+('s1234567', '3')
 >>> toy.check("ch01_ex1", None, seed=3).kind
 'empty'
 >>> toy.check("ch99_ex1", 1).kind
@@ -20,6 +22,7 @@ True
 
 from __future__ import annotations
 
+import hashlib
 import numbers
 from collections.abc import Callable
 from typing import Any
@@ -30,24 +33,48 @@ from .compare import distinct_mistakes
 from .exercise import Exercise
 from .feedback import Feedback
 
-__all__ = ["SEED_ENV", "Builder", "Catalogue", "seed_value"]
+__all__ = ["Builder", "Catalogue", "exercise_entropy", "seed_value", "stable_hash"]
 
-#: Environment variable the notebooks read their seed from.
-SEED_ENV = "JACOBIANS_SEED"
+#: Longest seed (student ID) accepted, in characters.
+MAX_SEED_LENGTH = 200
 
 #: A builder draws one variant of an exercise from a seeded generator.
 Builder = Callable[[np.random.Generator], Exercise]
 
 
-def seed_value(seed: object) -> int:
-    """A seed checked: ``None`` is 0; otherwise a non-negative int (TypeError / ValueError if not)."""
+def seed_value(seed: object) -> str:
+    """A seed checked and written as text: any string (a student ID, stripped of surrounding spaces) or a
+    non-negative int (``5`` and ``"5"`` are the same seed); ``None`` is ``"0"``.
+
+    Raises TypeError for other types and ValueError for an empty or overlong string or a negative int.
+    """
     if seed is None:
-        return 0
+        return "0"
+    if isinstance(seed, str):
+        text = seed.strip()
+        if not text:
+            raise ValueError("Expected a seed such as your student ID, got an empty string")
+        if len(text) > MAX_SEED_LENGTH:
+            raise ValueError(f"Expected a seed of at most {MAX_SEED_LENGTH} characters, got {len(text)}")
+        return text
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
-        raise TypeError(f"Expected an int seed, got {type(seed).__name__} {seed!r}"[:120])
+        raise TypeError(f"Expected a seed that is a string (your student ID) or an int, got "
+                        f"{type(seed).__name__} {seed!r}"[:160])
     if seed < 0:
         raise ValueError(f"Expected a non-negative seed, got {seed}")
-    return int(seed)
+    return str(int(seed))
+
+
+def stable_hash(text: str) -> int:
+    """A 64-bit hash of ``text`` that is the same in every process and on every machine (SHA-256;
+    Python's own ``hash`` of a string is salted per process)."""
+    return int.from_bytes(hashlib.sha256(text.encode("utf-8")).digest()[:8], "big")
+
+
+def exercise_entropy(seed: object, exercise_id: str) -> tuple[int, int]:
+    """The entropy of one exercise's random stream for ``seed``: the stable hashes of the seed and of the
+    id, so every exercise draws from its own stream (a :class:`numpy.random.SeedSequence` of both)."""
+    return stable_hash("seed:" + seed_value(seed)), stable_hash("exercise:" + exercise_id)
 
 
 def _order(exercise_id: str) -> tuple[str, int]:
@@ -84,7 +111,7 @@ class Catalogue:
     def __len__(self) -> int:
         return len(self._builders)
 
-    def load(self, exercise_id: str, seed: int | None = None) -> Exercise:
+    def load(self, exercise_id: str, seed: int | str | None = None) -> Exercise:
         """The variant of ``exercise_id`` for ``seed`` (same seed, same numbers).
 
         Raises ``KeyError`` for an unknown id and ``TypeError``/``ValueError`` for a
@@ -95,15 +122,17 @@ class Catalogue:
         if exercise_id not in self._builders:
             raise KeyError(f"Unknown exercise {exercise_id!r}; known: {', '.join(self.ids())}")
         s = seed_value(seed)
-        rng = np.random.default_rng([s, sum(map(ord, exercise_id))])
+        entropy = exercise_entropy(s, exercise_id)
+        rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence(list(entropy))))
         ex = self._builders[exercise_id](rng)
         ex.id = exercise_id
         ex.seed = s
+        ex.entropy = entropy
         if ex.kind == "numeric":
-            ex.mistakes = distinct_mistakes(ex.reference, ex.mistakes, ex.rtol, ex.atol)
+            ex.mistakes = distinct_mistakes(ex.reference, ex.mistakes, ex.rtol, ex.atol, ex.decimals)
         return ex
 
-    def check(self, exercise_id: str, answer: Any, *, seed: int | None = None) -> Feedback:
+    def check(self, exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Feedback:
         """Grade ``answer`` for the variant ``seed`` of ``exercise_id``; returns a :class:`Feedback`.
 
         Never raises for any ``answer``. An unknown ``exercise_id`` or a bad seed
@@ -113,5 +142,6 @@ class Catalogue:
         try:
             ex = self.load(exercise_id, seed=seed)
         except Exception as exc:
-            return Feedback(False, f"Cannot load this exercise: {exc}", "invalid", exercise_id=str(exercise_id)[:40])
+            return Feedback(False, f"Cannot load this exercise: {exc}", "invalid", exercise_id=str(exercise_id)[:40],
+                            seed=str(seed)[:MAX_SEED_LENGTH])
         return ex.check(answer)

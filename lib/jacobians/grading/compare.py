@@ -9,8 +9,10 @@ tried: wrong shape, transposed, columns in the wrong order, one wrong entry
 >>> ref = np.array([[1.0, 2.0], [3.0, 4.0]])
 >>> compare(ref.T, ref, [], 1e-6, 1e-8, "matrix").mistake
 'transposed'
->>> compare(np.array([[1.0, 2.0], [3.0, 5.0]]), ref, [], 1e-6, 1e-8, "matrix").message
-'Almost: the entry in row 2, column 2 (counting from 1) is wrong; every other entry is right.'
+>>> compare(np.array([[1.0, 2.0], [3.0, 5.0]]), ref, [], 1e-6, 1e-8, "matrix").message[:63]
+'Almost: the entry in row 2, column 2 (counting from 1) is wrong'
+>>> compare(np.array([1.23, 2.0]), np.array([1.23456, 2.0]), [], 0, 0, "vector", decimals=3).mistake
+'too_few_decimals'
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ from numpy.typing import NDArray
 
 from .feedback import Feedback, verdict
 
-__all__ = ["Mistake", "compare", "distinct_mistakes"]
+__all__ = ["Mistake", "compare", "distinct_mistakes", "given_decimals", "precision_message", "tolerance"]
 
 
 @dataclass
@@ -35,27 +37,30 @@ class Mistake:
     message: str
 
 
-def _close(a: NDArray[np.float64], b: NDArray[np.float64], rtol: float, atol: float) -> bool:
-    return a.shape == b.shape and bool(np.all(np.abs(a - b) <= atol + rtol * np.abs(b)))
+def _close_tol(a: NDArray[np.float64], b: NDArray[np.float64], tol: Any) -> bool:
+    tol = np.asarray(tol, dtype=float)
+    return a.shape == b.shape and tol.shape in ((), b.shape) and bool(np.all(np.abs(a - b) <= tol))
 
 
 _TRANSPOSED = "Your matrix is the transpose of the right one: rows and columns are swapped."
 
 
-def _shape_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], rtol: float, atol: float,
+def _shape_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], tol: NDArray[np.float64],
                     what: str) -> Feedback | None:
     """Wrong shape, transposed or columns in the wrong order; None if none of these."""
     if ans.shape != ref.shape:
-        if ref.ndim == 2 and ans.shape == ref.shape[::-1] and _close(ans.T, ref, rtol, atol):
+        if ref.ndim == 2 and ans.shape == ref.shape[::-1] and _close_tol(ans.T, ref, tol):
             return verdict(False, _TRANSPOSED, mistake="transposed")
-        layout = " (6 rows (omega, v), one column per joint)." if ref.ndim == 2 and ref.shape[0] == 6 else "."
+        jacobian = ref.ndim == 2 and ref.shape[0] == 6 and "Jacobian" in what
+        layout = (" (6 rows (ω, v), one column per joint)." if jacobian
+                  else ": check how many rows and columns the statement asks for.")
         return verdict(False, f"Your answer has shape {ans.shape}, but this {what} has shape {ref.shape}" + layout,
                        mistake="wrong_shape")
-    if ref.ndim == 2 and ref.shape[0] == ref.shape[1] and _close(ans.T, ref, rtol, atol):
+    if ref.ndim == 2 and ref.shape[0] == ref.shape[1] and _close_tol(ans.T, ref, tol):
         return verdict(False, _TRANSPOSED, mistake="transposed")
     if ref.ndim == 2 and ref.shape[1] > 1:
         # Columns in the wrong order: every column matches some other column.
-        perm = [[k for k in range(ref.shape[1]) if _close(ans[:, j], ref[:, k], rtol, atol)]
+        perm = [[k for k in range(ref.shape[1]) if _close_tol(ans[:, j], ref[:, k], tol[:, k] if tol.ndim else tol)]
                 for j in range(ref.shape[1])]
         if all(perm) and not all(j in h for j, h in enumerate(perm)):
             return verdict(False, "Every column you gave is a right column, but in the wrong place: check the "
@@ -63,13 +68,27 @@ def _shape_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], rtol: fl
     return None
 
 
-def _entries_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], rtol: float, atol: float,
-                      entry_hint: str) -> Feedback:
-    """Which entries are wrong, for an answer of the right shape."""
-    bad = ~(np.abs(ans - ref) <= atol + rtol * np.abs(ref))
+def _rows_text(bad_rows: list[int]) -> str:
+    """Which half of a twist column the wrong rows are in (rows 1-3 angular, 4-6 linear)."""
+    ang = any(r < 3 for r in bad_rows)
+    lin = any(r >= 3 for r in bad_rows)
+    if ang and lin:
+        return "in both the angular rows 1-3 and the linear rows 4-6"
+    return "in the angular rows 1-3 (ω)" if ang else "in the linear rows 4-6 (v)"
+
+
+def _entries_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], tol: NDArray[np.float64],
+                      what: str, entry_hint: str) -> Feedback:
+    """Which entries are wrong, for an answer of the right shape, with what to check."""
+    bad = ~(np.abs(ans - ref) <= tol)
     nbad = int(bad.sum())
+    twist_rows = ref.ndim >= 1 and ref.shape[0] == 6
     if ref.ndim == 0:
-        return verdict(False, f"Your value is not right. {entry_hint}".strip(), mistake="wrong_value")
+        side = "too large" if ans > ref else "too small"
+        hint = entry_hint or f"Redo the computation step by step and check each quantity that enters your {what}."
+        return verdict(False, f"Your {what} is {side}. {hint}", mistake="wrong_value")
+    if not entry_hint:
+        entry_hint = "Check the wrong entries' joint, frame and sign against the definition."
     if nbad == 1:
         idx = tuple(int(i[0]) for i in np.nonzero(bad))
         if ref.ndim == 1:
@@ -78,30 +97,71 @@ def _entries_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], rtol: 
             where = f"the entry in row {idx[0] + 1}, column {idx[1] + 1} (counting from 1)"
         else:
             where = "the entry at index " + ", ".join(str(i + 1) for i in idx) + " (counting from 1)"
-        return verdict(False, f"Almost: {where} is wrong; every other entry is right. {entry_hint}".strip(),
+        return verdict(False, f"Almost: {where} is wrong; every other entry is right. {entry_hint}",
                        mistake="wrong_entry")
     if ref.ndim == 3:
         blocks = [i for i in range(ref.shape[0]) if bad[i].any()]
         return verdict(False, f"{nbad} entries are wrong, in block(s) {', '.join(str(i + 1) for i in blocks)} "
-                       f"(first index, counting from 1). {entry_hint}".strip(), mistake="wrong_entries")
+                       f"(first index, counting from 1). {entry_hint}", mistake="wrong_entries")
     if ref.ndim == 2:
         cols = [j for j in range(ref.shape[1]) if bad[:, j].any()]
         good = [j for j in range(ref.shape[1]) if j not in cols]
         msg = f"{nbad} entries are wrong, in column(s) {', '.join(str(j + 1) for j in cols)}"
+        if twist_rows:
+            msg += " " + _rows_text([int(r) for r in np.nonzero(bad.any(axis=1))[0]])
         if good:
             msg += f"; column(s) {', '.join(str(j + 1) for j in good)} are right"
-        return verdict(False, msg + f". {entry_hint}".rstrip(), mistake="wrong_entries")
-    idx_txt = ", ".join(str(i + 1) for i in np.nonzero(bad.ravel())[0])
-    return verdict(False, f"Entries {idx_txt} (counting from 1) are wrong. {entry_hint}".strip(),
+        return verdict(False, msg + f". {entry_hint}", mistake="wrong_entries")
+    rows = [int(i) for i in np.nonzero(bad.ravel())[0]]
+    idx_txt = ", ".join(str(i + 1) for i in rows)
+    extra = f", {_rows_text(rows)}" if twist_rows else ""
+    return verdict(False, f"Entries {idx_txt} (counting from 1) are wrong{extra}. {entry_hint}",
                    mistake="wrong_entries")
 
 
+def given_decimals(ans: NDArray[np.float64], most: int) -> int | None:
+    """The number of decimals the answer was given to, if fewer than ``most`` (None: ``most`` or more).
+
+    An answer whose every entry is a multiple of 10^-k was rounded to k decimals.
+    """
+    for k in range(most):
+        scaled = ans * 10.0 ** k
+        if np.all(np.abs(scaled - np.round(scaled)) <= 1e-6 * np.maximum(1.0, np.abs(scaled))):
+            return k
+    return None
+
+
+def tolerance(ref: NDArray[np.float64], decimals: int | None, rtol: float, atol: float) -> NDArray[np.float64]:
+    """Entry-wise tolerance: half a unit of the ``decimals``-th decimal (an answer rounded to that many
+    decimals is right), or ``atol + rtol |ref|`` without a stated precision."""
+    if decimals is None:
+        return atol + rtol * np.abs(ref)
+    return 0.5 * 10.0 ** (-decimals) * (1 + 1e-6) + 1e-5 * np.abs(ref)
+
+
+def _within(a: NDArray[np.float64], b: NDArray[np.float64], tol: NDArray[np.float64] | float) -> bool:
+    return a.shape == b.shape and bool(np.all(np.abs(a - b) <= tol))
+
+
+def precision_message(what: str, given: int, asked: int) -> str:
+    """The message for an answer right to the decimals it was given in, but fewer than asked."""
+    dec = "decimal" if given == 1 else "decimals"
+    return (f"Your {what} agrees with the reference to the {given} {dec} you gave, but this exercise asks "
+            f"for {asked} decimals: give more decimals (keep the digits your computation gives, or round "
+            f"to {asked}).")
+
+
 def compare(ans: NDArray[np.float64], ref: Any, mistakes: list[Mistake], rtol: float, atol: float,
-            what: str, entry_hint: str = "") -> Feedback:
+            what: str, entry_hint: str = "", decimals: int | None = None) -> Feedback:
     """Grade a float array against the reference and the catalogue of mistakes.
 
-    Vectors are accepted as ``(n,)``, ``(n, 1)`` or ``(1, n)`` alike; a
-    catalogued mistake wins over the generic ones; NaN or inf is never right.
+    With ``decimals`` (the precision the statement asks for), an answer within
+    half a unit of that decimal is right, and an answer given to fewer
+    decimals that agrees with the reference to the decimals it has is told to
+    give more decimals. Without it, ``rtol`` and ``atol`` decide (code and
+    symbolic answers, compared tightly). Vectors are accepted as ``(n,)``,
+    ``(n, 1)`` or ``(1, n)`` alike; a catalogued mistake wins over the generic
+    ones; NaN or inf is never right.
     """
     ref = np.asarray(ref, dtype=float)
     if ref.ndim == 1 and ans.size == ref.size and ans.ndim <= 2 and (ans.ndim == 1 or 1 in ans.shape):
@@ -111,27 +171,44 @@ def compare(ans: NDArray[np.float64], ref: Any, mistakes: list[Mistake], rtol: f
     if not np.all(np.isfinite(ans)):
         return verdict(False, "Your answer contains NaN or inf: check for a division by zero or an unset entry.",
                        mistake="not_finite")
-    if _close(ans, ref, rtol, atol):
+    tol = tolerance(ref, decimals, rtol, atol)
+    if _within(ans, ref, tol):
         return verdict(True, f"Your {what} matches the reference.")
-    for m in mistakes:
-        mv = np.asarray(m.value, dtype=float)
-        if mv.shape == ans.shape and _close(ans, mv, rtol, atol):
+    values = [(m, np.asarray(m.value, dtype=float)) for m in mistakes]
+    for m, mv in values:  # a catalogued mistake, to the precision asked
+        if mv.shape == ans.shape and _within(ans, mv, tolerance(mv, decimals, rtol, atol)):
             return verdict(False, m.message, mistake=m.name)
-    by_shape = _shape_feedback(ans, ref, rtol, atol, what)  # (a Feedback is falsy when wrong: test for None)
-    return by_shape if by_shape is not None else _entries_feedback(ans, ref, rtol, atol, entry_hint)
+    k = given_decimals(ans, decimals) if decimals is not None and ans.shape == ref.shape else None
+    if k is not None and decimals is not None and (k > 0 or np.any(ans != 0)):
+        half = 0.5 * 10.0 ** (-k) * (1 + 1e-6)
+        if _within(ans, ref, half + 1e-5 * np.abs(ref)):  # right to the decimals given, too few of them
+            return verdict(False, precision_message(what, k, decimals), mistake="too_few_decimals")
+        for m, mv in values:  # a catalogued mistake, to the decimals given
+            if mv.shape == ans.shape and _within(ans, mv, half + 1e-5 * np.abs(mv)):
+                return verdict(False, m.message, mistake=m.name)
+    by_shape = _shape_feedback(ans, ref, tol, what)  # (a Feedback is falsy when wrong: test for None)
+    return by_shape if by_shape is not None else _entries_feedback(ans, ref, tol, what, entry_hint)
 
 
-def distinct_mistakes(reference: Any, mistakes: list[Mistake], rtol: float, atol: float) -> list[Mistake]:
+def distinct_mistakes(reference: Any, mistakes: list[Mistake], rtol: float, atol: float,
+                      decimals: int | None = None) -> list[Mistake]:
     """The mistakes a variant can tell apart: not equal to the reference (e.g. a sign error in a zero
-    column), not equal to an earlier mistake, and finite."""
+    column), not equal to an earlier mistake, and finite. "Equal" is within a few tolerances (those of
+    ``decimals`` if given), so an answer rounded to the asked precision never matches two of them."""
     ref = np.asarray(reference, dtype=float)
     kept: list[Mistake] = []
+
+    def near(a: NDArray[np.float64], b: NDArray[np.float64]) -> bool:
+        if a.shape != b.shape:
+            return False
+        if decimals is None:
+            return bool(np.allclose(a, b, rtol=5 * rtol, atol=5 * atol))
+        return bool(np.all(np.abs(a - b) <= 3 * tolerance(b, decimals, rtol, atol)))
+
     for m in mistakes:
         mv = np.asarray(m.value, dtype=float)
-        same = mv.shape == ref.shape and np.allclose(mv, ref, rtol=5 * rtol, atol=5 * atol)
-        dup = any(np.asarray(k.value).shape == mv.shape
-                  and np.allclose(np.asarray(k.value, dtype=float), mv, rtol=5 * rtol, atol=5 * atol)
-                  for k in kept)
+        same = near(mv, ref)
+        dup = any(near(np.asarray(k.value, dtype=float), mv) for k in kept)
         if not same and not dup and np.all(np.isfinite(mv)):
             kept.append(m)
     return kept

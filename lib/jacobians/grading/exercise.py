@@ -1,7 +1,8 @@
 """One variant of an exercise, and how it grades an answer of each kind.
 
-Four kinds: ``numeric`` (a number, vector or matrix, compared with a
-tolerance), ``symbolic`` (a sympy expression or matrix in the exercise's
+Five kinds: ``numeric`` (a number, vector or matrix, compared to the
+precision the statement asks for), ``scalar`` (one number, one of several
+right values, within a stated range), ``symbolic`` (a sympy expression or matrix in the exercise's
 symbols, compared at random points and by simplification), ``function`` (a
 student's function, run on seeded random test cases, each a :class:`Case`)
 and ``predicate`` (a number tested by a rule, for answers that are not unique).
@@ -14,6 +15,7 @@ and ``predicate`` (a number tested by a rule, for answers that are not unique).
 from __future__ import annotations
 
 import copy
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
@@ -22,12 +24,29 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .answers import Refused, as_array, describe, is_sympy, sympy
-from .compare import Mistake, compare
+from .compare import Mistake, compare, given_decimals, precision_message
 from .feedback import Feedback, verdict
 from .sandbox import run_guarded
 
-__all__ = ["Case", "Exercise", "function_exercise", "numeric_exercise", "predicate_exercise",
-           "symbolic_exercise"]
+__all__ = ["Case", "Exercise", "Interval", "function_exercise", "numeric_exercise", "predicate_exercise",
+           "scalar_exercise", "symbolic_exercise"]
+
+#: Decimals a numeric answer is asked for unless the exercise says otherwise.
+DECIMALS = 3
+
+
+class Interval(NamedTuple):
+    """An open range ``(low, high)`` a scalar answer must lie in, and how the statement writes it."""
+
+    low: float
+    high: float
+    text: str
+
+
+def precision_sentence(decimals: int, scalar: bool) -> str:
+    """What the statement says about precision."""
+    what = "your value" if scalar else "every entry"
+    return f"Give {what} to {decimals} decimals (or more)."
 
 
 class Case(NamedTuple):
@@ -52,7 +71,13 @@ class Exercise:
         Markdown with LaTeX (``$...$``) giving the task and this variant's numbers.
     given : dict
         The numbers (and symbols) a student needs, as numpy arrays / sympy objects.
-    kind : {"numeric", "symbolic", "function", "predicate"}
+    kind : {"numeric", "scalar", "symbolic", "function", "predicate"}
+    seed : str
+        The seed as text (a student ID, or an int written out).
+    entropy : tuple of int
+        The stable hashes of the seed and the id that seeded this variant's stream.
+    decimals : int or None
+        The precision the statement asks for (numeric and scalar exercises).
     """
 
     id: str
@@ -73,14 +98,24 @@ class Exercise:
     fn_name: str = "your function"
     # predicate exercises: float array -> Feedback
     predicate: Callable[[NDArray[np.float64]], Feedback] | None = None
-    seed: int = 0
+    # scalar exercises: the right values inside the range, right values outside it, the range
+    accepted: list[float] = field(default_factory=list)
+    outside: list[float] = field(default_factory=list)
+    interval: Interval | None = None
+    decimals: int | None = None
+    seed: str = "0"
+    entropy: tuple[int, int] = (0, 0)
 
     # ------------------------------------------------------------ display
     def _repr_markdown_(self) -> str:
-        return f"**{self.title}** (`{self.id}`, variant {self.seed})\n\n{self.statement}"
+        return f"**{self.title}** (`{self.id}`, your variant for seed `{self.seed}`)\n\n{self.statement}"
 
     def __repr__(self) -> str:
-        return f"<Exercise {self.id} seed={self.seed}: {self.title}>"
+        return f"<Exercise {self.id} seed={self.seed!r}: {self.title}>"
+
+    def _rng(self, salt: int) -> np.random.Generator:
+        """A generator of this variant's own (test cases, evaluation points), from its entropy."""
+        return np.random.Generator(np.random.PCG64(np.random.SeedSequence([*self.entropy, salt])))
 
     def solution(self) -> Any:
         """The reference answer (instructors): array, sympy Matrix or function."""
@@ -99,6 +134,9 @@ class Exercise:
             fb = Feedback(False, "The checker could not grade this answer (" + type(exc).__name__ +
                           "). Check that it is a number, a matrix or a function as asked.", "invalid")
         fb.exercise_id = self.id
+        fb.seed = self.seed
+        fb.title = self.title
+        fb.statement = self.statement
         return fb
 
     def _check(self, answer: Any) -> Feedback:
@@ -109,13 +147,47 @@ class Exercise:
         if self.kind == "symbolic":
             return self._check_symbolic(answer)
         arr = as_array(answer)
+        if self.kind == "scalar":
+            return self._check_scalar(arr)
         if self.kind == "predicate":
             if not np.all(np.isfinite(arr)):
                 return verdict(False, "Your answer contains NaN or inf.", mistake="not_finite")
             if self.predicate is None:
                 raise ValueError(f"Exercise {self.id!r} is a predicate exercise without a predicate")
             return self.predicate(arr)
-        return compare(arr, self.reference, self.mistakes, self.rtol, self.atol, self.what, self.hint)
+        return compare(arr, self.reference, self.mistakes, self.rtol, self.atol, self.what, self.hint,
+                       decimals=self.decimals)
+
+    def _check_scalar(self, arr: NDArray[np.float64]) -> Feedback:
+        d = self.decimals if self.decimals is not None else DECIMALS
+        if arr.size != 1:
+            return verdict(False, f"Give one number (the {self.what}); you gave {arr.size} values.",
+                           mistake="wrong_shape")
+        x = float(arr.ravel()[0])
+        if not np.isfinite(x):
+            return verdict(False, "Your answer is NaN or inf: check for a division by zero.", mistake="not_finite")
+        tol = 0.5 * 10.0 ** (-d) * (1 + 1e-6)
+        k = given_decimals(np.asarray(x), d)
+        coarse = 0.5 * 10.0 ** (-k) * (1 + 1e-6) if k is not None else tol
+
+        def near(values: list[float], within: float) -> bool:
+            return any(abs(x - v) <= within for v in values)
+
+        if near(self.accepted, tol):
+            return verdict(True, f"Your {self.what} is right (to the {d} decimals asked).")
+        for m in self.mistakes:
+            if near([float(m.value)], max(tol, coarse if k is not None and k > 0 else tol)):
+                return verdict(False, m.message, mistake=m.name)
+        if self.interval is not None and not self.interval.low < x < self.interval.high:
+            msg = f"The statement asks for a value in {self.interval.text}, and yours lies outside that range."
+            if near(self.outside, max(tol, coarse)):
+                msg += (f" It does give the same configuration as the {self.what} asked for: add or subtract "
+                        "a multiple of 2π to bring it into the range.")
+                return verdict(False, msg, mistake="outside_range")
+            return verdict(False, msg + " " + (self.hint or ""), mistake="outside_range")
+        if k is not None and k > 0 and near(self.accepted, coarse):
+            return verdict(False, precision_message(self.what, k, d), mistake="too_few_decimals")
+        return verdict(False, f"Your {self.what} is not right. {self.hint}".strip(), mistake="wrong_value")
 
     def _check_function(self, fn: Any) -> Feedback:
         if isinstance(fn, (str, bytes)):
@@ -125,7 +197,7 @@ class Exercise:
                           f"`answer = {self.fn_name}`), but you gave {describe(fn)}.")
         if self.make_case is None:
             raise ValueError(f"Exercise {self.id!r} is a function exercise without test cases")
-        rng = np.random.default_rng(self.seed + 1000)
+        rng = self._rng(1000)
         for case in range(self.n_cases):
             args, ref, mistakes, label = self.make_case(rng)
             ok, out = run_guarded(fn, copy.deepcopy(args))
@@ -150,8 +222,15 @@ class Exercise:
         sp = sympy()
         ref = self.reference
         names = {str(s): s for s in self.symbols.values()}
+        answer = _sympy_array_as_matrix(answer, ref)
+        free = _free_symbol_names(answer)
+        wanted = sorted(str(s) for s in ref.free_symbols)
+        numbers_only = verdict(False, "Your answer holds numbers only, but this exercise asks for a formula in "
+                               f"{', '.join(wanted)}: define the symbols with sympy.symbols and build your matrix "
+                               "from them (no values substituted).", mistake="numbers_for_symbols")
+        catalogued = {m.name for m in self.mistakes}
         # Numeric route first (fast, and it names mistakes): evaluate at random points.
-        rng = np.random.default_rng(self.seed + 77)
+        rng = self._rng(77)
         for _ in range(3):
             point = {name: float(rng.uniform(0.3, 1.4)) * (float(rng.choice([-1, 1])) if name.startswith("th")
                                                            else 1.0)
@@ -160,15 +239,21 @@ class Exercise:
             r = _eval_sym(ref, point)
             ms = [Mistake(m.name, _eval_sym(m.value, point), m.message) for m in self.mistakes]
             result = compare(arr, r, ms, 1e-6, 1e-8, self.what, self.hint)
+            if wanted and not free and (result.correct or result.mistake not in catalogued):
+                return numbers_only
             if not result.correct:
+                missing = [w for w in wanted if w not in free]
+                if result.mistake in ("wrong_entry", "wrong_entries", "wrong_value") and missing:
+                    result.message += (f" Your answer does not depend on {', '.join(missing)}, but the "
+                                       f"{self.what} does.")
                 return result
         # Exact route: the difference simplifies to zero.
         if is_sympy(answer) and isinstance(answer, (sp.MatrixBase, sp.Expr)):
             try:
                 A = answer if isinstance(answer, sp.MatrixBase) else sp.Matrix([answer])
                 sub = {s: names[str(s)] for s in A.free_symbols if str(s) in names}
-                diff = (A.xreplace(sub).reshape(*ref.shape) - ref).applyfunc(sp.simplify)
-                if all(e == 0 for e in diff):
+                diff = sp.Matrix(A).xreplace(sub).reshape(*ref.shape) - ref
+                if all(e == 0 for e in diff) or all(e == 0 for e in diff.applyfunc(sp.simplify)):
                     return verdict(True, f"Your {self.what} simplifies to the reference.")
             except Exception:
                 pass
@@ -176,22 +261,91 @@ class Exercise:
                        f"{', '.join(sorted(names))}.")
 
 
-def _eval_sym(expr: Any, point: dict[str, float]) -> NDArray[np.float64]:
+def _sympy_array_as_matrix(answer: Any, ref: Any) -> Any:
+    """A sympy ``Array`` of two indices becomes a Matrix (accepted like one); of another shape it is refused
+    with a message naming it. Anything else is returned unchanged (ImmutableMatrix is already a matrix)."""
+    if not is_sympy(answer):
+        return answer
     sp = sympy()
-    sub = {s: point[str(s)] for s in expr.free_symbols}
-    val = expr.xreplace(sub) if sub else expr
-    if isinstance(val, sp.MatrixBase):
-        return np.array(val.evalf().tolist(), dtype=float)
-    return np.asarray(float(val.evalf()))
+    if isinstance(answer, sp.NDimArray):
+        shape = tuple(answer.shape)
+        if len(shape) == 2:
+            return sp.Matrix(answer.tolist())
+        want = "x".join(str(n) for n in ref.shape)
+        raise Refused(f"You gave a sympy Array of shape {shape}; this exercise wants a {want} matrix. Give "
+                      f"sympy.Matrix(...) with {ref.shape[0]} rows of {ref.shape[1]} entries (or an Array of "
+                      f"shape {tuple(ref.shape)}).")
+    return answer
+
+
+def _free_symbol_names(answer: Any) -> set[str]:
+    """Names of the sympy symbols anywhere in the answer (a sympy object or nested lists of them)."""
+    out: set[str] = set()
+
+    def rec(x: Any, depth: int) -> None:
+        if depth > 5:
+            return
+        if is_sympy(x) and hasattr(x, "free_symbols"):
+            try:
+                out.update(str(s) for s in x.free_symbols)
+            except Exception:
+                pass
+        elif isinstance(x, (list, tuple)) and len(x) <= 1000:
+            for e in x:
+                rec(e, depth + 1)
+        elif isinstance(x, np.ndarray) and x.dtype.kind == "O" and x.size <= 1000:
+            for e in x.ravel().tolist():
+                rec(e, depth + 1)
+
+    rec(answer, 0)
+    return out
+
+
+@functools.lru_cache(maxsize=512)
+def _compiled(expr: Any) -> tuple[tuple[str, ...], Callable[..., Any]]:
+    """The names of the free symbols of a (hashable) sympy expression or matrix, and a numpy function of them."""
+    sp = sympy()
+    syms = sorted(expr.free_symbols, key=str)
+    return tuple(str(x) for x in syms), sp.lambdify(syms, expr, modules="numpy")
+
+
+def _eval_sym(expr: Any, point: dict[str, float]) -> NDArray[np.float64]:
+    """A reference or mistake (the course's own sympy objects) at a point, compiled once with lambdify."""
+    sp = sympy()
+    key = sp.ImmutableMatrix(expr) if isinstance(expr, sp.MatrixBase) else expr
+    names, fn = _compiled(key)
+    val = np.asarray(fn(*[point[n] for n in names]), dtype=float)
+    if isinstance(expr, sp.MatrixBase):
+        return val.reshape(expr.shape)
+    return val
 
 
 # --------------------------------------------------------------------------- one constructor per kind
 # The id and the seed are set by the catalogue that loads the variant.
 
+def _with_precision(statement: str, decimals: int, scalar: bool) -> str:
+    return statement.rstrip() + " " + precision_sentence(decimals, scalar)
+
+
 def numeric_exercise(title: str, statement: str, given: dict[str, Any], reference: Any,
-                     mistakes: list[Mistake], *, what: str = "answer", hint: str = "") -> Exercise:
-    """A number, vector or matrix, compared with a tolerance of 2e-3 (three typed decimals)."""
-    return Exercise("", title, statement, given, "numeric", reference, mistakes, what=what, hint=hint)
+                     mistakes: list[Mistake], *, what: str = "answer", hint: str = "",
+                     decimals: int = DECIMALS) -> Exercise:
+    """A number, vector or matrix, right to ``decimals`` decimals; the statement gets a sentence saying so."""
+    scalar = np.ndim(reference) == 0
+    return Exercise("", title, _with_precision(statement, decimals, scalar), given, "numeric", reference, mistakes,
+                    what=what, hint=hint, decimals=decimals)
+
+
+def scalar_exercise(title: str, statement: str, given: dict[str, Any], accepted: list[float],
+                    mistakes: list[Mistake], *, interval: Interval | None = None, outside: list[float] | None = None,
+                    what: str = "answer", hint: str = "", decimals: int = DECIMALS) -> Exercise:
+    """One number with possibly several right values (``accepted``, all inside ``interval``). A value outside
+    the interval is told so (and, if it is in ``outside``, that it is right but for a multiple of 2π)."""
+    if interval is not None and not all(interval.low < a < interval.high for a in accepted):
+        raise ValueError(f"Expected every accepted value inside {interval.text}, got {accepted}")
+    return Exercise("", title, _with_precision(statement, decimals, True), given, "scalar", float(accepted[0]),
+                    mistakes, what=what, hint=hint, decimals=decimals, accepted=[float(a) for a in accepted],
+                    outside=[float(o) for o in (outside or [])], interval=interval)
 
 
 def symbolic_exercise(title: str, statement: str, symbols: dict[str, Any], reference: Any,

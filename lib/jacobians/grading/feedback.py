@@ -11,9 +11,10 @@
 from __future__ import annotations
 
 import html
+import re
 from dataclasses import dataclass
 
-__all__ = ["Feedback", "verdict"]
+__all__ = ["Feedback", "statement_html", "verdict"]
 
 #: Heading of the text form, by kind.
 _HEADS = {"correct": "Correct", "empty": "No answer yet", "invalid": "Cannot grade this"}
@@ -27,6 +28,26 @@ _BOXES = {
 }
 
 
+_DISPLAY = re.compile(r"\$\$(.+?)\$\$", re.S)
+_INLINE = re.compile(r"\$(.+?)\$", re.S)
+_CODE = re.compile(r"`([^`]+)`")
+
+
+def statement_html(markdown: str) -> str:
+    r"""A statement (Markdown with ``$...$`` math) as HTML for the feedback box: escaped, math in the
+    ``\( \)`` and ``\[ \]`` delimiters MathJax reads in an HTML output (in Jupyter, and on the book page,
+    whose outputs MathJax only processes inside a ``mathjax_process`` element), code in ``<code>``.
+
+    >>> print(statement_html("Give $x < 1$ in `ans`."))
+    Give \(x &lt; 1\) in <code>ans</code>.
+    """
+    text = html.escape(markdown, quote=False)
+    text = _DISPLAY.sub(lambda m: "\\[" + m.group(1) + "\\]", text)
+    text = _INLINE.sub(lambda m: "\\(" + m.group(1) + "\\)", text)
+    text = _CODE.sub(lambda m: "<code>" + m.group(1) + "</code>", text)
+    return text.replace("\n\n", "<br>")
+
+
 @dataclass
 class Feedback:
     """The checker's verdict: ``.correct`` (bool), ``.message`` (str), ``.kind``.
@@ -35,6 +56,10 @@ class Feedback:
     answer), ``"empty"`` (no answer yet), ``"invalid"`` (not something the
     checker can grade, such as text), and ``mistake`` names the catalogued
     mistake that was recognised (``None`` if none).
+
+    The catalogue also fills in which variant was graded: ``seed`` (the
+    student's seed as text, e.g. their ID), ``title`` and ``statement`` (the
+    Markdown statement of that variant, shown folded in the HTML box).
     """
 
     correct: bool
@@ -42,6 +67,9 @@ class Feedback:
     kind: str = "wrong"
     exercise_id: str = ""
     mistake: str | None = None
+    seed: str = ""
+    title: str = ""
+    statement: str = ""
 
     def __bool__(self) -> bool:
         return self.correct
@@ -58,11 +86,17 @@ class Feedback:
         border, bg, head = _BOXES.get(self.kind, _BOXES["wrong"])
         msg = html.escape(self.message).replace("\n", "<br>")
         ident = html.escape(self.exercise_id)
+        variant = ""
+        if self.statement:
+            who = f" for seed “{html.escape(self.seed)}”" if self.seed else ""
+            variant = (f'<details style="margin-top:0.4em"><summary>The exercise you answered{who}</summary>'
+                       f'<div class="jacobians-feedback-statement mathjax_process" style="overflow-x:auto">'
+                       f'{statement_html(self.statement)}</div></details>')
         return (
             f'<div class="jacobians-feedback jacobians-feedback-{self.kind}" role="status" '
             f'style="border-left:6px solid {border};background:{bg};color:#1a1a1a;'
             f'padding:0.6em 0.9em;margin:0.4em 0;border-radius:4px;font-family:sans-serif">'
-            f'<strong>{head}</strong> <span style="color:#555">({ident})</span><br>{msg}</div>'
+            f'<strong>{head}</strong> <span style="color:#555">({ident})</span><br>{msg}{variant}</div>'
         )
 
 
