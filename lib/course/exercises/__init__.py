@@ -37,10 +37,11 @@ from typing import Any
 
 from jacobians.grading import SEED_ENV, Exercise, Feedback
 
+from . import _progress
 from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09  # noqa: F401  (importing them registers the exercises)
 from ._registry import CATALOGUE
 
-__all__ = ["CATALOGUE", "SEED_ENV", "check", "exercise_ids", "load"]
+__all__ = ["CATALOGUE", "SEED_ENV", "check", "exercise_ids", "load", "summary"]
 
 
 def exercise_ids() -> list[str]:
@@ -63,4 +64,11 @@ def check(exercise_id: str, answer: Any, *, seed: int | None = None) -> Feedback
     An unknown ``exercise_id`` or a bad seed also comes back as feedback (kind
     ``"invalid"``), so a typo in a notebook shows a box, not a traceback.
     """
-    return CATALOGUE.check(exercise_id, answer, seed=seed)
+    feedback = CATALOGUE.check(exercise_id, answer, seed=seed)
+    _progress.record(exercise_id, seed, answer, feedback)  # the session's progress (and make grade's log)
+    return feedback
+
+
+def summary(chapter: str | None = None) -> _progress.Progress:
+    """This session's progress: which exercises (of ``chapter``, e.g. ``"ch02"``) are right, tried, untouched."""
+    return _progress.summary(CATALOGUE.ids(), chapter)
