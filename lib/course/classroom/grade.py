@@ -326,7 +326,7 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
         extra += " (The notebook's own check said correct; the course's reference does not accept this answer.)"
     if entry.get("seed") != sid:
         extra += f" (Checked in the notebook with seed {str(entry.get('seed'))[:40]!r}; graded for the ID's variant.)"
-    kind = "" if fb.correct else f"{fb.kind}: "
+    kind = "" if fb.correct else "not attempted: " if fb.kind == "empty" else f"{fb.kind}: "
     return ("1" if fb.correct else "0"), (kind + str(fb.message) + extra).replace("\n", " ")
 
 
