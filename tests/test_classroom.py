@@ -15,13 +15,13 @@ import nbformat
 import numpy as np
 import pytest
 import sympy as sp
+from tools.bench_grade import string_ids_supported, submission
 
 from course import exercises
 from course.classroom import answers
 from course.classroom.grade import COLUMNS, Row, exercises_of, grade_class, student_id
 from course.classroom.report import report_name
 from course.classroom.sandbox import Limits
-from tools.bench_grade import string_ids_supported, submission
 
 CHAPTER = "02_space_jacobian"
 IDS = ["ch02_ex1", "ch02_ex2", "ch02_ex3", "ch02_ex4"]
@@ -99,10 +99,8 @@ def test_wrong_notebook_every_exercise_wrong_with_the_checkers_message(graded):
     _, rows, _ = graded
     got = _exercise_rows(rows, "b/wrong.ipynb")
     assert list(got) == IDS
-    for eid, r in got.items():
+    for r in got.values():
         assert r.correct == "0" and r.student == str(_id(2)), r
-        ans = answers.decode(answers.encode(np.ones(1)))  # (the codec is exercised elsewhere too)
-        assert ans.shape == (1,)
         assert r.message.startswith("wrong: "), r.message
     assert "shape" in got["ch02_ex4"].message  # the function returned a 6x6 zero matrix
 
@@ -248,3 +246,88 @@ def test_every_exercise_notebook_ends_with_the_progress_cell():
         last = nb.cells[-1]
         chapter = "ch" + path.name[:2]
         assert last.cell_type == "code" and f'exercises.summary("{chapter}")' in last.source, path.name
+
+
+# --------------------------------------------------------------------------- the instructor's page
+def test_the_teaching_page_counts_the_exercises_of_each_chapter_right():
+    import re
+    from collections import Counter
+
+    text = (Path(__file__).resolve().parent.parent / "chapters" / "teaching.md").read_text(encoding="utf-8")
+    rows = re.findall(r"^\| \d+ \| .*?exercises/(\d\d)_\w+` \| (\d+): (.*?) \|$", text, re.M)
+    assert [r[0] for r in rows] == [f"{k:02d}" for k in range(1, 10)]
+    names = {"numeric": "numeric", "predicate": "numeric", "symbolic": "symbolic", "function": "code"}
+    for chapter, total, kinds in rows:
+        ids = [i for i in exercises.exercise_ids() if i.startswith(f"ch{chapter}_")]
+        counted = Counter(names[exercises.load(i, seed=0).kind] for i in ids)
+        said = {kind: int(n) for n, kind in (part.split() for part in kinds.split(", "))}
+        assert int(total) == len(ids) and said == dict(counted), (chapter, said, dict(counted))
+
+
+# --------------------------------------------------------------------------- a function answer, in the sandbox
+_STUDENT_CODE = '''import numpy as np
+SCALE = 2.0
+
+
+def helper(x):
+    return SCALE * np.asarray(x, dtype=float)
+
+
+def my_fn(x):
+    return helper(x) + 1
+
+
+def bad(x):
+    return 1 / 0
+
+
+def slow(x):
+    while True:
+        pass
+'''
+
+
+@pytest.fixture()
+def student_functions(tmp_path):
+    import tempfile
+
+    path = tmp_path / "cell.py"
+    path.write_text(_STUDENT_CODE, encoding="utf-8")
+    ns = {"__name__": "__main__"}
+    exec(compile(_STUDENT_CODE, str(path), "exec"), ns)  # as a notebook cell defines them (module __main__)
+    parent = Path(tempfile.mkdtemp(prefix="sandbox-test-"))
+    parent.chmod(0o711)
+    yield ns, parent
+    import shutil
+
+    shutil.rmtree(parent, ignore_errors=True)
+
+
+def test_a_function_answer_is_collected_with_its_helpers_and_runs_in_the_sandbox(student_functions):
+    from jacobians.grading.sandbox import run_guarded
+
+    from course.classroom.sandbox import SandboxedFunction, make_scratch
+
+    ns, parent = student_functions
+    data = json.loads(json.dumps(answers.encode(ns["my_fn"])))
+    code = answers.decode(data)
+    assert isinstance(code, answers.CodeAnswer) and "def helper" in code.helpers[0]
+    assert ["import", "numpy", "np"] in code.imports and answers.decode(code.constants["SCALE"]) == 2.0
+    fn = SandboxedFunction(code, make_scratch(parent), Limits())
+    try:
+        assert np.array_equal(fn([1, 2]), [3.0, 5.0])
+        ok, out = run_guarded(fn, ([1, 2],))
+        assert ok and np.array_equal(out, [3.0, 5.0])
+    finally:
+        fn.close()
+    bad = SandboxedFunction(answers.decode(answers.encode(ns["bad"])), make_scratch(parent), Limits())
+    try:
+        assert run_guarded(bad, (1,)) == (False, "your function raised ZeroDivisionError: division by zero")
+        assert run_guarded(bad, (1,))[0] is False  # the process lives on after an exception
+    finally:
+        bad.close()
+    slow = SandboxedFunction(answers.decode(answers.encode(ns["slow"])), make_scratch(parent), Limits())
+    ok, out = run_guarded(slow, (1,), limit=1.0)
+    assert not ok and "did not finish within 1 s" in out
+    with pytest.raises(RuntimeError, match="stopped after an earlier failure"):
+        slow(1)  # the looping process was killed, never reused

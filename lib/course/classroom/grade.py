@@ -122,9 +122,10 @@ def student_id(sources: Iterable[str]) -> str | int | None:
             if (isinstance(value, ast.Call) and isinstance(value.func, ast.Name) and value.func.id == "int"
                     and len(value.args) == 1 and isinstance(value.args[0], ast.Call)
                     and len(value.args[0].args) == 2 and isinstance(value.args[0].args[1], ast.Constant)):
+                default = value.args[0].args[1].value
                 try:
-                    return int(value.args[0].args[1].value)
-                except (TypeError, ValueError):
+                    return int(default) if isinstance(default, (str, int)) else None
+                except ValueError:
                     return None
             return None
     return None
@@ -207,8 +208,9 @@ def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: li
     def note(message: str) -> None:
         rows.append(Row(student, rel, "(notebook)", seed, "", message))
 
-    code_cells = [{"cell_type": "code", "source": s, "metadata": {}, "outputs": [], "execution_count": None}
-                  for s in _code_sources(nb)]
+    code_cells: list[dict[str, Any]] = [
+        {"cell_type": "code", "source": s, "metadata": {}, "outputs": [], "execution_count": None}
+        for s in _code_sources(nb)]
     clean = {"nbformat": 4, "nbformat_minor": 5, "metadata": {"kernelspec": {"name": "python3",
              "display_name": "Python 3", "language": "python"}}, "cells": code_cells}
     (scratch / "submission.ipynb").write_text(json.dumps(clean), encoding="utf-8")

@@ -202,7 +202,8 @@ def _environment(scratch: Path, extra: dict[str, str]) -> dict[str, str]:
         "HOME": str(scratch), "TMPDIR": str(scratch / "tmp"), "IPYTHONDIR": str(scratch / ".ipython"),
         "MPLCONFIGDIR": str(scratch / ".matplotlib"), "JUPYTER_RUNTIME_DIR": str(scratch / ".jupyter"),
         "JUPYTER_CONFIG_DIR": str(scratch / ".jupyter"), "XDG_CACHE_HOME": str(scratch / ".cache"),
-        "PYTHONPATH": os.pathsep.join(python[1:]), "PYTHONDONTWRITEBYTECODE": "1", "PYDEVD_DISABLE_FILE_VALIDATION": "1",
+        "PYTHONPATH": os.pathsep.join(python[1:]), "PYTHONDONTWRITEBYTECODE": "1",
+        "PYDEVD_DISABLE_FILE_VALIDATION": "1",
         "MPLBACKEND": "Agg", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
         "MKL_NUM_THREADS": "1", RUN_ENV: uuid.uuid4().hex,
     }
@@ -289,8 +290,8 @@ class SandboxedFunction:
         self.answer = answer
         self.call_timeout = call_timeout
         self._proc: subprocess.Popen[bytes] | None = start(
-            [sandbox_python()[0], "-m", "course.classroom._callee"], scratch, limits, cpu_seconds=limits.notebook_timeout,
-            pipes=True)
+            [sandbox_python()[0], "-m", "course.classroom._callee"], scratch, limits,
+            cpu_seconds=limits.notebook_timeout, pipes=True)
         spec = {"name": answer.name, "source": answer.source, "helpers": answer.helpers, "imports": answer.imports,
                 "constants": answer.constants, "library": answer.library}
         self.error: str | None = None
@@ -350,5 +351,5 @@ class SandboxedFunction:
 
 def _named_error(name: str, text: str) -> Exception:
     safe = "".join(c for c in name if c.isalnum() or c == "_")[:60] or "Exception"
-    cls = type(safe, (Exception,), {})
+    cls: type[Exception] = type(safe, (Exception,), {})
     return cls(text[:300])

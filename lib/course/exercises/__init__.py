@@ -37,8 +37,9 @@ from typing import Any
 
 from jacobians.grading import SEED_ENV, Exercise, Feedback
 
-from . import _progress
 from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09  # noqa: F401  (importing them registers the exercises)
+from ._progress import Progress, record
+from ._progress import summary as _summary
 from ._registry import CATALOGUE
 
 __all__ = ["CATALOGUE", "SEED_ENV", "check", "exercise_ids", "load", "summary"]
@@ -65,10 +66,10 @@ def check(exercise_id: str, answer: Any, *, seed: int | None = None) -> Feedback
     ``"invalid"``), so a typo in a notebook shows a box, not a traceback.
     """
     feedback = CATALOGUE.check(exercise_id, answer, seed=seed)
-    _progress.record(exercise_id, seed, answer, feedback)  # the session's progress (and make grade's log)
+    record(exercise_id, seed, answer, feedback)  # the session's progress (and make grade's log)
     return feedback
 
 
-def summary(chapter: str | None = None) -> _progress.Progress:
+def summary(chapter: str | None = None) -> Progress:
     """This session's progress: which exercises (of ``chapter``, e.g. ``"ch02"``) are right, tried, untouched."""
-    return _progress.summary(CATALOGUE.ids(), chapter)
+    return _summary(CATALOGUE.ids(), chapter)
