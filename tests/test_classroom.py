@@ -44,6 +44,8 @@ def graded(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[Row], d
     root = tmp_path_factory.mktemp("class") / "submissions"
     (root / "a" / "deep" / "folder").mkdir(parents=True)
     (root / "b").mkdir()
+    (root / "reports").mkdir()
+    (root / "reports" / "from-last-year.html").write_text("stale", encoding="utf-8")  # replaced by this run's
     write = nbformat.write
     write(submission(CHAPTER, _id(1), "right"), root / "a" / "right.ipynb")
     write(submission(CHAPTER, _id(2), "wrong"), root / "b" / "wrong.ipynb")
@@ -304,9 +306,8 @@ def student_functions(tmp_path):
 
 
 def test_a_function_answer_is_collected_with_its_helpers_and_runs_in_the_sandbox(student_functions):
-    from jacobians.grading.sandbox import run_guarded
-
     from course.classroom.sandbox import SandboxedFunction, make_scratch
+    from jacobians.grading.sandbox import run_guarded
 
     ns, parent = student_functions
     data = json.loads(json.dumps(answers.encode(ns["my_fn"])))

@@ -42,7 +42,7 @@ def student_page(student: str, rows: Sequence[Any]) -> str:
     e = html.escape
     graded = [r for r in rows if r.correct in ("0", "1")]
     right = sum(r.correct == "1" for r in graded)
-    title = f"Exercises of {student}" if student else "Notebooks without a student ID"
+    title = f"Exercises of student {student}" if student else "Notebooks without a student ID"
     parts = [f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">'
              f'<meta name="viewport" content="width=device-width,initial-scale=1"><title>{e(title)}</title>'
              f"<style>{_CSS}</style></head><body><h1>{e(title)}</h1>"
@@ -62,15 +62,20 @@ def student_page(student: str, rows: Sequence[Any]) -> str:
             for r in ex:
                 verdict = '<td class="v ok">&#10004; right</td>' if r.correct == "1" else \
                     '<td class="v no">&#10008; not yet</td>'
-                parts.append(f"<tr><td><code>{e(r.exercise)}</code></td>{verdict}<td>{e(r.message)}</td></tr>")
+                message = r.message.removeprefix("wrong: ")  # (the verdict column says it)
+                parts.append(f"<tr><td><code>{e(r.exercise)}</code></td>{verdict}<td>{e(message)}</td></tr>")
             parts.append("</tbody></table>")
     parts.append("</body></html>")
     return "\n".join(parts)
 
 
 def write_reports(folder: Path, rows: Sequence[Any]) -> list[Path]:
-    """One page per student (rows without a student ID share one page) in ``folder``; the paths written."""
+    """One page per student (rows without a student ID share one page) in ``folder``; the paths written.
+
+    The pages of an earlier run are removed first, so the folder holds exactly this run's reports."""
     folder.mkdir(parents=True, exist_ok=True)
+    for old in folder.glob("*.html"):
+        old.unlink()
     by: dict[str, list[Any]] = {}
     for r in rows:
         if r.exercise != "(submissions)":

@@ -194,6 +194,10 @@ def _lib_dir() -> str:
     return str(Path(__file__).resolve().parent.parent.parent)  # the folder holding course/ and jacobians/
 
 
+#: The run token of each started process, by pid (the process may be gone when its strays are looked for).
+_TOKENS: dict[int, str] = {}
+
+
 def _environment(scratch: Path, extra: dict[str, str]) -> dict[str, str]:
     python = sandbox_python()
     bin_dir = os.path.dirname(python[0])
@@ -228,20 +232,19 @@ def start(argv: list[str], scratch: Path, limits: Limits, *, cpu_seconds: float,
     kwargs: dict[str, Any] = {}
     if ids:
         kwargs.update(user=ids[0], group=ids[1], extra_groups=[])
-    return subprocess.Popen(
-        argv, cwd=scratch, env=_environment(scratch, env or {}), start_new_session=True,
+    environment = _environment(scratch, env or {})
+    proc = subprocess.Popen(
+        argv, cwd=scratch, env=environment, start_new_session=True,
         preexec_fn=_limiter(limits, cpu_seconds), close_fds=True,
         stdin=subprocess.PIPE if pipes else subprocess.DEVNULL,
         stdout=subprocess.PIPE if pipes else subprocess.DEVNULL, stderr=subprocess.DEVNULL, **kwargs)
+    _TOKENS[proc.pid] = environment[RUN_ENV]
+    return proc
 
 
 def kill_tree(proc: subprocess.Popen[bytes]) -> None:
     """Kill ``proc``'s process group, then any process still carrying its run token (one that left the group)."""
-    token = None
-    try:
-        token = _run_token(proc.pid)
-    except OSError:
-        pass
+    token = _TOKENS.pop(proc.pid, None)
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
@@ -252,14 +255,6 @@ def kill_tree(proc: subprocess.Popen[bytes]) -> None:
         pass
     if token:
         _kill_marked(token)
-
-
-def _run_token(pid: int) -> str | None:
-    data = Path(f"/proc/{pid}/environ").read_bytes()
-    for item in data.split(b"\0"):
-        if item.startswith(RUN_ENV.encode() + b"="):
-            return item.split(b"=", 1)[1].decode()
-    return None
 
 
 def _kill_marked(token: str) -> None:
