@@ -4,7 +4,7 @@
 the student notebook of ``tools.make_exercises`` with the set-up cell's
 ``SEED`` set to the student's ID and each answer cell filled in one way
 (``right``: the reference values typed in as literals, or a function of the
-notebook calling the reference; ``wrong``: off by one or a function returning
+notebook that calls the variant's reference function; ``wrong``: off by one or a function returning
 zeros; ``half``: the first half right, the rest untouched; ``blank``: nothing).
 
 ``python -m tools.bench_grade [N]`` grades N (default 200) such notebooks, all
@@ -56,11 +56,10 @@ def answer_source(exercise_id: str, seed: str | int, way: str) -> str:
 
     seed_arg: Any = seed
     ex = exercises.load(exercise_id, seed=seed_arg)
-    if ex.kind == "function":
-        ref = ex.solution()
-        body = "return _ref(*args)" if way == "right" else "return np.zeros((6, 6))"
-        return (f"from {ref.__module__} import {ref.__qualname__} as _ref\n\n\n"
-                f"def {ex.fn_name}(*args):\n    {body}\n\n\nanswer = {ex.fn_name}\n")
+    if ex.kind == "function":  # a function of the notebook that calls the variant's reference when run
+        body = (f"return exercises.load({exercise_id!r}, seed=SEED).reference(*args)" if way == "right"
+                else "return np.zeros((6, 6))")
+        return f"def {ex.fn_name}(*args):\n    {body}\n\n\nanswer = {ex.fn_name}\n"
     ref = ex.solution()
     if way == "wrong":
         if ex.kind == "symbolic":
