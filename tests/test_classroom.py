@@ -59,6 +59,8 @@ def graded(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[Row], d
     target = root / "b" / "wrong.ipynb"
     outside = _with_cell(submission(CHAPTER, _id(6), "right"), 1,
                          f"try:\n    open({str(target)!r}, 'w').write('gone')\nexcept OSError:\n    pass\n"
+                         f"try:\n    import subprocess\n    subprocess.run(['rm', {str(target)!r}])\n"
+                         "except OSError:\n    pass\n"
                          f"open({str(root / 'gradebook.csv')!r}, 'w').write('forged')")
     write(outside, root / "outside.ipynb")
     # a student who replaces the checker by one that always says correct, then gives wrong answers
@@ -143,6 +145,7 @@ def test_writing_outside_is_refused_reported_and_changes_nothing(graded):
     notes = [r.message for r in _rows(rows, "outside.ipynb") if r.exercise == "(notebook)"]
     assert any("refused" in m and "wrong.ipynb" in m for m in notes), notes
     assert any("refused" in m and "gradebook.csv" in m for m in notes), notes
+    assert any("refused: starting a program (subprocess.Popen)" in m for m in notes), notes
     after = {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in root.rglob("*.ipynb")}
     assert after == before
     assert not [r for r in rows if r.exercise == "(submissions)"]  # the tree hash saw no change
