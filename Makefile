@@ -13,8 +13,12 @@ JB_FLAGS := -W -n --keep-going
 # (MPLBACKEND=Agg only for the library tests: the notebooks' kernels need the
 # inline backend, or plt.show() draws nothing into the book and the slides)
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
+# make book SOLUTIONS=0: publish the book without the solutions (_ext/course_solutions.py)
+SOLUTIONS ?= 1
+export COURSE_SOLUTIONS := $(SOLUTIONS)
 
 .PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides bench lab slides exercises clean distclean vendor browser
+.PHONY: grade
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -23,6 +27,8 @@ help:
 	@echo "make slides     reveal.js decks into _build/slides"
 	@echo "make exercises  student notebooks into _build/exercises"
 	@echo "make bench      speed benchmark against modern_robotics and Pinocchio"
+	@echo "make grade SUBMISSIONS=<dir>  grade every student notebook under <dir> (gradebook.csv, reports/)"
+	@echo "make book SOLUTIONS=0         the book without the solutions"
 
 # ------------------------------------------------------------------ set-up
 $(PY_STAMP): requirements.txt constraints.txt pyproject.toml
@@ -88,6 +94,7 @@ bench: setup
 	$(PY) -m tools.bench
 	$(PY) -m tools.bench_widgets
 	$(PY) -m tools.bench_live
+	$(PY) -m tools.bench_grade
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
 LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json
@@ -101,6 +108,11 @@ clean:
 
 distclean: clean
 	rm -rf $(VENV) node_modules
+
+# ------------------------------------------------------------------ grading a class (chapters/teaching.md)
+grade: setup
+	@test -n "$(SUBMISSIONS)" || { echo "Usage: make grade SUBMISSIONS=<folder of student notebooks>" >&2; exit 2; }
+	$(PY) -m course.classroom.grade "$(SUBMISSIONS)"
 
 # ------------------------------------------------------------------ exercises and slides
 exercises: setup

@@ -38,17 +38,17 @@ arm in sympy).
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 from collections.abc import Callable
 from typing import Any
 
 from jacobians.grading import Exercise, Feedback
 
 from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09  # noqa: F401  (importing them registers the exercises)
+from ._progress import Progress, record
+from ._progress import summary as _summary
 from ._registry import CATALOGUE
 
-__all__ = ["CATALOGUE", "check", "exercise_ids", "load", "on_check"]
+__all__ = ["CATALOGUE", "check", "exercise_ids", "load", "on_check", "summary"]
 
 #: Functions called with every Feedback that :func:`check` returns (e.g. a session's progress record).
 _LISTENERS: list[Callable[[Feedback], None]] = []
@@ -89,6 +89,7 @@ def check(exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Fe
     ``"invalid"``), so a typo in a notebook shows a box, not a traceback.
     """
     fb = CATALOGUE.check(exercise_id, answer, seed=seed)
+    record(exercise_id, seed, answer, fb)  # the session's progress (and make grade's log)
     for listener in list(_LISTENERS):
         try:
             listener(fb)
@@ -97,5 +98,6 @@ def check(exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Fe
     return fb
 
 
-if importlib.util.find_spec(f"{__name__}._progress") is not None:  # the session's progress record, if present
-    importlib.import_module(f"{__name__}._progress")
+def summary(chapter: str | None = None) -> Progress:
+    """This session's progress: which exercises (of ``chapter``, e.g. ``"ch02"``) are right, tried, untouched."""
+    return _summary(CATALOGUE.ids(), chapter)

@@ -1,0 +1,440 @@
+"""``make grade SUBMISSIONS=<dir>``: find every student notebook, run each sandboxed, regrade, write the gradebook.
+
+For each ``*.ipynb`` under the folder (any layout; folders starting with ``.``
+are skipped):
+
+1. read it as JSON (never executing anything in the grader); take the student
+   ID from the set-up cell's ``SEED = "..."`` line with :mod:`ast`, and the
+   exercises from its ``exercises.load("chNN_exK", ...)`` cells;
+2. copy it into a scratch folder and execute it there in a separate process
+   (:mod:`~course.classroom.sandbox`): a time limit per cell and per notebook,
+   the user ``nobody`` when the grader is root; every ``exercises.check`` logs
+   its answer as data (:mod:`~course.classroom.answers`);
+3. regrade the last answer to each exercise here, with the course's reference
+   for the student's ID (a function answer is called in a sandboxed process);
+   the verdict the notebook showed is never used, only compared;
+4. write ``gradebook.csv`` (student, notebook, exercise, seed, correct,
+   message) and ``reports/<student>.html``.
+
+A notebook that cannot be read, is empty, raises, runs over its time or tries
+to write outside its scratch folder gets rows saying so (exercise
+``(notebook)``) and the run goes on. The submissions are hashed before and
+after; a change is reported as a row. Notebooks are graded in a process pool.
+"""
+
+from __future__ import annotations
+
+import ast
+import csv
+import hashlib
+import io
+import json
+import os
+import re
+import shutil
+import sys
+import tempfile
+import time
+from collections.abc import Iterable
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import astuple, dataclass
+from pathlib import Path
+from typing import Any
+
+from .sandbox import EVENTS, Limits, SandboxedFunction, kill_tree, make_scratch, sandbox_python, start, warning
+
+__all__ = ["COLUMNS", "NOTEBOOK", "Row", "exercises_of", "grade_class", "grade_notebook", "main", "student_id"]
+
+#: The columns of gradebook.csv.
+COLUMNS = ("student", "notebook", "exercise", "seed", "correct", "message")
+#: The ``exercise`` of a row about the whole notebook (it could not be read, a cell raised, ...).
+NOTEBOOK = "(notebook)"
+#: Biggest notebook read, in bytes.
+MAX_BYTES = 50 << 20
+
+_LOAD = re.compile(r"""exercises\.load\(\s*["'](ch\d\d_ex\d+)["']""")
+_LOG = "checks.jsonl"
+
+
+@dataclass(frozen=True)
+class Row:
+    """One line of the gradebook. ``correct`` is ``"1"``, ``"0"`` or ``""`` (a row about the notebook)."""
+
+    student: str
+    notebook: str
+    exercise: str
+    seed: str
+    correct: str
+    message: str
+
+
+# --------------------------------------------------------------------------- reading a notebook (no execution)
+def _code_sources(nb: Any) -> list[str]:
+    cells = nb.get("cells") if isinstance(nb, dict) else None
+    if not isinstance(cells, list):
+        raise ValueError("it has no list of cells")
+    out = []
+    for c in cells:
+        if isinstance(c, dict) and c.get("cell_type") == "code":
+            src = c.get("source", "")
+            src = "".join(src) if isinstance(src, list) else src
+            if not isinstance(src, str):
+                raise ValueError("a cell's source is not text")
+            out.append(src)
+    return out
+
+
+def _parse(src: str) -> ast.Module | None:
+    """The cell as Python, IPython's ``%magic`` and ``!shell`` lines blanked; None if it is not Python."""
+    lines = ["" if ln.lstrip().startswith(("%", "!")) else ln for ln in src.splitlines()]
+    try:
+        return ast.parse("\n".join(lines))
+    except (SyntaxError, ValueError):
+        return None
+
+
+def student_id(sources: Iterable[str]) -> str | int | None:
+    """The student ID a notebook sets: the value of the first top-level ``SEED = ...`` assignment.
+
+    Accepted forms (read with :mod:`ast`, never evaluated): ``SEED = "text"``,
+    ``SEED = 12``, and ``SEED = int(os.environ.get("JACOBIANS_SEED", "12"))``
+    (the default given there). Anything else gives None.
+
+    >>> student_id(['import os', 'SEED = "s1234567"  # your student ID'])
+    's1234567'
+    >>> student_id(['SEED = int(os.environ.get("JACOBIANS_SEED", "7"))'])
+    7
+    >>> student_id(['SEED = input()']) is None
+    True
+    """
+    for src in sources:
+        tree = _parse(src)
+        if tree is None:
+            continue
+        for node in tree.body:
+            if not (isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "SEED"
+                                                          for t in node.targets)):
+                continue
+            value = node.value
+            if isinstance(value, ast.Constant) and isinstance(value.value, (str, int)) \
+                    and not isinstance(value.value, bool):
+                return value.value
+            if (isinstance(value, ast.Call) and isinstance(value.func, ast.Name) and value.func.id == "int"
+                    and len(value.args) == 1 and isinstance(value.args[0], ast.Call)
+                    and len(value.args[0].args) == 2 and isinstance(value.args[0].args[1], ast.Constant)):
+                default = value.args[0].args[1].value
+                try:
+                    return int(default) if isinstance(default, (str, int)) else None
+                except ValueError:
+                    return None
+            return None
+    return None
+
+
+def exercises_of(sources: Iterable[str]) -> list[str]:
+    """The exercise ids a notebook loads, in order of first appearance."""
+    seen: list[str] = []
+    for src in sources:
+        for eid in _LOAD.findall(src):
+            if eid not in seen:
+                seen.append(eid)
+    return seen
+
+
+def _calls_solution(sources: Iterable[str]) -> bool:
+    for src in sources:
+        tree = _parse(src)
+        if tree is not None and any(isinstance(n, ast.Attribute) and n.attr == "solution" for n in ast.walk(tree)):
+            return True
+    return False
+
+
+# --------------------------------------------------------------------------- one notebook
+def grade_notebook(path: Path, root: Path, limits: Limits, scratch_parent: Path) -> list[Row]:
+    """The gradebook rows of one notebook (see the module docstring). Never raises for a bad notebook."""
+    rel = str(path.relative_to(root))
+
+    def note(message: str, student: str = "", seed: str = "") -> Row:
+        return Row(student, rel, NOTEBOOK, seed, "", message)
+
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        return [note(f"could not be read ({exc.strerror}); nothing was run")]
+    if len(raw) > MAX_BYTES:
+        return [note(f"is {len(raw) >> 20} MB, more than the {MAX_BYTES >> 20} MB a notebook may have; "
+                     "nothing was run")]
+    if not raw.strip():
+        return [note("is an empty file; nothing was run")]
+    try:
+        nb = json.loads(raw)
+        sources = _code_sources(nb)
+    except (ValueError, RecursionError) as exc:
+        where = f" (line {exc.lineno}, column {exc.colno})" if isinstance(exc, json.JSONDecodeError) else ""
+        return [note(f"is not a valid notebook: not valid JSON{where}; nothing was run"
+                     if isinstance(exc, json.JSONDecodeError) else f"is not a valid notebook: {exc}; nothing was run")]
+    if not any(s.strip() for s in sources):
+        return [note("is empty: it has no code; nothing was run")]
+    sid = student_id(sources)
+    if sid is None:
+        return [note('has no student ID: the set-up cell must set SEED = "your ID" (a plain string); '
+                     "nothing was run")]
+    student, seed = str(sid), str(sid)
+    wanted = exercises_of(sources)
+    rows: list[Row] = []
+    if not wanted:
+        rows.append(note("loads no exercise (no exercises.load cell)", student, seed))
+    if _calls_solution(sources):
+        rows.append(note("calls .solution() somewhere: that is the reference answer, not the student's work",
+                         student, seed))
+    scratch = make_scratch(scratch_parent)
+    try:
+        rows += _run_and_regrade(path, raw, nb, sid, wanted, scratch, limits, rel)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+    try:
+        if hashlib.sha256(path.read_bytes()).digest() != hashlib.sha256(raw).digest():
+            rows.append(note("the submitted file changed while it was graded", student, seed))
+    except OSError:
+        rows.append(note("the submitted file disappeared while it was graded", student, seed))
+    return rows
+
+
+def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: list[str], scratch: Path,
+                     limits: Limits, rel: str) -> list[Row]:
+    student, seed = str(sid), str(sid)
+    rows: list[Row] = []
+
+    def note(message: str) -> None:
+        rows.append(Row(student, rel, "(notebook)", seed, "", message))
+
+    code_cells: list[dict[str, Any]] = [
+        {"cell_type": "code", "source": s, "metadata": {}, "outputs": [], "execution_count": None}
+        for s in _code_sources(nb)]
+    clean = {"nbformat": 4, "nbformat_minor": 5, "metadata": {"kernelspec": {"name": "python3",
+             "display_name": "Python 3", "language": "python"}}, "cells": code_cells}
+    (scratch / "submission.ipynb").write_text(json.dumps(clean), encoding="utf-8")
+    ids = _owner(scratch)
+    if ids:
+        os.chown(scratch / "submission.ipynb", *ids)
+    log = scratch / _LOG
+    env = {"JACOBIANS_PROGRESS_LOG": str(log)}
+    if isinstance(sid, int):
+        env["JACOBIANS_SEED"] = str(sid)  # the set-up cell of older notebooks reads it
+    proc = start([sandbox_python()[0], "-m", "course.classroom._runner", "submission.ipynb", "result.json",
+                  str(limits.cell_timeout)], scratch, limits, cpu_seconds=limits.notebook_timeout, env=env)
+    t0 = time.monotonic()
+    try:
+        proc.wait(timeout=limits.notebook_timeout)
+        finished = True
+    except Exception:
+        finished = False
+    kill_tree(proc)  # the kernel too, and anything that left the group
+    if not finished:
+        note(f"did not finish within {limits.notebook_timeout:g} s and was stopped; the checks made before "
+             "count")
+    result = _read_json(scratch / "result.json")
+    if finished and result is None:
+        note("could not be executed (the runner stopped after "
+             f"{time.monotonic() - t0:.0f} s without a result; is the notebook a Python 3 notebook?)")
+    if isinstance(result, dict):
+        for n in result.get("timeouts", [])[:5]:
+            note(f"code cell {n} was stopped after {limits.cell_timeout:g} s (an endless loop?)")
+        for e in result.get("errors", [])[:5]:
+            if str(e.get("evalue", "")).startswith("[grading sandbox]"):
+                continue  # said once below, from the event log
+            note(f"code cell {e.get('cell')} raised {e.get('ename')}: {e.get('evalue')}"[:400])
+        if result.get("status", "ok") != "ok":
+            note(f"the kernel stopped: {result.get('status')}"[:400])
+    events = _read_lines(scratch / EVENTS, 5)
+    for ev in events:
+        note("tried something outside its scratch folder, which was refused: " + ev.removeprefix(
+            "[grading sandbox] ")[:300])
+    checks = _last_checks(log, set(wanted))
+    from course import exercises  # the course's own reference (imported once per worker)
+
+    for eid in wanted:
+        entry = checks.get(eid)
+        if entry is None:
+            rows.append(Row(student, rel, eid, seed, "0", "not attempted: no check of this exercise ran"))
+            continue
+        rows.append(Row(student, rel, eid, seed, *_regrade(exercises, eid, entry, sid, scratch, limits)))
+    return rows
+
+
+def _owner(scratch: Path) -> tuple[int, int] | None:
+    st = scratch.stat()
+    return (st.st_uid, st.st_gid) if os.geteuid() == 0 else None
+
+
+def _read_json(path: Path) -> Any:
+    try:
+        if path.stat().st_size > 1 << 20:
+            return None
+        return json.loads(path.read_bytes())
+    except (OSError, ValueError):
+        return None
+
+
+def _read_lines(path: Path, most: int) -> list[str]:
+    try:
+        with open(path, "rb") as f:
+            text = f.read(1 << 16).decode("utf-8", "replace")
+    except OSError:
+        return []
+    out: list[str] = []
+    for ln in text.splitlines():
+        if ln.strip() and ln not in out:
+            out.append(ln.strip())
+    return out[:most]
+
+
+def _last_checks(log: Path, wanted: set[str]) -> dict[str, dict[str, Any]]:
+    """The last logged check of each wanted exercise (the log is the student's data: read with limits)."""
+    out: dict[str, dict[str, Any]] = {}
+    try:
+        with open(log, "rb") as f:
+            data = f.read(256 << 20)
+    except OSError:
+        return out
+    for line in data.splitlines():
+        try:
+            entry = json.loads(line)
+        except (ValueError, RecursionError):
+            continue
+        if isinstance(entry, dict) and entry.get("exercise") in wanted and isinstance(entry.get("answer"), dict):
+            out[entry["exercise"]] = entry
+    return out
+
+
+def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, scratch: Path,
+             limits: Limits) -> tuple[str, str]:
+    from .answers import CodeAnswer, decode
+
+    answer = decode(entry["answer"])
+    extra = ""
+    proxy = None
+    if isinstance(answer, CodeAnswer):
+        if answer.library:
+            extra += f" (The answer is the library function {'.'.join(answer.library)}, not the notebook's code.)"
+        proxy = SandboxedFunction(answer, scratch, limits)
+        answer = proxy
+    try:
+        fb = exercises.check(eid, answer, seed=sid)
+    finally:
+        if proxy is not None:
+            proxy.close()
+    if entry.get("correct") is True and not fb.correct:
+        extra += " (The notebook's own check said correct; the course's reference does not accept this answer.)"
+    if entry.get("seed") != sid:
+        extra += f" (Checked in the notebook with seed {str(entry.get('seed'))[:40]!r}; graded for the ID's variant.)"
+    kind = "" if fb.correct else "not attempted: " if fb.kind == "empty" else f"{fb.kind}: "
+    return ("1" if fb.correct else "0"), (kind + str(fb.message) + extra).replace("\n", " ")
+
+
+# --------------------------------------------------------------------------- a class
+def find_notebooks(root: Path) -> list[Path]:
+    """Every ``.ipynb`` under ``root``, skipping folders whose name starts with a dot."""
+    return sorted(p for p in root.rglob("*.ipynb")
+                  if p.is_file() and not any(part.startswith(".") for part in p.relative_to(root).parts[:-1]))
+
+
+def _tree_digest(root: Path, skip: set[Path]) -> dict[str, str]:
+    out = {}
+    for p in sorted(root.rglob("*")):
+        if p.is_file() and not any(p == s or s in p.parents for s in skip):
+            out[str(p.relative_to(root))] = hashlib.sha256(p.read_bytes()).hexdigest()
+    return out
+
+
+def _worker(args: tuple[str, str, Limits, str]) -> list[Row]:
+    path, root, limits, scratch_parent = args
+    try:
+        return grade_notebook(Path(path), Path(root), limits, Path(scratch_parent))
+    except Exception as exc:  # a grader bug: say so in the gradebook, keep going
+        return [Row("", str(Path(path).relative_to(root)), NOTEBOOK, "", "",
+                    f"the grader failed on this notebook ({type(exc).__name__}: {exc}); please report it"[:400])]
+
+
+def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None = None) -> list[Row]:
+    """Grade every notebook under ``root``; write ``gradebook.csv`` and ``reports/``; return the rows."""
+    from .report import write_reports
+
+    root = Path(root).resolve()
+    if not root.is_dir():
+        raise ValueError(f"Expected a folder of submissions, got {str(root)!r}")
+    limits = limits or Limits()
+    gradebook, reports = root / "gradebook.csv", root / "reports"
+    skip = {gradebook, reports}
+    before = _tree_digest(root, skip)
+    paths = find_notebooks(root)
+    workers = max(1, min(workers or os.cpu_count() or 1, len(paths) or 1))
+    with tempfile.TemporaryDirectory(prefix="jacobians-grade-") as tmp:
+        Path(tmp).chmod(0o711)  # the sandbox user may enter its own scratch folder, and list nothing
+        jobs = [(str(p), str(root), limits, tmp) for p in paths]
+        if workers == 1:
+            results = [_worker(j) for j in jobs]
+        else:
+            with ProcessPoolExecutor(max_workers=workers) as pool:
+                results = list(pool.map(_worker, jobs))
+    rows = [r for rs in results for r in rs]
+    after = _tree_digest(root, skip)
+    for name in sorted(set(before) | set(after)):
+        if before.get(name) != after.get(name):
+            what = "appeared" if name not in before else "disappeared" if name not in after else "changed"
+            rows.append(Row("", name, "(submissions)", "", "", f"this file {what} while the class was graded"))
+    _write_csv(gradebook, rows)
+    write_reports(reports, rows)
+    return rows
+
+
+def _write_csv(path: Path, rows: list[Row]) -> None:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(COLUMNS)
+    for r in rows:
+        w.writerow(astuple(r))
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(buf.getvalue(), encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def read_gradebook(path: Path) -> list[Row]:
+    """The rows of a gradebook.csv."""
+    with open(path, newline="", encoding="utf-8") as f:
+        r = csv.reader(f)
+        head = next(r)
+        if tuple(head) != COLUMNS:
+            raise ValueError(f"Expected the columns {COLUMNS}, got {head}")
+        return [Row(*row) for row in r]
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m course.classroom.grade DIR [--workers N] [--cell-timeout S] [--notebook-timeout S]``."""
+    import argparse
+
+    p = argparse.ArgumentParser(prog="make grade", description="Grade every student notebook under DIR.")
+    p.add_argument("submissions", type=Path)
+    p.add_argument("--workers", type=int, default=None, help="processes (default: one per core)")
+    p.add_argument("--cell-timeout", type=float, default=Limits.cell_timeout)
+    p.add_argument("--notebook-timeout", type=float, default=Limits.notebook_timeout)
+    a = p.parse_args(argv)
+    if not a.submissions.is_dir():
+        print(f"make grade: {a.submissions} is not a folder (give SUBMISSIONS=<dir>)", file=sys.stderr)
+        return 2
+    t0 = time.perf_counter()
+    if warning():
+        print("make grade: warning:", warning(), file=sys.stderr)
+    rows = grade_class(a.submissions, workers=a.workers,
+                       limits=Limits(cell_timeout=a.cell_timeout, notebook_timeout=a.notebook_timeout))
+    n = len({r.notebook for r in rows if r.exercise != "(submissions)"})
+    right = sum(r.correct == "1" for r in rows)
+    graded = sum(r.correct in ("0", "1") for r in rows)
+    notes = sum(r.exercise == NOTEBOOK for r in rows)
+    print(f"make grade: {n} notebooks in {time.perf_counter() - t0:.1f} s; {right} of {graded} answers right; "
+          f"{notes} notes on notebooks; wrote {a.submissions / 'gradebook.csv'} and {a.submissions / 'reports'}/")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,88 @@
+"""The HTML report of each student: one self-contained page (no script, no web font, no network).
+
+>>> from course.classroom.grade import Row
+>>> page = student_page("s1", [Row("s1", "a/02.ipynb", "ch02_ex1", "s1", "1", "Correct."),
+...                            Row("s1", "a/02.ipynb", "(notebook)", "s1", "", "code cell 3 raised <NameError>")])
+>>> "1 of 1 exercises right" in page, "&lt;NameError&gt;" in page
+(True, True)
+"""
+
+from __future__ import annotations
+
+import hashlib
+import html
+import re
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+__all__ = ["report_name", "student_page", "write_reports"]
+
+_CSS = """
+body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;font-size:17px;line-height:1.5;color:#1a1a1a;
+max-width:60rem;margin:1.5rem auto;padding:0 1rem}
+h1{font-size:1.6rem}h2{font-size:1.2rem;margin-top:2rem;word-break:break-all}
+table{border-collapse:collapse;width:100%}th,td{text-align:left;vertical-align:top;padding:.45rem .6rem;
+border-bottom:1px solid #ddd}td.v{white-space:nowrap;font-weight:600}
+.ok{color:#007a5a}.no{color:#b34700}.note{background:#fdf4e3;border-left:5px solid #E69F00;padding:.4rem .7rem;
+margin:.4rem 0}code{font-size:.95em}
+"""
+
+
+def report_name(student: str) -> str:
+    """A file name for ``student``'s report: the ID's safe characters, and a short hash when any were dropped."""
+    safe = re.sub(r"[^A-Za-z0-9._-]", "_", student)[:60].strip("._") or "no-id"
+    if safe != student:
+        safe += "-" + hashlib.sha256(student.encode()).hexdigest()[:8]
+    return safe + ".html"
+
+
+def student_page(student: str, rows: Sequence[Any]) -> str:
+    """The report of ``student`` from their gradebook rows."""
+    e = html.escape
+    graded = [r for r in rows if r.correct in ("0", "1")]
+    right = sum(r.correct == "1" for r in graded)
+    title = f"Exercises of student {student}" if student else "Notebooks without a student ID"
+    parts = [f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">'
+             f'<meta name="viewport" content="width=device-width,initial-scale=1"><title>{e(title)}</title>'
+             f"<style>{_CSS}</style></head><body><h1>{e(title)}</h1>"
+             f"<p><strong>{right} of {len(graded)} exercises right.</strong> Each answer was run again and "
+             "graded with the course's reference for this ID.</p>"]
+    for nb in sorted({r.notebook for r in rows}):
+        mine = [r for r in rows if r.notebook == nb]
+        parts.append(f"<h2>{e(nb)}</h2>")
+        for r in mine:
+            if r.correct == "":
+                parts.append(f'<p class="note">The notebook {e(r.message)}</p>' if r.exercise == "(notebook)"
+                             else f'<p class="note">{e(r.message)}</p>')
+        ex = [r for r in mine if r.correct in ("0", "1")]
+        if ex:
+            parts.append('<table><thead><tr><th scope="col">Exercise</th><th scope="col">Verdict</th>'
+                         '<th scope="col">Feedback</th></tr></thead><tbody>')
+            for r in ex:
+                verdict = '<td class="v ok">&#10004; right</td>' if r.correct == "1" else \
+                    '<td class="v no">&#10008; not yet</td>'
+                message = r.message.removeprefix("wrong: ")  # (the verdict column says it)
+                parts.append(f"<tr><td><code>{e(r.exercise)}</code></td>{verdict}<td>{e(message)}</td></tr>")
+            parts.append("</tbody></table>")
+    parts.append("</body></html>")
+    return "\n".join(parts)
+
+
+def write_reports(folder: Path, rows: Sequence[Any]) -> list[Path]:
+    """One page per student (rows without a student ID share one page) in ``folder``; the paths written.
+
+    The pages of an earlier run are removed first, so the folder holds exactly this run's reports."""
+    folder.mkdir(parents=True, exist_ok=True)
+    for old in folder.glob("*.html"):
+        old.unlink()
+    by: dict[str, list[Any]] = {}
+    for r in rows:
+        if r.exercise != "(submissions)":
+            by.setdefault(r.student, []).append(r)
+    out = []
+    for student, mine in sorted(by.items()):
+        path = folder / report_name(student)
+        path.write_text(student_page(student, mine), encoding="utf-8")
+        out.append(path)
+    return out

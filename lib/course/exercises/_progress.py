@@ -1,0 +1,139 @@
+"""A student's own progress: every ``exercises.check`` of this session, and the summary of them.
+
+:func:`record` is called by ``exercises.check`` after each verdict; it never raises
+(a failure to record must not hide the verdict from the student).
+:func:`summary` tells which exercises of a chapter are right, which were tried
+and which are untouched; the last cell of every exercise notebook shows it.
+
+When the notebook runs inside ``make grade`` (the environment variable
+:data:`LOG_ENV` names a file), each check is also appended to that file as one
+JSON line holding the answer in the safe form of :mod:`course.classroom.answers`;
+the grader regrades those answers itself, so the verdict this session saw is
+never trusted.
+
+>>> from course.exercises import _progress
+>>> _progress.reset()
+>>> class FB:  # the two attributes of a Feedback that are kept
+...     correct, kind = False, "wrong"
+>>> _progress.record("ch01_ex1", 0, [1, 2], FB())
+>>> FB.correct, FB.kind = True, "correct"
+>>> _progress.record("ch01_ex2", 0, [1, 2], FB())
+>>> s = _progress.summary(["ch01_ex1", "ch01_ex2", "ch01_ex3", "ch02_ex1"], chapter="ch01")
+>>> s.right, s.tried, s.untouched
+(['ch01_ex2'], ['ch01_ex1'], ['ch01_ex3'])
+>>> print(s)
+Your progress in ch01: 1 of 3 right, 1 tried but not right yet, 1 untouched.
+  right:      ch01_ex2
+  not yet:    ch01_ex1
+  untouched:  ch01_ex3
+>>> _progress.reset()
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = ["LOG_ENV", "Attempt", "Progress", "attempts", "record", "reset", "summary"]
+
+#: Environment variable naming the file that receives one JSON line per check (set by ``make grade``).
+LOG_ENV = "JACOBIANS_PROGRESS_LOG"
+
+
+@dataclass(frozen=True)
+class Attempt:
+    """One call of ``exercises.check``: the exercise, the seed, and the verdict's ``correct`` and ``kind``."""
+
+    exercise_id: str
+    seed: object
+    correct: bool
+    kind: str
+
+
+_SESSION: list[Attempt] = []
+
+
+def record(exercise_id: object, seed: object, answer: Any, feedback: Any) -> None:
+    """Keep one check of this session (and, under ``make grade``, log the answer). Never raises."""
+    try:
+        attempt = Attempt(str(exercise_id)[:60], seed if isinstance(seed, (int, str)) else repr(seed)[:60],
+                          bool(getattr(feedback, "correct", False)), str(getattr(feedback, "kind", "wrong")))
+        _SESSION.append(attempt)
+        path = os.environ.get(LOG_ENV)
+        if path:
+            from course.classroom.answers import encode  # only under make grade: students never pay for it
+            line = json.dumps({"exercise": attempt.exercise_id, "seed": attempt.seed, "correct": attempt.correct,
+                               "kind": attempt.kind, "answer": encode(answer)})
+            with open(path, "a", encoding="utf-8") as f:
+                f.write(line + "\n")
+    except Exception:  # pragma: no cover - recording must never hide a verdict
+        pass
+
+
+def attempts() -> list[Attempt]:
+    """The checks of this session, oldest first."""
+    return list(_SESSION)
+
+
+def reset() -> None:
+    """Forget this session's checks (tests; a student may also call it to start over)."""
+    _SESSION.clear()
+
+
+@dataclass
+class Progress:
+    """Which exercises are right, which were tried but are not right yet, which are untouched."""
+
+    chapter: str
+    right: list[str] = field(default_factory=list)
+    tried: list[str] = field(default_factory=list)
+    untouched: list[str] = field(default_factory=list)
+
+    def _lines(self) -> list[tuple[str, list[str]]]:
+        return [("right", self.right), ("not yet", self.tried), ("untouched", self.untouched)]
+
+    def __str__(self) -> str:
+        total = len(self.right) + len(self.tried) + len(self.untouched)
+        where = f" in {self.chapter}" if self.chapter else ""
+        head = (f"Your progress{where}: {len(self.right)} of {total} right, {len(self.tried)} tried but not "
+                f"right yet, {len(self.untouched)} untouched.")
+        body = [f"  {name + ':':<11} {', '.join(ids)}" for name, ids in self._lines() if ids]
+        return "\n".join([head, *body])
+
+    def __repr__(self) -> str:
+        return str(self)
+
+    def _repr_html_(self) -> str:
+        colours = {"right": "#009E73", "not yet": "#D55E00", "untouched": "#0072B2"}
+        rows = "".join(
+            f'<tr><th style="text-align:left;padding:0.2em 0.8em 0.2em 0;color:{colours[name]}">{name}</th>'
+            f'<td style="padding:0.2em 0">{html.escape(", ".join(ids)) if ids else "none"}</td></tr>'
+            for name, ids in self._lines())
+        head = html.escape(str(self).splitlines()[0])
+        return (f'<div class="jacobians-progress" role="status" style="border-left:6px solid #56B4E9;'
+                f'background:#eef7fc;color:#1a1a1a;padding:0.6em 0.9em;margin:0.4em 0;border-radius:4px;'
+                f'font-family:sans-serif"><strong>{head}</strong><table style="margin-top:0.3em">{rows}'
+                f'</table></div>')
+
+
+def summary(ids: Iterable[str], chapter: str | None = None) -> Progress:
+    """The progress over ``ids`` (those of ``chapter``, e.g. ``"ch02"``, if given), from this session's checks.
+
+    An exercise is *right* if one of its checks was correct, *tried* if it was
+    checked with an answer (not ``None``) but never correctly, *untouched* otherwise.
+    """
+    if chapter is not None and not isinstance(chapter, str):
+        raise TypeError(f"Expected a chapter such as 'ch02', got {type(chapter).__name__}")
+    wanted = [i for i in ids if chapter is None or i.startswith(chapter + "_")]
+    if chapter is not None and not wanted:
+        raise ValueError(f"Expected a chapter such as 'ch02', got {chapter!r}: it has no exercises")
+    right = {a.exercise_id for a in _SESSION if a.correct}
+    tried = {a.exercise_id for a in _SESSION if a.kind != "empty"}
+    out = Progress(chapter or "")
+    for i in wanted:
+        (out.right if i in right else out.tried if i in tried else out.untouched).append(i)
+    return out

@@ -1,0 +1,124 @@
+"""Grading throughput (``make bench``), and the class of made-up students the tests grade.
+
+:func:`submission` writes one student notebook as a student would hand it in:
+the student notebook of ``tools.make_exercises`` with the set-up cell's
+``SEED`` set to the student's ID and each answer cell filled in one way
+(``right``: the reference values typed in as literals, or a function of the
+notebook that calls the variant's reference function; ``wrong``: off by one or a function returning
+zeros; ``half``: the first half right, the rest untouched; ``blank``: nothing).
+
+``python -m tools.bench_grade [N]`` grades N (default 200) such notebooks, all
+nine chapters and all four ways, and prints notebooks per second and per core.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import nbformat
+import numpy as np
+
+from tools.make_exercises import SOURCES, exercise_cells, student_notebook
+
+WAYS = ("right", "wrong", "half", "blank")
+_SEED_LINE = re.compile(r"^SEED\s*=.*$", re.M)
+
+
+def string_ids_supported() -> bool:
+    """Whether ``exercises.load`` takes a string seed (a student ID) in this tree, not only an int."""
+    from course import exercises
+
+    seed: Any = "s1"  # (typed Any: the signature says int before the string IDs of issue #15 are merged)
+    try:
+        exercises.load("ch01_ex1", seed=seed)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
+def _literal(value: Any) -> str:
+    import sympy as sp
+
+    if isinstance(value, sp.MatrixBase | sp.Basic):
+        return f"sp.sympify({sp.srepr(value)!r})"
+    return f"np.array({np.asarray(value, dtype=float).tolist()!r})"
+
+
+def answer_source(exercise_id: str, seed: str | int, way: str) -> str:
+    """The source of a filled answer cell for ``exercise_id`` (``way``: ``right`` or ``wrong``)."""
+    from course import exercises
+
+    seed_arg: Any = seed
+    ex = exercises.load(exercise_id, seed=seed_arg)
+    if ex.kind == "function":  # a function of the notebook that calls the variant's reference when run
+        body = (f"return exercises.load({exercise_id!r}, seed=SEED).reference(*args)" if way == "right"
+                else "return np.zeros((6, 6))")
+        return f"def {ex.fn_name}(*args):\n    {body}\n\n\nanswer = {ex.fn_name}\n"
+    ref = ex.solution()
+    if way == "wrong":
+        if ex.kind == "symbolic":
+            ref = 2 * ref
+        else:
+            ref = np.asarray(ref, dtype=float) + 1.0
+    return f"answer = {_literal(ref)}\n"
+
+
+def submission(chapter: str, student: str | int, way: str) -> nbformat.NotebookNode:
+    """The notebook ``chapter`` (e.g. ``"02_space_jacobian"``) handed in by ``student``, answered ``way``."""
+    if way not in WAYS:
+        raise ValueError(f"Expected a way in {WAYS}, got {way!r}")
+    nb = student_notebook(SOURCES / f"{chapter}.md")
+    for cell in nb.cells:
+        if cell.cell_type == "code" and _SEED_LINE.search(cell.source):
+            cell.source = _SEED_LINE.sub(f"SEED = {student!r}  # your student ID", cell.source, count=1)
+            break
+    else:
+        raise ValueError(f"{chapter}: no SEED line in the set-up cell")
+    by_id = exercise_cells(nb)
+    for k, (eid, cells) in enumerate(by_id.items()):
+        this = way
+        if way == "half":
+            this = "right" if k < len(by_id) // 2 else "blank"
+        if this != "blank":
+            cells[1].source = answer_source(eid, student, this)
+    return nb
+
+
+def make_class(folder: Path, n: int, chapters: list[str] | None = None) -> list[Path]:
+    """``n`` submissions under ``folder/<student>/``, cycling through the chapters and the ways."""
+    chapters = chapters or sorted(p.stem for p in SOURCES.glob("[0-9][0-9]_*.md"))
+    ids: list[str | int] = [f"s{k:04d}" if string_ids_supported() else 1000 + k for k in range(n)]
+    out = []
+    for k, sid in enumerate(ids):
+        chapter, way = chapters[k % len(chapters)], WAYS[k % len(WAYS)]
+        path = folder / str(sid) / f"{chapter}.ipynb"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        nbformat.write(submission(chapter, sid, way), path)
+        out.append(path)
+    return out
+
+
+def main(n: int = 200) -> None:
+    from course.classroom.grade import grade_class
+
+    cores = os.cpu_count() or 1
+    with tempfile.TemporaryDirectory(prefix="bench-grade-") as tmp:
+        folder = Path(tmp) / "submissions"
+        make_class(folder, n)
+        t0 = time.perf_counter()
+        rows = grade_class(folder, workers=cores)
+        dt = time.perf_counter() - t0
+    right = sum(r.correct == "1" for r in rows)
+    notes = [r for r in rows if r.exercise == "(notebook)"]
+    print(f"grading: {n} notebooks on {cores} cores in {dt:.1f} s: {n / dt:.2f} notebooks/s, "
+          f"{n / dt / cores:.2f} notebooks/s per core ({right} answers right, {len(notes)} notes on notebooks)")
+
+
+if __name__ == "__main__":
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 200)
