@@ -218,3 +218,44 @@ def test_a_mutant_that_does_not_reach_a_check_leaves_it_passing(mutant, name, mo
     """The pairs left out of CAUGHT are left out because the mutated function is not used there, not by oversight."""
     apply(mutant, monkeypatch)
     CHECKS[name]()
+
+
+# ---------------------------------------------------------------- the chapter's hidden checks
+
+def _run_chapter_until_a_check_fails(path):
+    """Execute the code cells of a chapter in this process; return the index of the cell that raised, or None."""
+    import jupytext
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    nb = jupytext.read(path)
+    namespace: dict = {}
+    printoptions = np.get_printoptions()
+    rc = matplotlib.rc_context()  # the page's set-up changes the figure style: keep it to this run
+    rc.__enter__()
+    try:
+        for k, cell in enumerate(c for c in nb.cells if c.cell_type == "code"):
+            try:
+                exec(compile(cell.source, f"{path.name} code cell {k}", "exec"), namespace)
+            except AssertionError:
+                return k, "remove-cell" in cell.metadata.get("tags", [])
+    finally:
+        plt.close("all")
+        rc.__exit__(None, None, None)
+        np.set_printoptions(**printoptions)
+    return None
+
+
+@pytest.mark.parametrize("mutant", sorted(CAUGHT))
+def test_chapter_10_fails_on_each_mutant(mutant, monkeypatch):
+    """A hidden check of chapter 10 raises AssertionError when the library is corrupted (nbval runs it clean)."""
+    from pathlib import Path
+
+    pytest.importorskip("modern_robotics")
+    path = Path(__file__).resolve().parent.parent / "chapters" / "10_inverse_kinematics.md"
+    apply(mutant, monkeypatch)
+    failed = _run_chapter_until_a_check_fails(path)
+    assert failed is not None, f"chapter 10 ran to the end with the {mutant} mutant"
+    assert failed[1], f"the failing cell {failed[0]} is not a hidden check cell"
