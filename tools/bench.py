@@ -56,6 +56,8 @@ def main() -> int:
     t_fk, _ = best_of(lambda: ur.fk(thetas), 1, repeat=5)
     print(f"  {'forward kinematics':20s} {t_fk * 1e3:7.1f} ms   {t_fk / N * 1e6:5.2f} us per configuration")
 
+    bench_ik(ur, mr, rng)
+
     try:
         import pinocchio as pin
 
@@ -83,6 +85,26 @@ def main() -> int:
     print(f"jacobians batched space Jacobian:                        {per_ours * 1e6:5.2f} us per configuration"
           f"   ratio {per_pin / per_ours:4.1f}x  (goal > 1x)")
     return 0
+
+
+def bench_ik(ur: jac.SerialChain, mr: object, rng: np.random.Generator) -> None:
+    """Newton-Raphson IK on the UR5 (body frame, MR's tolerances): solves per second, jacobians vs MR's IKinBody."""
+    n_targets = 200
+    sol = rng.uniform(-np.pi, np.pi, (n_targets, 6))
+    T_d = ur.fk(sol)
+    theta0 = sol + rng.normal(scale=0.3, size=(n_targets, 6))
+    B = ur.body_axes.copy()
+    ik_body = mr.IKinBody  # type: ignore[attr-defined]
+    eomg, ev = 1e-3, 1e-4
+    t_mr, _ = best_of(lambda: [ik_body(B, ur.home, T_d[k], theta0[k], eomg, ev) for k in range(20)], 1, repeat=3)
+    t_one, _ = best_of(lambda: [jac.ik.ik(ur, T_d[k], theta0[k], eps_omega=eomg, eps_v=ev, max_iterations=20)
+                                for k in range(20)], 1, repeat=3)
+    t_batch, _ = best_of(lambda: jac.ik.ik(ur, T_d, theta0, eps_omega=eomg, eps_v=ev, max_iterations=20), 1, repeat=3)
+    print(f"\nUR5 inverse kinematics, Newton-Raphson on the body twist (eomg {eomg}, ev {ev}, 20 iterations at most)")
+    print(f"  modern_robotics IKinBody, one at a time  {20 / t_mr:8.0f} solves/s")
+    print(f"  jacobians.ik.ik, one at a time            {20 / t_one:8.0f} solves/s   ratio {t_mr / t_one:5.1f}x")
+    print(f"  jacobians.ik.ik, {n_targets} targets in one call  {n_targets / t_batch:8.0f} solves/s"
+          f"   ratio {(t_mr / 20) / (t_batch / n_targets):5.1f}x")
 
 
 if __name__ == "__main__":

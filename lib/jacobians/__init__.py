@@ -22,8 +22,23 @@ The submodule :mod:`jacobians.jacobian` is shadowed by the function
 space_to_body``).
 """
 
-from . import analysis, frames, interop, lie, representations, robots, statics, velocity
+from . import (
+    acceleration,
+    analysis,
+    dynamics,
+    frames,
+    ik,
+    interop,
+    lie,
+    redundancy,
+    representations,
+    robots,
+    statics,
+    velocity,
+)
+from .acceleration import jacobian_derivative
 from .chain import SerialChain
+from .dynamics import gravity_torques
 from .frames import FRAMES, Frame
 from .jacobian import (
     analytic_jacobian,
@@ -76,4 +91,10 @@ __all__ = [
     "interop",
     "statics",
     "velocity",
+    "acceleration",
+    "dynamics",
+    "ik",
+    "redundancy",
+    "jacobian_derivative",
+    "gravity_torques",
 ]

@@ -1,0 +1,243 @@
+"""Tests of numerical inverse kinematics (jacobians.ik).
+
+Oracles: the forward kinematics (a converged answer must reach the target), Modern Robotics'
+IKinBody / IKinSpace step for step on the UR5, and closed forms on the planar 2R arm.
+"""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import jacobians as jac
+from jacobians import lie
+from jacobians.ik import IKResult, clik, ik, pose_error
+from jacobians.testing import random_chain, random_theta
+
+seeds = st.integers(0, 2**32 - 1)
+
+
+def _ur5_problems(seed, N, spread=0.3):
+    rng = np.random.default_rng(seed)
+    ur = jac.robots.ur5()
+    sol = rng.uniform(-np.pi, np.pi, (N, 6))
+    return ur, sol, ur.fk(sol), sol + rng.normal(scale=spread, size=(N, 6))
+
+
+def _mr_ik(mr, chain, frame, T_d, theta0, eomg, ev, max_iterations=20):
+    """MR's IKinBody / IKinSpace written with MR's own functions, counting iterations (MR returns no count)."""
+    th = np.array(theta0, dtype=float)
+    B, S, M = chain.body_axes, chain.screw_axes, chain.home
+
+    def err(th):
+        if frame == "body":
+            return mr.se3ToVec(mr.MatrixLog6(mr.TransInv(mr.FKinBody(M, B, th)) @ T_d))
+        T = mr.FKinSpace(M, S, th)
+        return mr.Adjoint(T) @ mr.se3ToVec(mr.MatrixLog6(mr.TransInv(T) @ T_d))
+
+    V = err(th)
+    far = lambda V: np.linalg.norm(V[:3]) > eomg or np.linalg.norm(V[3:]) > ev
+    i = 0
+    while far(V) and i < max_iterations:
+        J = mr.JacobianBody(B, th) if frame == "body" else mr.JacobianSpace(S, th)
+        th = th + np.linalg.pinv(J) @ V
+        i += 1
+        V = err(th)
+    return th, not far(V), i
+
+
+@pytest.mark.parametrize("frame", ["body", "space"])
+def test_same_solutions_as_modern_robotics_on_the_ur5(frame):
+    mr = pytest.importorskip("modern_robotics")
+    ur, _, T_d, theta0 = _ur5_problems(0, 60)
+    eomg, ev = 1e-3, 1e-4
+    out = ik(ur, T_d, theta0, frame=frame, eps_omega=eomg, eps_v=ev, max_iterations=20)
+    ref = [_mr_ik(mr, ur, frame, T_d[k], theta0[k], eomg, ev) for k in range(60)]
+    # the counting copy is MR's function, bit for bit
+    mr_fn = mr.IKinBody if frame == "body" else mr.IKinSpace
+    axes = ur.body_axes if frame == "body" else ur.screw_axes
+    for k in range(5):
+        th, ok = mr_fn(axes, ur.home, T_d[k], theta0[k], eomg, ev)
+        assert np.array_equal(th, ref[k][0]) and ok == ref[k][1]
+    th_mr = np.array([r[0] for r in ref])
+    ok_mr = np.array([r[1] for r in ref])
+    it_mr = np.array([r[2] for r in ref])
+    # Where MR converges in a few steps, the iterations agree step for step. (Starts that wander
+    # near a singularity for 10+ steps are chaotic: rounding differences of 1e-10 grow without bound.)
+    regular = ok_mr & (it_mr <= 8)
+    assert regular.sum() >= 50
+    assert np.array_equal(out.iterations[regular], it_mr[regular])
+    assert out.converged[regular].all()
+    assert np.abs(out.theta[regular] - th_mr[regular]).max() < 1e-6
+    # and each converged answer does reach the target within the tolerances
+    V = pose_error(ur, out.theta, T_d, frame)
+    conv = out.converged
+    assert (np.linalg.norm(V[conv, :3], axis=-1) <= eomg).all() and (np.linalg.norm(V[conv, 3:], axis=-1) <= ev).all()
+
+
+@settings(max_examples=30, deadline=None)
+@given(seeds, st.sampled_from(["body", "space"]), st.sampled_from(["newton", "dls"]))
+def test_converged_means_reached(seed, frame, method):
+    rng = np.random.default_rng(seed)
+    chain = random_chain(rng, dof=int(rng.integers(6, 8)))
+    sol = random_theta(chain, rng)
+    T_d = chain.fk(sol)
+    out = ik(chain, T_d, sol + 0.1 * rng.normal(size=chain.dof), frame=frame, method=method,
+             eps_omega=1e-9, eps_v=1e-9, max_iterations=300, damping=0.01)
+    V = pose_error(chain, out.theta, T_d, frame)
+    assert np.isclose(out.error_omega, np.linalg.norm(V[:3])) and np.isclose(out.error_v, np.linalg.norm(V[3:]))
+    if out.converged:
+        assert np.allclose(chain.fk(out.theta), T_d, atol=1e-7)
+    else:
+        assert out.iterations == 300
+
+
+def test_newton_converges_quadratically():
+    ur, sol, T_d, _ = _ur5_problems(1, 1)
+    out = ik(ur, T_d[0], sol[0] + 0.05, eps_omega=1e-13, eps_v=1e-13, max_iterations=10, record_history=True)
+    assert out.converged
+    errs = [np.linalg.norm(pose_error(ur, h, T_d[0])) for h in out.history[: int(out.iterations) + 1]]
+    # e_{k+1} <= C e_k^2 while the error is well above rounding
+    for a, b in zip(errs, errs[1:], strict=False):
+        if a > 1e-6:
+            assert b < 10 * a * a
+
+
+def test_transpose_descends_and_is_slower_than_newton():
+    arm = jac.robots.planar_2r()
+    T_d = arm.fk([0.3, 1.2])
+    starts = np.array([[0.0, 0.5], [1.0, 0.8], [0.6, 1.6]])
+    newton = ik(arm, T_d, starts)
+    tr = ik(arm, T_d, starts, method="transpose", max_iterations=2000, record_history=True)
+    assert newton.converged.all() and tr.converged.all()
+    assert np.allclose(tr.theta, [0.3, 1.2], atol=1e-5)
+    assert (tr.iterations > 5 * newton.iterations).all()
+    errors = np.linalg.norm(pose_error(arm, tr.history, T_d), axis=-1)
+    assert (np.diff(errors, axis=0) <= 1e-15).all()  # every step lowers the error
+    # on the UR5 too, from starts 0.2 rad off: the error only goes down
+    ur, _, T5, th5 = _ur5_problems(0, 5, spread=0.2)
+    out = ik(ur, T5, th5, method="transpose", max_iterations=300, record_history=True)
+    e5 = np.linalg.norm(pose_error(ur, out.history, T5), axis=-1)
+    assert (np.diff(e5, axis=0) <= 1e-12).all() and (e5[-1] < 0.05 * e5[0]).all()
+
+
+def test_dls_converges_on_the_ur5():
+    ur, _, T_d, theta0 = _ur5_problems(2, 20, spread=0.2)
+    dls = ik(ur, T_d, theta0, method="dls", damping=0.02, eps_omega=1e-6, eps_v=1e-6, max_iterations=500)
+    assert dls.converged.all()
+    assert np.allclose(ur.fk(dls.theta), T_d, atol=1e-5)
+
+
+def test_dls_stays_bounded_where_newton_jumps():
+    """From a singular start (UR5, elbow stretched, σ_min ≈ 1.6e-5) Newton's first step is thousands of
+    radians; every DLS step is at most |V|/(2λ) and it lands on the nearby solution."""
+    ur = jac.robots.ur5()
+    start = np.array([0.3, -0.5, 1e-4, 0.4, 0.8, 0.1])
+    assert jac.analysis.singularity_measure(jac.body_jacobian(ur, start)) < 1e-4
+    target = np.array([0.5, -0.8, 0.6, 0.5, 0.9, 0.3])
+    T_d = ur.fk(target)
+    newton = ik(ur, T_d, start, record_history=True)
+    lam = 0.05
+    dls = ik(ur, T_d, start, method="dls", damping=lam, max_iterations=300, record_history=True)
+    steps = np.linalg.norm(np.diff(dls.history, axis=0), axis=-1)
+    bounds = np.linalg.norm(pose_error(ur, dls.history[:-1], T_d), axis=-1) / (2 * lam)
+    assert (steps <= bounds + 1e-12).all()
+    assert np.linalg.norm(newton.history[1] - newton.history[0]) > 1000 * steps.max()
+    assert dls.converged and np.allclose(dls.theta, target, atol=1e-5)
+
+
+def test_batches_broadcast_and_stop_on_their_own():
+    ur, sol, T_d, theta0 = _ur5_problems(3, 6)
+    out = ik(ur, T_d.reshape(2, 3, 4, 4), theta0.reshape(2, 3, 6), record_history=True)
+    assert out.theta.shape == (2, 3, 6) and out.converged.shape == (2, 3) and out.iterations.shape == (2, 3)
+    assert out.history.shape == (int(out.iterations.max()) + 1, 2, 3, 6)
+    for idx in np.ndindex(2, 3):
+        one = ik(ur, T_d.reshape(2, 3, 4, 4)[idx], theta0.reshape(2, 3, 6)[idx])
+        assert np.allclose(one.theta, out.theta[idx], atol=1e-12) and one.iterations == out.iterations[idx]
+    # one target, many starts; many targets, one start
+    assert ik(ur, T_d[0], theta0).theta.shape == (6, 6)
+    assert ik(ur, T_d, theta0[0]).theta.shape == (6, 6)
+    # a start that is already a solution takes no step
+    done = ik(ur, T_d[0], sol[0])
+    assert done.iterations == 0 and done.converged and np.array_equal(done.theta, sol[0])
+
+
+def test_result_is_frozen_and_readable():
+    arm = jac.robots.planar_2r()
+    out = ik(arm, arm.fk([0.3, 1.2]), [0.0, 0.5])
+    assert isinstance(out, IKResult)
+    with pytest.raises(AttributeError):
+        out.theta = np.zeros(2)
+    assert "converged=True" in repr(out) and "iterations=" in repr(out)
+    assert "2 of 2 converged" in repr(ik(arm, arm.fk([0.3, 1.2]), [[0.0, 0.5], [0.1, 0.4]]))
+
+
+def test_planar_basins():
+    """Position-and-orientation targets of the 2R arm have one solution mod 2π: every regular start finds it."""
+    arm = jac.robots.planar_2r()
+    T_d = arm.fk([0.3, 1.2])
+    grid = np.stack(np.meshgrid(np.linspace(-3, 3, 13), np.linspace(-3, 3, 13)), -1).reshape(-1, 2)
+    grid = grid[np.abs(np.sin(grid[:, 1])) > 0.05]  # off the singular lines θ2 = 0, ±π
+    out = ik(arm, T_d, grid, eps_omega=1e-10, eps_v=1e-10, max_iterations=50)
+    wrapped = (out.theta[out.converged] + np.pi) % (2 * np.pi) - np.pi
+    assert out.converged.mean() > 0.9
+    assert np.allclose(wrapped, [0.3, 1.2], atol=1e-8)
+
+
+def test_pose_error_is_the_log_of_the_relative_pose():
+    rng = np.random.default_rng(0)
+    chain = random_chain(rng, dof=4)
+    th = random_theta(chain, rng)
+    T_d = chain.fk(random_theta(chain, rng))
+    Vb = pose_error(chain, th, T_d, "body")
+    assert np.allclose(chain.fk(th) @ lie.exp_se3(Vb), T_d, atol=1e-9)
+    assert np.allclose(pose_error(chain, th, T_d, "space"), jac.adjoint(chain.fk(th)) @ Vb)
+
+
+def test_clik_tracks_a_moving_pose_and_its_error_decays():
+    ur = jac.robots.ur5()
+    t = np.linspace(0, 2, 201)
+    start = np.array([0.3, -0.9, 1.1, 0.2, 0.5, 0.1])
+    path = ur.fk(start + np.outer(np.sin(t), [0.4, 0.2, -0.3, 0.1, 0.3, 0.5]))
+    out = clik(ur, start, path, dt=0.01, gain=20.0)
+    assert out.error_orientation.max() < 2e-3 and out.error_position.max() < 2e-3
+    # a fixed target from an offset start: the error decays like (1 - K dt)^k to first order
+    T_d = ur.fk(start)
+    off = clik(ur, start + 0.05, np.repeat(T_d[None], 60, axis=0), dt=0.01, gain=20.0)
+    e = off.error_orientation + off.error_position
+    assert e[-1] < 1e-5 * e[0]
+    assert np.allclose(e[10:40] / e[9:39], 1 - 20.0 * 0.01, atol=0.02)
+    # without the feedback it drifts
+    drift = clik(ur, start, path, dt=0.01, gain=0.0)
+    assert drift.error_position.max() > 10 * out.error_position.max()
+
+
+def test_validation():
+    arm = jac.robots.planar_2r()
+    T = arm.fk([0.1, 0.2])
+    with pytest.raises(ValueError, match="method 'newton', 'dls' or 'transpose'"):
+        ik(arm, T, [0, 0], method="gauss")
+    with pytest.raises(ValueError, match="frame 'space' or 'body'"):
+        ik(arm, T, [0, 0], frame="geometric")
+    with pytest.raises(ValueError, match="eps_omega"):
+        ik(arm, T, [0, 0], eps_omega=0.0)
+    with pytest.raises(TypeError, match="integer for max_iterations"):
+        ik(arm, T, [0, 0], max_iterations=2.5)
+    with pytest.raises(ValueError, match="max_iterations >= 0"):
+        ik(arm, T, [0, 0], max_iterations=-1)
+    with pytest.raises(ValueError, match=r"theta0 with shape \(\.\.\., 2\)"):
+        ik(arm, T, [0, 0, 0])
+    with pytest.raises(ValueError, match="do not broadcast"):
+        ik(arm, np.stack([T] * 3), np.zeros((2, 2)))
+    bad = T.copy()
+    bad[:3, :3] *= 2
+    with pytest.raises(ValueError, match="rotation"):
+        ik(arm, bad, [0, 0])
+    with pytest.raises(TypeError, match="record_history"):
+        ik(arm, T, [0, 0], record_history="yes")
+    with pytest.raises(ValueError, match=r"target_poses with shape \(N, 4, 4\)"):
+        clik(arm, [0, 0], T, dt=0.1)
+    with pytest.raises(ValueError, match="method 'pinv' or 'dls'"):
+        clik(arm, [0, 0], np.stack([T, T]), dt=0.1, method="newton")
+    with pytest.raises(ValueError, match=r"target_velocities with shape \(2, 6\)"):
+        clik(arm, [0, 0], np.stack([T, T]), dt=0.1, target_velocities=np.zeros((2, 3)))

@@ -1,0 +1,261 @@
+"""Mutation checks for the issue-16 library (IK, J̇, gravity, redundancy): the checks must fail when the library is wrong.
+
+Three mutants of the core, each a classic mistake, are patched in with ``monkeypatch``:
+
+* ``jacobian``: space-Jacobian column i uses the product of joints 1..i-2 (forgets the joint just before);
+* ``adjoint``: :math:`[\\mathrm{Ad}_T]` with :math:`[p]R^T` in the lower-left block instead of :math:`[p]R`;
+* ``exponential``: the translation of :math:`e^{[\\mathcal S]\\theta}` with the sign of its
+  :math:`(\\theta - \\sin\\theta)[\\omega]^2v` term flipped (the rotation stays right).
+
+Each check below is a deterministic copy of an oracle of tests/test_ik.py, test_jacobian_derivative.py,
+test_dynamics.py and test_redundancy.py (finite differences, Modern Robotics, Pinocchio). The matrix
+``CAUGHT`` lists which check catches which mutant; a pair not listed is a mutant that does not change
+what that check computes (e.g. no adjoint is used by J̇), and each mutant is caught by several checks.
+"""
+
+import numpy as np
+import pytest
+
+import jacobians as jac
+from jacobians import _kernels, lie
+from jacobians.acceleration import acceleration, jacobian_derivative
+from jacobians.dynamics import gravity_torques, potential_energy
+from jacobians.ik import ik
+from jacobians.redundancy import manipulability_gradient
+from jacobians.testing import random_chain, random_theta
+
+# ---------------------------------------------------------------- mutants
+
+
+def _bad_columns(orig):
+    def columns(C, Rs, ps):
+        Rs2, ps2 = Rs.copy(), ps.copy()
+        Rs2[1:] = Rs[:-1]
+        ps2[1:] = ps[:-1]
+        Rs2[1], ps2[1] = np.eye(3), np.zeros(3)
+        out = orig(C, Rs2, ps2)
+        out[:, 0] = orig(C, Rs, ps)[:, 0]
+        return out
+    return columns
+
+
+def _bad_adjoint(T):
+    R = T[..., :3, :3]
+    out = np.zeros(T.shape[:-2] + (6, 6))
+    out[..., :3, :3] = R
+    out[..., 3:, 3:] = R
+    out[..., 3:, :3] = lie._skew(T[..., :3, 3]) @ np.swapaxes(R, -1, -2)
+    return out
+
+
+def _bad_exp_stack(C, theta):
+    c, s = np.cos(theta), np.sin(theta)
+    omc = 1.0 - c
+    R = np.eye(3) + s[:, None, None] * C.K + omc[:, None, None] * C.K2
+    p = theta[:, None] * C.v + omc[:, None] * C.Kv - (theta - s)[:, None] * C.K2v
+    return R, p
+
+
+def _bad_exp_se3(xi):
+    T = _ORIG_EXP(xi)
+    w, v = xi[..., :3], xi[..., 3:]
+    theta = np.linalg.norm(w, axis=-1)
+    _, _, Cc = lie._coefficients(theta)
+    K = lie._skew(w)
+    T[..., :3, 3] -= 2 * ((Cc[..., None, None] * (K @ K)) @ v[..., None])[..., 0]
+    return T
+
+
+_ORIG_EXP = lie._exp_se3
+
+
+def apply(mutant, mp):
+    import jacobians.chain as chain_mod
+    import jacobians.ik as ik_mod
+    import jacobians.statics as statics_mod
+
+    if mutant == "jacobian":
+        mp.setattr(_kernels, "space_columns_single", _bad_columns(_kernels.space_columns_single))
+    elif mutant == "adjoint":
+        for mod in (lie, chain_mod, ik_mod, statics_mod):
+            mp.setattr(mod, "_adjoint", _bad_adjoint)
+    elif mutant == "exponential":
+        mp.setattr(_kernels, "exp_stack", _bad_exp_stack)
+        for mod in (lie, chain_mod):
+            mp.setattr(mod, "_exp_se3", _bad_exp_se3)
+    else:  # pragma: no cover
+        raise ValueError(mutant)
+
+
+# ---------------------------------------------------------------- checks (one configuration at a time)
+
+def _chains():
+    rng = np.random.default_rng(16)
+    return [jac.robots.ur5(), random_chain(rng, dof=5, pitch_probability=0.0, prismatic_probability=0.0),
+            random_chain(rng, dof=4, pitch_probability=0.0)], rng
+
+
+def check_ik_against_modern_robotics():
+    mr = pytest.importorskip("modern_robotics")
+    ur = jac.robots.ur5()
+    rng = np.random.default_rng(0)
+    for frame in ("body", "space"):
+        for _ in range(4):
+            sol = rng.uniform(-np.pi, np.pi, 6)
+            T_d, th0 = mr.FKinSpace(ur.home, ur.screw_axes, sol), sol + 0.2 * rng.normal(size=6)
+            axes = ur.body_axes if frame == "body" else ur.screw_axes
+            th_mr, ok = (mr.IKinBody if frame == "body" else mr.IKinSpace)(axes, ur.home, T_d, th0, 1e-3, 1e-4)
+            out = ik(ur, T_d, th0, frame=frame, eps_omega=1e-3, eps_v=1e-4, max_iterations=20)
+            assert bool(out.converged) == ok and np.abs(out.theta - th_mr).max() < 1e-6
+
+
+def check_jdot_against_finite_differences():
+    chains, rng = _chains()
+    for chain in chains:
+        th, thd = random_theta(chain, rng), rng.normal(size=chain.dof)
+        for frame in ("space", "body", "geometric"):
+            h = 1e-6
+            fd = (jac.jacobian(chain, th + h * thd, frame) - jac.jacobian(chain, th - h * thd, frame)) / (2 * h)
+            assert np.allclose(jacobian_derivative(chain, th, thd, frame), fd, atol=1e-6)
+
+
+def check_acceleration_against_fk():
+    chains, rng = _chains()
+    for chain in chains:
+        n = chain.dof
+        th, thd, thdd = random_theta(chain, rng), rng.normal(size=n), rng.normal(size=n)
+        h = 1e-3
+        p = lambda t, th=th, thd=thd, thdd=thdd, chain=chain: chain.fk(th + t * thd + 0.5 * t * t * thdd)[:3, 3]
+        assert np.allclose(acceleration(chain, th, thd, thdd)[3:], (p(h) - 2 * p(0.0) + p(-h)) / h**2, atol=1e-4)
+
+
+def check_jdot_against_pinocchio():
+    pin = pytest.importorskip("pinocchio")
+    from jacobians.interop import SWAP, to_pinocchio_model
+
+    chains, rng = _chains()
+    refs = {"space": pin.ReferenceFrame.WORLD, "body": pin.ReferenceFrame.LOCAL,
+            "geometric": pin.ReferenceFrame.LOCAL_WORLD_ALIGNED}
+    for chain in chains:
+        model, fid = to_pinocchio_model(chain)
+        data = model.createData()
+        q, v = random_theta(chain, rng), rng.normal(size=chain.dof)
+        pin.computeJointJacobiansTimeVariation(model, data, q, v)
+        pin.updateFramePlacements(model, data)
+        for frame, ref in refs.items():
+            theirs = SWAP @ np.reshape(pin.getFrameJacobianTimeVariation(model, data, fid, ref), (6, chain.dof))
+            assert np.allclose(theirs, jacobian_derivative(chain, q, v, frame), atol=1e-9)
+
+
+def check_gravity_against_potential_energy():
+    chains, rng = _chains()
+    for chain in chains:
+        m, c, g = rng.uniform(0.5, 2, chain.dof), 0.3 * rng.normal(size=(chain.dof, 3)), rng.normal(size=3)
+        th = random_theta(chain, rng)
+        fd = jac.numerical_jacobian(lambda t, chain=chain, m=m, g=g, c=c: potential_energy(chain, t, m, g, c), th)
+        assert np.allclose(gravity_torques(chain, th, m, g, c), fd, atol=1e-6)
+
+
+def check_gravity_against_modern_robotics():
+    mr = pytest.importorskip("modern_robotics")
+    ur = jac.robots.ur5()
+    rng = np.random.default_rng(3)
+    m = rng.uniform(0.5, 2, 6)
+    F = ur.link_homes
+    Mlist = [F[0]] + [np.linalg.inv(F[i - 1]) @ F[i] for i in range(1, 6)] + [np.linalg.inv(F[-1]) @ ur.home]
+    Glist = [np.diag([0.01, 0.01, 0.01, mi, mi, mi]) for mi in m]
+    for _ in range(3):
+        q = random_theta(ur, rng)
+        theirs = mr.GravityForces(q, [0, 0, -9.81], Mlist, Glist, ur.screw_axes)
+        assert np.allclose(theirs, gravity_torques(ur, q, m), atol=1e-9)
+
+
+def check_manipulability_gradient():
+    chains, rng = _chains()
+    for chain in chains[:2]:
+        th = random_theta(chain, rng)
+        w = lambda t, chain=chain: jac.analysis.manipulability(jac.geometric_jacobian(chain, t)[3:])
+        fd = jac.numerical_jacobian(w, th)
+        assert np.allclose(manipulability_gradient(chain, th, rows=[3, 4, 5]), fd, atol=1e-6)
+
+
+CHECKS = {f.__name__: f for f in [
+    check_ik_against_modern_robotics, check_jdot_against_finite_differences, check_acceleration_against_fk,
+    check_jdot_against_pinocchio, check_gravity_against_potential_energy, check_gravity_against_modern_robotics,
+    check_manipulability_gradient]}
+
+#: (mutant, check) pairs that must fail. Found by running every pair; a pair left out is one where
+#: the mutant leaves the checked computation unchanged (stated in the comment).
+CAUGHT = {
+    "jacobian": ["check_ik_against_modern_robotics", "check_jdot_against_finite_differences",
+                 "check_acceleration_against_fk", "check_jdot_against_pinocchio",
+                 "check_gravity_against_potential_energy", "check_gravity_against_modern_robotics",
+                 "check_manipulability_gradient"],
+    # J̇, the acceleration, gravity and the gradient use no adjoint: only the space-frame IK error does
+    # (and the body axes of a chain, which the space-frame kernels do not use).
+    "adjoint": ["check_ik_against_modern_robotics"],
+    "exponential": ["check_ik_against_modern_robotics", "check_jdot_against_finite_differences",
+                    "check_acceleration_against_fk", "check_jdot_against_pinocchio",
+                    "check_gravity_against_potential_energy", "check_gravity_against_modern_robotics",
+                    "check_manipulability_gradient"],
+}
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_checks_pass_on_the_real_library(name):
+    CHECKS[name]()
+
+
+@pytest.mark.parametrize(("mutant", "name"), [(m, c) for m, cs in CAUGHT.items() for c in cs])
+def test_checks_fail_on_a_mutant(mutant, name, monkeypatch):
+    apply(mutant, monkeypatch)
+    with pytest.raises(AssertionError):
+        CHECKS[name]()
+
+
+@pytest.mark.parametrize(("mutant", "name"), [(m, c) for m in CAUGHT for c in sorted(CHECKS) if c not in CAUGHT[m]])
+def test_a_mutant_that_does_not_reach_a_check_leaves_it_passing(mutant, name, monkeypatch):
+    """The pairs left out of CAUGHT are left out because the mutated function is not used there, not by oversight."""
+    apply(mutant, monkeypatch)
+    CHECKS[name]()
+
+
+# ---------------------------------------------------------------- the chapter's hidden checks
+
+def _run_chapter_until_a_check_fails(path):
+    """Execute the code cells of a chapter in this process; return the index of the cell that raised, or None."""
+    import jupytext
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    nb = jupytext.read(path)
+    namespace: dict = {}
+    printoptions = np.get_printoptions()
+    rc = matplotlib.rc_context()  # the page's set-up changes the figure style: keep it to this run
+    rc.__enter__()
+    try:
+        for k, cell in enumerate(c for c in nb.cells if c.cell_type == "code"):
+            try:
+                exec(compile(cell.source, f"{path.name} code cell {k}", "exec"), namespace)
+            except AssertionError:
+                return k, "remove-cell" in cell.metadata.get("tags", [])
+    finally:
+        plt.close("all")
+        rc.__exit__(None, None, None)
+        np.set_printoptions(**printoptions)
+    return None
+
+
+@pytest.mark.parametrize("mutant", sorted(CAUGHT))
+def test_chapter_10_fails_on_each_mutant(mutant, monkeypatch):
+    """A hidden check of chapter 10 raises AssertionError when the library is corrupted (nbval runs it clean)."""
+    from pathlib import Path
+
+    pytest.importorskip("modern_robotics")
+    path = Path(__file__).resolve().parent.parent / "chapters" / "10_inverse_kinematics.md"
+    apply(mutant, monkeypatch)
+    failed = _run_chapter_until_a_check_fails(path)
+    assert failed is not None, f"chapter 10 ran to the end with the {mutant} mutant"
+    assert failed[1], f"the failing cell {failed[0]} is not a hidden check cell"
