@@ -5,7 +5,8 @@ environment variable ``COURSE_SOLUTIONS`` when it is set (``0``, ``no`` or
 ``false`` mean without). When it is false, a transform removes every solution
 of sphinx-exercise from the pages: the ``{solution}`` blocks and the gated
 ``{solution-start}`` ... ``{solution-end}`` ones with all the cells between
-them (code, outputs, the checker's verdict). It runs after sphinx-exercise has
+them (code, outputs, the checker's verdict), and any block of class
+``course-solutions-only`` (text that tells the reader about the solutions). It runs after sphinx-exercise has
 gathered each gated solution into one node; sphinx-exercise's own
 ``hide_solutions`` is not used because it drops only the opening marker of a
 gated solution and leaves the solution's cells on the page.
@@ -25,6 +26,9 @@ from sphinx.config import Config
 from sphinx.transforms import SphinxTransform
 
 ENV = "COURSE_SOLUTIONS"
+#: class of a block (``:::{container} course-solutions-only``) that speaks of the solutions:
+#: it goes with them
+ONLY_WITH_SOLUTIONS = "course-solutions-only"
 
 
 def solutions_wanted(value: str | None) -> bool:
@@ -58,6 +62,9 @@ class RemoveSolutions(SphinxTransform):
                 node.parent.remove(node)
         for node in list(self.document.findall(nodes.container)):  # a cell tagged solution outside a block
             if "tag_solution" in node.get("classes", []):
+                node.parent.remove(node)
+        for node in list(self.document.findall(nodes.Element)):  # text that speaks of the solutions
+            if ONLY_WITH_SOLUTIONS in node.get("classes", []) and node.parent is not None:
                 node.parent.remove(node)
 
 

@@ -36,6 +36,14 @@ Also SECRET-PLAIN-ANSWER.
 ```
 
 After the solutions, the page goes on: VISIBLE-TEXT.
+
+```{tip}
+Work in Jupyter.
+
+:::{container} course-solutions-only
+A solution folds open: SOLUTIONS-NOTE.
+:::
+```
 """
 
 
@@ -62,7 +70,8 @@ def test_without_solutions_no_solution_text_remains_and_the_page_goes_on(tmp_pat
     without = _build(tmp_path, "0")  # same output folder: the change of setting must re-read the page
     assert "SECRET-GATED-ANSWER" not in without and "SECRET-PLAIN-ANSWER" not in without
     assert 'class="solution' not in without and "Solution to" not in without
-    assert "VISIBLE-TEXT" in without and "Compute the twist." in without
+    assert "VISIBLE-TEXT" in without and "Compute the twist." in without and "Work in Jupyter." in without
+    assert "SOLUTIONS-NOTE" in with_them and "SOLUTIONS-NOTE" not in without
     assert "SECRET-GATED-ANSWER" in _build(tmp_path, "1")
 
 
