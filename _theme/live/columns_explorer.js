@@ -76,7 +76,7 @@ function render({ model, el }) {
   sFrame.set(eye, [0, 0, 0]);
   const links = [];
   for (let k = 0; k < n; k++) {
-    links.push(view.segment("solid", { stroke: pal.link, "stroke-width": 7, class: "jl-link" }));
+    links.push(view.segment("solid", { stroke: pal.link, "stroke-width": 7, class: `jl-link jl-link-${k + 1}` }));
   }
   const axes = [];
   for (let i = 0; i < n; i++) axes.push(view.segment("solid", { "stroke-width": 4, class: `jl-axis jl-axis-${i + 1}` }));
