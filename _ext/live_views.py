@@ -27,12 +27,12 @@ from typing import Any
 
 from docutils import nodes
 from docutils.parsers.rst import directives
+from live_views_spatial import SPATIAL_OPTIONS, SPATIAL_VIEWS, spatial_model  # the 3-D views (chapters 4, 6)
 from sphinx.application import Sphinx
 from sphinx.util.docutils import SphinxDirective
 
 from jacobians import robots
 from jacobians.plotting import arm_reach
-from live_views_spatial import SPATIAL_OPTIONS, SPATIAL_VIEWS, spatial_model  # the 3-D views (chapters 4, 6)
 
 VIEWS = ("planar_explorer", *SPATIAL_VIEWS)
 ROBOTS = {"planar_2r": robots.planar_2r, "planar_3r": robots.planar_3r}

@@ -232,39 +232,6 @@ def test_non_planar_chains_are_refused():
         Wd.planar_arm_explorer(theta=[1, 2, 3])
 
 
-# ---------------------------------------------------------------- 2. columns
-
-def test_columns_moving_a_joint_changes_the_predicted_columns():
-    w = Wd.columns_explorer(column=3)
-    n = w.chain.dof
-    th = w.theta
-    for j in range(1, n + 1):
-        w.move_joint(j, th[j - 1] + 0.37)
-        assert w.last_moved_joint == j
-        assert w.changed_space_columns == list(range(j + 1, n + 1))
-        assert w.changed_body_columns == list(range(1, j))
-        th = w.theta
-    np.testing.assert_allclose(w.J_s, jac.space_jacobian(w.chain, th), atol=1e-12)
-    np.testing.assert_allclose(w.J_b, jac.body_jacobian(w.chain, th), atol=1e-12)
-    shown = re.findall(r"\\begin\{bmatrix\}.*?\\end\{bmatrix\}", w.matrix_html.value)
-    np.testing.assert_allclose(parse_bmatrix(shown[0]), w.J_s.round(3), atol=1.1e-3)
-    np.testing.assert_allclose(parse_bmatrix(shown[1]), w.J_b.round(3), atol=1.1e-3)
-    assert w.roles(3) == ([1, 2], [4, 5])
-    assert w.role_colors == [Wd.PALETTE["space"]] * 2 + ["black"] + [Wd.PALETTE["body"]] * 2
-    assert [s.style.handle_color for s in w.angle_sliders] == w.role_colors
-
-
-def test_columns_planar_and_bad_column():
-    w = Wd.columns_explorer(jac.robots.planar_3r(), column=1)
-    assert w.planar and w.roles() == ([], [2, 3])
-    w.set(column=2)
-    assert [m.get_markeredgecolor() for m in w.role_points] == [Wd.PALETTE["space"], "black", Wd.PALETTE["body"]]
-    with pytest.raises(ValueError, match="column"):
-        w.set(column=7)
-    with pytest.raises(ValueError, match="column"):
-        Wd.columns_explorer(column=0)
-
-
 # ---------------------------------------------------------------- 3. gimbal lock
 
 def test_gimbal_lock_at_exactly_90_degrees_shows_undefined():
@@ -424,10 +391,9 @@ def test_resolved_rate_singularity_pinv_blows_up_dls_stays_bounded():
 
 @pytest.mark.parametrize("make", [
     lambda: Wd.planar_arm_explorer_animation(frames=3, dpi=40),
-    lambda: Wd.columns_explorer_animation(frames=5, dpi=40),
     lambda: Wd.gimbal_lock_animation(frames=5, dpi=40),
     lambda: Wd.resolved_rate_animation(frames=3, dpi=40),
-], ids=["explorer", "columns", "gimbal", "resolved_rate"])
+], ids=["explorer", "gimbal", "resolved_rate"])
 def test_static_animations_embed_without_cdn(make):
     from jacobians.plotting import animation_html
 
