@@ -16,7 +16,7 @@
 // Never throws on a reachable input, never shows NaN.
 
 import { evaluate, makeChain } from "./kinematics.js";
-import { CSS as CSS3D, createView3D, fixed, frameItems, groundGrid, html, injectStyle, sub } from "./view3d.js";
+import { CSS as CSS3D, createView3D, fixed, frameItems, groundGrid, html, injectStyle, put, sub, text } from "./view3d.js";
 
 const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
 const CHANGE_TOL = 1e-12; // as jacobians.widgets.columns: a column "changed" if an entry moved by more
@@ -144,7 +144,7 @@ function render({ model, el }) {
     const c = Math.round(Number(model.get("column")));
     return c >= 1 && c <= n ? c : 1;
   }
-  const state = { theta: null, column: null, Js: null, Jb: null, moved: [], changedS: [], changedB: [] };
+  const state = { theta: null, column: null, Js: null, Jb: null, moved: [], changedS: [], changedB: [], changeKey: null };
   const roleColor = (k, i) => (k < i ? pal.space : k > i ? pal.body : "#000000");
 
   function changedColumns(A, B) {
@@ -179,15 +179,15 @@ function render({ model, el }) {
       const q = pts[i];
       axes[i].set([q[0] - axisLen * w[0], q[1] - axisLen * w[1], q[2] - axisLen * w[2]],
         [q[0] + axisLen * w[0], q[1] + axisLen * w[1], q[2] + axisLen * w[2]]);
-      axes[i].el.setAttribute("stroke", c);
-      axes[i].el.setAttribute("stroke-width", i + 1 === col ? 6 : 4);
+      put(axes[i].el, "stroke", c);
+      put(axes[i].el, "stroke-width", i + 1 === col ? 6 : 4);
       joints[i].set(q);
       const tip = [q[0] + 1.25 * axisLen * w[0], q[1] + 1.25 * axisLen * w[1], q[2] + 1.25 * axisLen * w[2]];
       axisDots[i].set(tip);
-      axisDots[i].el.setAttribute("fill", i + 1 === col ? "#ffffff" : c);
+      put(axisDots[i].el, "fill", i + 1 === col ? "#ffffff" : c);
       axisNums[i].set(tip);
-      keys[i].style.background = i + 1 === col ? "#ffffff" : c;
-      sliders[i].style.accentColor = i + 1 === col ? "#000000" : c;
+      put(keys[i], "style", `background:${i + 1 === col ? "#ffffff" : c}`);
+      put(sliders[i], "style", `accent-color:${i + 1 === col ? "#000000" : c}`);
     }
     const R = [e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)];
     bFrame.set(R, pts[n]);
@@ -197,17 +197,36 @@ function render({ model, el }) {
       for (let c = 0; c < n; c++) {
         const isChanged = changed.includes(c + 1);
         const isWatched = c + 1 === col;
-        const bg = isChanged ? tint(colour, 0.35) : "";
-        t.heads[c].className = `${isWatched ? "jl-watch" : ""}${isChanged ? " jl-changed" : ""}`.trim();
-        t.heads[c].style.background = bg;
+        const style = isChanged ? `background:${tint(colour, 0.35)}` : "";
+        const cls = `${isWatched ? "jl-watch" : ""}${isChanged ? " jl-changed" : ""}`.trim();
+        put(t.heads[c], "class", cls);
+        put(t.heads[c], "style", style);
         for (let r = 0; r < 6; r++) {
           const cell = t.cells[r][c];
-          cell.textContent = fixed(J[r][c]);
-          cell.className = `${isWatched ? "jl-watch" : ""}${isChanged ? " jl-changed" : ""}`.trim();
-          cell.style.background = bg;
+          text(cell, fixed(J[r][c]));
+          put(cell, "class", cls);
+          put(cell, "style", style);
         }
       }
     }
+    if (col !== state.column) legendFor(col);
+    const changeKey = `${state.moved}|${state.changedS}|${state.changedB}`;
+    if (changeKey !== state.changeKey) describeChanges();
+    state.changeKey = changeKey;
+    for (let i = 0; i < n; i++) {
+      text(values[i], `${fixed((th[i] * 180) / Math.PI, 1)}°`);
+      if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
+    }
+    if (Number(select.value) !== col) select.value = String(col);
+    Object.assign(state, { theta: th, column: col, Js: e.Js, Jb: e.Jb, T: e.T, points: pts });
+    el.dataset.theta = JSON.stringify(th);
+    el.dataset.column = String(col);
+    el.dataset.moved = state.moved.join(",");
+    el.dataset.changedS = state.changedS.join(",");
+    el.dataset.changedB = state.changedB.join(",");
+  }
+
+  function legendFor(col) {
     const before = Array.from({ length: col - 1 }, (_, k) => k + 1);
     const after = Array.from({ length: n - col }, (_, k) => col + k + 1);
     legend.textContent = "";
@@ -222,6 +241,9 @@ function render({ model, el }) {
     const l3 = html("li", {}, legend);
     html("span", { class: "jl-key", style: "background:#ffffff" }, l3);
     l3.append(`axis ${col}, outlined in the tables: it moves neither`);
+  }
+
+  function describeChanges() {
     changes.textContent = "";
     if (state.moved.length === 1) {
       const k = state.moved[0];
@@ -235,17 +257,6 @@ function render({ model, el }) {
     } else {
       changes.append("Move one joint and watch which columns change (coloured).");
     }
-    for (let i = 0; i < n; i++) {
-      values[i].textContent = `${fixed((th[i] * 180) / Math.PI, 1)}°`;
-      if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
-    }
-    if (Number(select.value) !== col) select.value = String(col);
-    Object.assign(state, { theta: th, column: col, Js: e.Js, Jb: e.Jb, T: e.T, points: pts });
-    el.dataset.theta = JSON.stringify(th);
-    el.dataset.column = String(col);
-    el.dataset.moved = state.moved.join(",");
-    el.dataset.changedS = state.changedS.join(",");
-    el.dataset.changedB = state.changedB.join(",");
   }
 
   // ---- input -> state

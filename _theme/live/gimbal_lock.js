@@ -17,7 +17,7 @@
 // never a throw. _ext/live_views_spatial.py writes the model from the library.
 
 import { analyticJacobian, evaluate, makeChain, rateToAngularVelocity, singularValues } from "./kinematics.js";
-import { CSS as CSS3D, FONT, createView3D, fixed, frameItems, html, injectStyle, sub, svg } from "./view3d.js";
+import { CSS as CSS3D, FONT, createView3D, fixed, frameItems, html, injectStyle, put, sub, svg, text } from "./view3d.js";
 
 const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
 const REPS = { zyx: "ZYX (yaw, pitch, roll)", zyz: "ZYZ Euler" };
@@ -189,6 +189,8 @@ function render({ model, el }) {
   const tJ = makeTable("jl-J", ROW_LABELS, jointCols);
   const tA = makeTable("jl-Ja", [["φ̇", "1"], ["φ̇", "2"], ["φ̇", "3"], ["ṗ", "x"], ["ṗ", "y"], ["ṗ", "z"]], jointCols);
   sub(tJ.caption, ["J", ""]).append("(θ), geometric");
+  tB.caption.append("B(φ), ω");
+  sub(tB.caption, ["", "s"]).append(" = B(φ) φ̇");
 
   // ---- state -> picture
   function readWrist() {
@@ -263,21 +265,22 @@ function render({ model, el }) {
       state.curveKey = key;
     }
     const cx = X(deg(th[1])).toFixed(1);
-    cursor.setAttribute("x1", cx);
-    cursor.setAttribute("x2", cx);
+    put(cursor, "x1", cx);
+    put(cursor, "x2", cx);
     // numbers
-    for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) tB.cells[r][c].textContent = cell(B[r][c]);
-    tB.caption.textContent = "";
-    tB.caption.append("B(φ), ω");
-    sub(tB.caption, ["", "s"]).append(" = B(φ) φ̇");
+    for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) text(tB.cells[r][c], cell(B[r][c]));
     for (let r = 0; r < 6; r++) {
       for (let c = 0; c < 3; c++) {
-        tJ.cells[r][c].textContent = cell(e.Jg[r][c]);
-        tA.cells[r][c].textContent = a.singular ? "—" : cell(a.J[r][c]);
+        text(tJ.cells[r][c], cell(e.Jg[r][c]));
+        text(tA.cells[r][c], a.singular ? "—" : cell(a.J[r][c]));
       }
     }
-    tA.caption.textContent = "";
-    sub(tA.caption, ["J", "a"]).append(a.singular ? "(θ): undefined at the lock" : `(θ), ${rep.toUpperCase()}`);
+    const capKey = a.singular ? "lock" : rep;
+    if (capKey !== state.capKey) {
+      tA.caption.textContent = "";
+      sub(tA.caption, ["J", "a"]).append(a.singular ? "(θ): undefined at the lock" : `(θ), ${rep.toUpperCase()}`);
+      state.capKey = capKey;
+    }
     let level;
     let word;
     const margin = a.margin;
@@ -296,22 +299,27 @@ function render({ model, el }) {
       word = `${word ? `${word}. ` : ""}The wrist itself is singular: σₘᵢₙ of J’s ω rows is ${fixed(sigmaMin, 3)}`;
       if (level === "ok") level = "wrist";
     }
-    banner.textContent = word;
+    text(banner, word);
     banner.hidden = word === "";
-    banner.style.borderColor = level === "warning" ? pal.warning : pal.singular;
-    status.textContent = "";
-    status.append(`φ (${rep.toUpperCase()}) = (${a.phi.map((x) => `${fixed(deg(x), 1)}°`).join(", ")})`);
-    html("br", {}, status);
-    status.append(`det B(φ) = ${DET[rep]}`);
-    sub(status, ["", "2"]).append(` = ${fixed(detB, 4)}`);
-    html("br", {}, status);
-    sub(status, ["σ", "min"]).append(" of J's ω rows = ");
-    status.append(`${fixed(sigmaMin, 3)}${wristSing ? " (the wrist is singular)" : ""}`);
-    html("br", {}, status);
-    status.append(`‖J‖ = ${fixed(normJ, 2)}, ‖J`);
-    sub(status, ["", "a"]).append(`‖ = ${normA === null ? "undefined" : cell(normA)}`);
+    put(banner, "style", `border-color:${level === "warning" ? pal.warning : pal.singular}`);
+    const statusKey = [rep, ...a.phi.map((x) => fixed(deg(x), 1)), fixed(detB, 4), fixed(sigmaMin, 3), wristSing,
+      fixed(normJ, 2), normA === null ? "u" : cell(normA)].join("|");
+    if (statusKey !== state.statusKey) {
+      state.statusKey = statusKey;
+      status.textContent = "";
+      status.append(`φ (${rep.toUpperCase()}) = (${a.phi.map((x) => `${fixed(deg(x), 1)}°`).join(", ")})`);
+      html("br", {}, status);
+      status.append(`det B(φ) = ${DET[rep]}`);
+      sub(status, ["", "2"]).append(` = ${fixed(detB, 4)}`);
+      html("br", {}, status);
+      sub(status, ["σ", "min"]).append(" of J's ω rows = ");
+      status.append(`${fixed(sigmaMin, 3)}${wristSing ? " (the wrist is singular)" : ""}`);
+      html("br", {}, status);
+      status.append(`‖J‖ = ${fixed(normJ, 2)}, ‖J`);
+      sub(status, ["", "a"]).append(`‖ = ${normA === null ? "undefined" : cell(normA)}`);
+    }
     for (let i = 0; i < 3; i++) {
-      values[i].textContent = `${fixed(deg(th[i]), 1)}°`;
+      text(values[i], `${fixed(deg(th[i]), 1)}°`);
       const v = deg(th[i]);
       if (Math.abs(Number(sliders[i].value) - v) > 1e-9 && doc.activeElement !== sliders[i]) sliders[i].value = String(v);
     }

@@ -62,6 +62,24 @@ export function fixed(x, digits = 2) {
   return /^-0\.?0*$/.test(s) ? s.slice(1) : s.replace("-", "\u2212");
 }
 
+/** el.setAttribute(k, v) only when v differs from what this helper last wrote (a redraw writes little). */
+export function put(el, k, v) {
+  const c = el.jlAttrs || (el.jlAttrs = {});
+  const s = String(v);
+  if (c[k] !== s) {
+    c[k] = s;
+    el.setAttribute(k, s);
+  }
+}
+
+/** el.textContent = s only when it differs. */
+export function text(el, s) {
+  if (el.jlText !== s) {
+    el.jlText = s;
+    el.textContent = s;
+  }
+}
+
 export function injectStyle(doc, id, css) {
   if (doc.getElementById(id)) return;
   const s = doc.createElement("style");
@@ -190,11 +208,11 @@ export function createView3D(parent, options) {
       el, layer, visible: true, depth: 0, p: [0, 0, 0], q: [0, 0, 0],
       set(p, q) { this.p = p; this.q = q; this.visible = finite3(p) && finite3(q); return this; },
       draw(pr) {
-        el.setAttribute("visibility", this.visible ? "visible" : "hidden");
+        put(el, "visibility", this.visible ? "visible" : "hidden");
         if (!this.visible) return;
         const a = pr(this.p), b = pr(this.q);
-        el.setAttribute("x1", a[0].toFixed(2)); el.setAttribute("y1", a[1].toFixed(2));
-        el.setAttribute("x2", b[0].toFixed(2)); el.setAttribute("y2", b[1].toFixed(2));
+        put(el, "x1", a[0].toFixed(2)); put(el, "y1", a[1].toFixed(2));
+        put(el, "x2", b[0].toFixed(2)); put(el, "y2", b[1].toFixed(2));
         this.depth = 0.5 * (a[2] + b[2]);
       },
     };
@@ -208,10 +226,10 @@ export function createView3D(parent, options) {
       el, layer, visible: true, depth: 0, pts: [],
       set(pts) { this.pts = pts; this.visible = pts.every(finite3); return this; },
       draw(pr) {
-        el.setAttribute("visibility", this.visible ? "visible" : "hidden");
+        put(el, "visibility", this.visible ? "visible" : "hidden");
         if (!this.visible) return;
         let d = 0;
-        el.setAttribute("points", this.pts.map((p) => {
+        put(el, "points", this.pts.map((p) => {
           const a = pr(p);
           d += a[2];
           return `${a[0].toFixed(2)},${a[1].toFixed(2)}`;
@@ -234,14 +252,14 @@ export function createView3D(parent, options) {
         const a = pr(this.p), b = pr([this.p[0] + this.v[0], this.p[1] + this.v[1], this.p[2] + this.v[2]]);
         const dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy);
         const show = this.visible && L > 1e-6;
-        g.setAttribute("visibility", show ? "visible" : "hidden");
+        put(g, "visibility", show ? "visible" : "hidden");
         this.depth = 0.5 * (a[2] + b[2]);
         if (!show) return;
         const ux = dx / L, uy = dy / L, h = Math.min(headPx, 0.5 * L), w = 0.45 * h;
         const bx = b[0] - h * ux, by = b[1] - h * uy;
-        line.setAttribute("x1", a[0].toFixed(2)); line.setAttribute("y1", a[1].toFixed(2));
-        line.setAttribute("x2", bx.toFixed(2)); line.setAttribute("y2", by.toFixed(2));
-        head.setAttribute("points", `${b[0].toFixed(2)},${b[1].toFixed(2)} ${(bx - w * uy).toFixed(2)},`
+        put(line, "x1", a[0].toFixed(2)); put(line, "y1", a[1].toFixed(2));
+        put(line, "x2", bx.toFixed(2)); put(line, "y2", by.toFixed(2));
+        put(head, "points", `${b[0].toFixed(2)},${b[1].toFixed(2)} ${(bx - w * uy).toFixed(2)},`
           + `${(by + w * ux).toFixed(2)} ${(bx + w * uy).toFixed(2)},${(by - w * ux).toFixed(2)}`);
       },
     };
@@ -260,11 +278,11 @@ export function createView3D(parent, options) {
         return this;
       },
       draw(pr) {
-        el.setAttribute("visibility", this.visible ? "visible" : "hidden");
+        put(el, "visibility", this.visible ? "visible" : "hidden");
         if (!this.visible) return;
         const a = pr(this.p);
-        el.setAttribute("x", (a[0] + this.dx).toFixed(2));
-        el.setAttribute("y", (a[1] + this.dy).toFixed(2));
+        put(el, "x", (a[0] + this.dx).toFixed(2));
+        put(el, "y", (a[1] + this.dy).toFixed(2));
         this.depth = a[2];
       },
     };
@@ -277,10 +295,10 @@ export function createView3D(parent, options) {
       el, layer, visible: true, depth: 0, p: [0, 0, 0],
       set(p) { this.p = p; this.visible = finite3(p); return this; },
       draw(pr) {
-        el.setAttribute("visibility", this.visible ? "visible" : "hidden");
+        put(el, "visibility", this.visible ? "visible" : "hidden");
         if (!this.visible) return;
         const a = pr(this.p);
-        el.setAttribute("cx", a[0].toFixed(2)); el.setAttribute("cy", a[1].toFixed(2));
+        put(el, "cx", a[0].toFixed(2)); put(el, "cy", a[1].toFixed(2));
         this.depth = a[2];
       },
     };
