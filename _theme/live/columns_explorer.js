@@ -22,7 +22,7 @@ const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"
 const CHANGE_TOL = 1e-12; // as jacobians.widgets.columns: a column "changed" if an entry moved by more
 const DEFAULT_PALETTE = { space: "#E69F00", body: "#56B4E9", link: "#0072B2", joint: "#000000", muted: "#999999" };
 const CSS = `
-.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em}
+.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:content}
 .jac-live *{box-sizing:border-box}
 .jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
@@ -31,6 +31,8 @@ const CSS = `
 .jac-live input[type=range]{width:100%;margin:2px 0 8px}
 .jac-live select{font-size:16px;margin-left:6px}
 .jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
+.jac-live table.jl-matrix{table-layout:fixed;width:19.4em}
+.jac-live table.jl-matrix th[scope=col]:first-child{width:2.4em}
 .jac-live td,.jac-live th{padding:1px 6px;text-align:right;border:0}
 .jac-live caption{caption-side:top;text-align:left;font-size:15px}
 .jac-live sub{font-size:14px;line-height:1}

@@ -16,7 +16,9 @@
 // writes theta, wrist and rep back. At the lock J_a is "undefined": never NaN,
 // never a throw. _ext/live_views_spatial.py writes the model from the library.
 
-import { analyticJacobian, evaluate, makeChain, rateToAngularVelocity, singularValues } from "./kinematics.js";
+import {
+  analyticJacobian, coordinatesFromRotation, evaluate, makeChain, rateToAngularVelocity, singularValues,
+} from "./kinematics.js";
 import { CSS as CSS3D, FONT, createView3D, fixed, frameItems, html, injectStyle, put, sub, svg, text } from "./view3d.js";
 
 const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
@@ -26,9 +28,10 @@ const DEFAULT_PALETTE = { analytic: "#CC79A7", geometric: "#009E73", link: "#007
   singular: "#D55E00", warning: "#E69F00", space: "#E69F00", muted: "#999999" };
 const DEFAULT_COLUMNS = ["#D55E00", "#0072B2", "#009E73"];
 const CHART = { w: 400, h: 190, left: 52, right: 24, top: 12, bottom: 46, lo: -2, hi: 3 }; // log10 range
-const N_CURVE = 181;
+const N_CURVE = 121; // θ2 every 3°
+const LOCK_TOL = 1e-9; // kinematics.analyticJacobian's tol (the library's)
 const CSS = `
-.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em}
+.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:content}
 .jac-live *{box-sizing:border-box}
 .jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
@@ -37,6 +40,8 @@ const CSS = `
 .jac-live input[type=range]{width:100%;margin:2px 0 8px}
 .jac-live select{font-size:16px;margin-left:6px;max-width:100%}
 .jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
+.jac-live table.jl-matrix{table-layout:fixed;width:15em}
+.jac-live table.jl-matrix th[scope=col]:first-child{width:2.4em}
 .jac-live td,.jac-live th{padding:1px 6px;text-align:right;border:0}
 .jac-live caption{caption-side:top;text-align:left;font-size:15px}
 .jac-live sub{font-size:14px;line-height:1}
@@ -50,6 +55,15 @@ const CSS = `
 
 const det3 = (A) => A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
   - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) + A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+/** The inverse of a 3×3 matrix by its adjugate (B(φ) away from the lock). */
+function inverse3(A) {
+  const d = det3(A);
+  const C = (i, j) => {
+    const r = [0, 1, 2].filter((k) => k !== i), c = [0, 1, 2].filter((k) => k !== j);
+    return ((i + j) % 2 ? -1 : 1) * (A[r[0]][c[0]] * A[r[1]][c[1]] - A[r[0]][c[1]] * A[r[1]][c[0]]);
+  };
+  return [0, 1, 2].map((i) => [0, 1, 2].map((j) => C(j, i) / d));
+}
 const frob = (J) => Math.sqrt(J.reduce((s, row) => s + row.reduce((t, x) => t + x * x, 0), 0));
 const deg = (x) => (x * 180) / Math.PI;
 
@@ -211,21 +225,41 @@ function render({ model, el }) {
   }
   const state = { theta: null, wrist: null, rep: null, curveKey: null };
 
+  // One sweep per point: J from evaluate, φ from its R, then J_a's angular rows B(φ)⁻¹ J_ω
+  // (the same J_a as analyticJacobian; test_live_gimbal.py reads the curves back against the library).
   function curves(chain, th, rep) {
     const A = [], G = [], D = [];
     for (let k = 0; k < N_CURVE; k++) {
       const d = -limitDeg + (2 * limitDeg * k) / (N_CURVE - 1);
       const t = [th[0], (d * Math.PI) / 180, th[2]];
-      const a = analyticJacobian(chain, t, rep);
+      const e = evaluate(chain, t);
+      const J = e.Jg;
+      const phi = coordinatesFromRotation([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], rep);
+      const margin = rep === "zyx" ? Math.abs(Math.cos(phi[1])) : Math.abs(Math.sin(phi[1]));
+      let lin = 0, ang = 0;
+      for (let r = 3; r < 6; r++) for (let c = 0; c < 3; c++) lin += J[r][c] * J[r][c];
+      for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) ang += J[r][c] * J[r][c];
       const x = X(d).toFixed(1);
-      if (!a.singular) A.push(`${x},${Y(frob(a.J)).toFixed(1)}`);
-      else A.push(`${x},${Y(1e9).toFixed(1)}`); // off the top: undefined at the lock
-      G.push(`${x},${Y(frob(evaluate(chain, t).Jg)).toFixed(1)}`);
-      D.push(`${x},${Y(a.margin).toFixed(1)}`); // |det B| = the margin, |cos φ2| or |sin φ2|
+      G.push(`${x},${Y(Math.sqrt(lin + ang)).toFixed(1)}`);
+      D.push(`${x},${Y(margin).toFixed(1)}`); // |det B| = the margin, |cos φ2| or |sin φ2|
+      if (margin < LOCK_TOL) {
+        A.push(`${x},${Y(1e9).toFixed(1)}`); // off the top: undefined at the lock
+        continue;
+      }
+      const B = rateToAngularVelocity(phi, rep);
+      const Bi = inverse3(B);
+      let sa = 0;
+      for (let c = 0; c < 3; c++) {
+        for (let i = 0; i < 3; i++) {
+          const y = Bi[i][0] * J[0][c] + Bi[i][1] * J[1][c] + Bi[i][2] * J[2][c];
+          sa += y * y;
+        }
+      }
+      A.push(`${x},${Y(Math.sqrt(sa + lin)).toFixed(1)}`);
     }
-    curveA.setAttribute("points", A.join(" "));
-    curveJ.setAttribute("points", G.join(" "));
-    curveD.setAttribute("points", D.join(" "));
+    put(curveA, "points", A.join(" "));
+    put(curveJ, "points", G.join(" "));
+    put(curveD, "points", D.join(" "));
   }
 
   function draw() {
@@ -259,7 +293,10 @@ function render({ model, el }) {
     bFrame.set([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], p);
     view.render();
     // chart
-    const key = `${w}|${rep}|${th[0]}|${th[2]}`;
+    // Along θ2 the three norms do not depend on θ1: joint 1 turns the whole wrist about z, which turns J's
+    // columns about z and adds θ1 to φ1 (both ZYX and ZYZ start with a turn about z), and B(φ) = R_z(φ1) B(0, φ2, φ3).
+    // So the chart is redone only when θ3, the wrist or the coordinates change (the test checks it at any θ1).
+    const key = `${w}|${rep}|${th[2]}`;
     if (key !== state.curveKey) {
       curves(chain, th, rep);
       state.curveKey = key;

@@ -208,10 +208,47 @@ def test_lock_near_lock_and_the_wrists_own_singularity(harness):
         page.evaluate(SET_JS, [el, 0, v])
         page.evaluate(SET_JS, [el, 2, v])
         _check_state(el, model)
-    # the chart: three curves of finite points, a cursor at θ2
-    pts = el.evaluate("""(el) => ["a", "j", "d"].map((k) => el.querySelector(`polyline.jl-curve-${k}`)
-      .getAttribute("points").split(" ").map((p) => p.split(",").map(Number)))""")
-    assert all(len(c) == 181 and np.isfinite(np.array(c)).all() for c in pts)
+    assert seen["console"] == []
+
+
+def _chart(el):
+    """The three curves read back: θ2 (rad) and the value (log scale undone) of each point, and the cursor's θ2."""
+    got = el.evaluate("""(el) => ({curves: ["a", "j", "d"].map((k) => el.querySelector(`polyline.jl-curve-${k}`)
+      .getAttribute("points").split(" ").map((p) => p.split(",").map(Number))),
+      cursor: +el.querySelector("line.jl-cursor").getAttribute("x1")})""")
+    w, h, left, right, top, bottom, lo, hi = 400, 190, 52, 24, 12, 46, -2, 3  # gimbal_lock.js CHART
+    out = []
+    for c in got["curves"]:
+        a = np.array(c, dtype=float)
+        th2 = np.radians((a[:, 0] - left) / (w - left - right) * 360.0 - 180.0)
+        value = 10 ** (lo + (h - bottom - a[:, 1]) / (h - top - bottom) * (hi - lo))
+        out.append((th2, value))
+    return out, np.radians((got["cursor"] - left) / (w - left - right) * 360.0 - 180.0)
+
+
+@pytest.mark.parametrize("wrist,rep,theta", [("zyz_wrist", "zyx", [0.5, 1.0, 0.0]), ("zyz_wrist", "zyx", [-2.0, 0.3, 0.7]),
+                                             ("zyx_wrist", "zyz", [1.0, -0.4, -1.2]), ("zyz_wrist", "zyz", [2.5, 2.0, 0.3])])
+def test_chart_is_the_library_along_theta2(harness, wrist, rep, theta):
+    """The curves drawn: ‖J_a‖, ‖J‖ and |det B| along θ2 (θ1, θ3 fixed), read back from the SVG, are the library's."""
+    page, open_view, seen, _ = harness
+    model = spatial.gimbal_model(wrist, rep=rep)
+    el = open_view("gimbal_lock", model)
+    for th1 in (theta[0], theta[0] + 2.0):  # θ1 alone moved: the chart is kept, and still the library's
+        th = [th1, *theta[1:]]
+        page.evaluate("([th]) => window.liveModel.set('theta', th)", [th])
+        (tA, vA), (tJ, vJ), (tD, vD) = _chart(el)[0]
+        cursor = _chart(el)[1]
+        assert len(tA) == 121 and np.allclose(tA, np.linspace(-np.pi, np.pi, 121), atol=1e-3)  # 0.05 SVG unit
+        assert cursor == pytest.approx(th[1], abs=1e-3)
+        grid = np.column_stack([np.full(121, th1), np.linspace(-np.pi, np.pi, 121), np.full(121, theta[2])])
+        ref = _library(WRISTS[wrist](), grid, rep)
+        with np.errstate(invalid="ignore"):
+            norm_a = np.linalg.norm(ref["Ja"], axis=(-2, -1))
+        for drawn, lib in ((vA, norm_a), (vJ, ref["normJ"]), (vD, ref["margin"])):
+            shown = np.isfinite(lib) & (lib > 10 ** -2.4) & (lib < 10 ** 3.4)  # inside the chart, not clipped
+            assert shown.sum() > 60
+            assert np.abs(np.log10(drawn[shown]) - np.log10(lib[shown])).max() < 0.004  # 0.1 SVG unit = 0.004 decade
+        assert np.all(vA[~np.isfinite(norm_a)] > 10 ** 3.4)  # at the lock: off the top, not NaN
     assert seen["console"] == []
 
 
