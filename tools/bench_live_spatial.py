@@ -32,7 +32,7 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path[:0] = [str(ROOT / "_ext")]
-import live_views_spatial as spatial  # noqa: E402  (the directive's model builders live in _ext)
+import live_views_spatial as spatial  # type: ignore[import-untyped]  # noqa: E402  (the model builders live in _ext)
 
 LIVE = ROOT / "_theme" / "live"
 HARNESS = "tests/browser/live_spatial_harness.html"
