@@ -24,6 +24,7 @@ from __future__ import annotations
 import argparse
 import functools
 import http.server
+import importlib
 import statistics
 import sys
 import threading
@@ -32,7 +33,7 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path[:0] = [str(ROOT / "_ext")]
-import live_views_spatial as spatial  # type: ignore[import-untyped]  # noqa: E402  (the model builders live in _ext)
+spatial: Any = importlib.import_module("live_views_spatial")  # the model builders live in _ext (top-level for Sphinx)
 
 LIVE = ROOT / "_theme" / "live"
 HARNESS = "tests/browser/live_spatial_harness.html"
