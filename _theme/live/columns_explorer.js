@@ -31,7 +31,7 @@ const CSS = `
 .jac-live input[type=range]{width:100%;margin:2px 0 8px}
 .jac-live select{font-size:16px;margin-left:6px}
 .jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
-.jac-live table.jl-matrix{table-layout:fixed;width:19.4em}
+.jac-live table.jl-matrix{table-layout:fixed;width:21.4em}
 .jac-live table.jl-matrix th[scope=col]:first-child{width:2.4em}
 .jac-live td,.jac-live th{padding:1px 6px;text-align:right;border:0}
 .jac-live caption{caption-side:top;text-align:left;font-size:15px}
