@@ -96,7 +96,7 @@ function render({ model, el }) {
   const side = html("div", { class: "jl-side" }, wrap);
 
   // ---- the 3-D drawing
-  const R0 = 1.35 * tool;
+  const R0 = 1.55 * tool; // the tool frame stays inside at every pose
   const view = createView3D(plot, {
     id: uid, center: [0, 0, 0], extent: R0, azimuth: -0.95, elevation: 0.4,
     label: "The wrist: joint axes 1 to 3 with their rings, the tool frame {b}, and the axes φ1, φ2, φ3 that the "
