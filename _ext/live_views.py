@@ -27,13 +27,14 @@ from typing import Any
 
 from docutils import nodes
 from docutils.parsers.rst import directives
+from live_views_spatial import SPATIAL_OPTIONS, SPATIAL_VIEWS, spatial_model  # the 3-D views (chapters 4, 6)
 from sphinx.application import Sphinx
 from sphinx.util.docutils import SphinxDirective
 
 from jacobians import robots
 from jacobians.plotting import arm_reach
 
-VIEWS = ("planar_explorer",)
+VIEWS = ("planar_explorer", *SPATIAL_VIEWS)
 ROBOTS = {"planar_2r": robots.planar_2r, "planar_3r": robots.planar_3r}
 FRAMES = ("space", "body", "geometric")
 LIVE_DIR = "_static/live"
@@ -104,7 +105,8 @@ class LiveView(SphinxDirective):
     """``{live-view} <view>`` with ``:robot:``, ``:theta:`` and ``:frame:``."""
 
     required_arguments = 1
-    option_spec = {"robot": directives.unchanged, "theta": directives.unchanged, "frame": directives.unchanged}
+    option_spec = {"robot": directives.unchanged, "theta": directives.unchanged, "frame": directives.unchanged,
+                   **SPATIAL_OPTIONS}
 
     def run(self) -> list[nodes.Node]:
         view = self.arguments[0]
@@ -112,7 +114,10 @@ class LiveView(SphinxDirective):
             if view not in VIEWS:
                 raise ValueError(f"Expected a live view one of {', '.join(VIEWS)}, got {view!r}")
             theta = _angles(self.options["theta"]) if "theta" in self.options else None
-            model = planar_model(self.options.get("robot", "planar_2r"), theta, self.options.get("frame", "space"))
+            if view in SPATIAL_VIEWS:
+                model = spatial_model(view, self.options)
+            else:
+                model = planar_model(self.options.get("robot", "planar_2r"), theta, self.options.get("frame", "space"))
         except ValueError as exc:
             raise self.error(f"live-view: {exc}") from exc
         serial = self.env.new_serialno("live-view")

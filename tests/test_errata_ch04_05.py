@@ -107,7 +107,7 @@ def test_ch04_keeps_one_animation_of_column_3():
     animations = [c for c in cells if "animation_html(" in c]
     assert len(animations) == 1, "chapter 4 should animate the columns once (the bar-chart animation)"
     assert "columns_explorer_animation" not in text          # the near-duplicate widget animation is gone
-    assert "widgets.columns_explorer(column=3)" in text      # the live explorer stays (output removed)
+    assert "```{live-view} columns_explorer" in text         # the live explorer stays, now in the browser (no kernel)
 
 
 # ------------------------------------------------------------------ "say it once": the four columns

@@ -232,121 +232,6 @@ def test_non_planar_chains_are_refused():
         Wd.planar_arm_explorer(theta=[1, 2, 3])
 
 
-# ---------------------------------------------------------------- 2. columns
-
-def test_columns_moving_a_joint_changes_the_predicted_columns():
-    w = Wd.columns_explorer(column=3)
-    n = w.chain.dof
-    th = w.theta
-    for j in range(1, n + 1):
-        w.move_joint(j, th[j - 1] + 0.37)
-        assert w.last_moved_joint == j
-        assert w.changed_space_columns == list(range(j + 1, n + 1))
-        assert w.changed_body_columns == list(range(1, j))
-        th = w.theta
-    np.testing.assert_allclose(w.J_s, jac.space_jacobian(w.chain, th), atol=1e-12)
-    np.testing.assert_allclose(w.J_b, jac.body_jacobian(w.chain, th), atol=1e-12)
-    shown = re.findall(r"\\begin\{bmatrix\}.*?\\end\{bmatrix\}", w.matrix_html.value)
-    np.testing.assert_allclose(parse_bmatrix(shown[0]), w.J_s.round(3), atol=1.1e-3)
-    np.testing.assert_allclose(parse_bmatrix(shown[1]), w.J_b.round(3), atol=1.1e-3)
-    assert w.roles(3) == ([1, 2], [4, 5])
-    assert w.role_colors == [Wd.PALETTE["space"]] * 2 + ["black"] + [Wd.PALETTE["body"]] * 2
-    assert [s.style.handle_color for s in w.angle_sliders] == w.role_colors
-
-
-def test_columns_planar_and_bad_column():
-    w = Wd.columns_explorer(jac.robots.planar_3r(), column=1)
-    assert w.planar and w.roles() == ([], [2, 3])
-    w.set(column=2)
-    assert [m.get_markeredgecolor() for m in w.role_points] == [Wd.PALETTE["space"], "black", Wd.PALETTE["body"]]
-    with pytest.raises(ValueError, match="column"):
-        w.set(column=7)
-    with pytest.raises(ValueError, match="column"):
-        Wd.columns_explorer(column=0)
-
-
-# ---------------------------------------------------------------- 3. gimbal lock
-
-def test_gimbal_lock_at_exactly_90_degrees_shows_undefined():
-    w = Wd.gimbal_lock_explorer((30.0, 60.0, 0.0))
-    na60 = w.norms[0]
-    w.set(theta2_deg=89.0)
-    assert w.norms[0] > 10 * na60  # the analytic Jacobian blows up ...
-    assert w.norms[1] < 2.0 and w.sigma_min_omega > 0.9  # ... the geometric one does not
-    w.set(theta2_deg=90.0)
-    assert w.angles_deg[1] == 90.0
-    assert w.singular and np.isnan(w.J_a[:3]).all() and np.isfinite(w.J).all()
-    assert "undef" in w.matrix_latex["J_a"] and "undefined" in w.status.value
-    assert w.level == "bad"
-    assert w.det_B == pytest.approx(-np.cos(w.phi[1]), abs=1e-12) and w.det_B == 0.0
-    np.testing.assert_allclose(w.B, jac.representations.rate_to_angular_velocity(w.phi, "zyx"), atol=1e-12)
-    # the matrix drawn in the figure is B(phi): at the lock its columns 1 and 3 are parallel (z and -z)
-    np.testing.assert_allclose(w.matrix_artist.values, w.B, atol=1e-12)
-    np.testing.assert_allclose(w.B[:, 0], -w.B[:, 2], atol=1e-12)
-    assert "det B = 0.00" in w.matrix_title.get_text().replace("\\det", "det").replace("$", "")
-    w.set(theta2_deg=-90.0)
-    assert w.singular
-    w.set(angles_deg=[180.0, 45.0, -180.0])
-    assert not w.singular
-    np.testing.assert_allclose(w.J_a, jac.analytic_jacobian(w.chain, np.radians(w.angles_deg), "zyx"), atol=1e-12)
-
-
-def test_gimbal_lock_zyx_wrist_coincides():
-    w = Wd.gimbal_lock_explorer((10.0, 45.0, 20.0), wrist="zyx")
-    np.testing.assert_allclose(w.J_a[:3], np.eye(3), atol=1e-12)  # its ZYX angles are its joint angles
-    w.set(theta2_deg=90.0)
-    assert w.singular and w.sigma_min_omega < 1e-9 and "singular" in w.status.value
-    w.set(wrist="zyz")
-    assert w.chain.name == "ZYZ wrist"
-    with pytest.raises(ValueError, match="wrist"):
-        w.set(wrist="xyz")
-
-
-def test_gimbal_lock_zyz_wrist_own_singularity_is_at_theta2_zero():
-    # the live explorer's whole turn shows both: the wrist's singularity (theta2 = 0) and the ZYX lock (90)
-    w = Wd.gimbal_lock_explorer((30.0, 0.0, 0.0))
-    assert w.theta2_range == (-180.0, 180.0)
-    assert w.sigma_min_omega < 1e-9 and "singular" in w.status.value and not w.singular
-    g = np.radians(w.theta2_grid)
-    np.testing.assert_allclose(w.sigma_min_grid, np.sqrt(1 - np.abs(np.cos(g))), atol=1e-9)
-    with pytest.raises(ValueError, match="theta2_range"):
-        Wd.gimbal_lock_explorer(theta2_range=(90.0, 45.0))
-
-
-def test_gimbal_lock_animation_path_avoids_the_wrist_singularity():
-    anim = Wd.gimbal_lock_animation(frames=15, dpi=40)
-    w = anim.explorer
-    path = anim.path
-    assert path.shape == (15, 3)
-    np.testing.assert_allclose(np.degrees(path[:, 1]), np.linspace(45.0, 135.0, 15))
-    np.testing.assert_allclose(path[:, [0, 2]], np.radians([[30.0, 0.0]] * 15))
-    # the frames: the library's geometric Jacobian of the ZYZ wrist, never near its singularity theta2 = 0
-    for k in range(15):
-        anim.draw(k)
-        np.testing.assert_allclose(np.radians(w.angles_deg), path[k], atol=1e-12)
-        np.testing.assert_allclose(w.J, jac.geometric_jacobian(w.chain, path[k]), atol=1e-12)
-        assert w.sigma_min_omega >= 0.54
-    # the curves: drawn over the same theta2 interval, values from the library
-    assert w.theta2_range == (45.0, 135.0)
-    assert w.ax.get_xlim() == (45.0, 135.0)
-    J = jac.geometric_jacobian(w.chain, w.grid_theta)
-    smin = np.linalg.svd(J[:, :3], compute_uv=False)[:, -1]
-    np.testing.assert_allclose(w.curve_s.get_ydata(), smin, atol=1e-12)
-    assert smin.min() >= 0.54 and smin.min() == pytest.approx(np.sqrt(1 - np.cos(np.pi / 4)), abs=1e-9)
-    phi = jac.pose_coordinates(w.chain.fk(w.grid_theta), "zyx")[:, :3]
-    det_B = np.linalg.det(jac.representations.rate_to_angular_velocity(phi, "zyx"))
-    np.testing.assert_allclose(w.curve_det.get_ydata(), det_B, atol=1e-12)
-    np.testing.assert_allclose(det_B, -np.cos(phi[:, 1]), atol=1e-12)
-    # ... while det B reaches 0 (the ZYX lock) on the middle frame, where J_a does not exist
-    anim.draw(7)
-    assert w.angles_deg[1] == pytest.approx(90.0) and w.det_B == 0.0 and w.singular
-    assert np.abs(det_B).min() < 1e-12 and det_B.max() <= 1e-12
-    Ja = jac.analytic_jacobian(w.chain, w.grid_theta, "zyx", on_singularity="nan")
-    np.testing.assert_allclose(w.curve_a.get_ydata(), np.linalg.norm(Ja, axis=(-2, -1)), atol=1e-9)
-    assert np.nanmax(w.norm_Ja_grid) > 100 * w.norm_J_grid.max()
-    assert w.norm_J_grid.max() < 1.01 * w.norm_J_grid.min()  # while J keeps its size along the path
-
-
 # ---------------------------------------------------------------- 4. resolved rate
 
 def test_resolved_rate_tracks_a_circle_and_rates_match_pinv():
@@ -424,10 +309,8 @@ def test_resolved_rate_singularity_pinv_blows_up_dls_stays_bounded():
 
 @pytest.mark.parametrize("make", [
     lambda: Wd.planar_arm_explorer_animation(frames=3, dpi=40),
-    lambda: Wd.columns_explorer_animation(frames=5, dpi=40),
-    lambda: Wd.gimbal_lock_animation(frames=5, dpi=40),
     lambda: Wd.resolved_rate_animation(frames=3, dpi=40),
-], ids=["explorer", "columns", "gimbal", "resolved_rate"])
+], ids=["explorer", "resolved_rate"])
 def test_static_animations_embed_without_cdn(make):
     from jacobians.plotting import animation_html
 

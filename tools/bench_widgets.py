@@ -47,10 +47,6 @@ def cases() -> Iterator[tuple[str, Callable[[], Any], Callable[[Any, int], objec
            lambda w, k: setattr(w.angle_sliders[1], "value", round(-2.5 + 0.23 * k, 2)))
     yield ("explorer 3R analytic", lambda: Wd.planar_arm_explorer(arm3, frame="analytic"),
            lambda w, k: setattr(w.rate_sliders[0], "value", round(-1.5 + 0.13 * k, 2)))
-    yield ("columns 5R (3-D)", lambda: Wd.columns_explorer(),
-           lambda w, k: w.move_joint(1 + k % 5, 0.1 * k - 1.0))
-    yield ("gimbal lock", lambda: Wd.gimbal_lock_explorer(),
-           lambda w, k: setattr(w.angle_sliders[1], "value", 60.0 + 1.5 * k))
     yield ("resolved rate: time step", lambda: Wd.resolved_rate_explorer(),
            lambda w, k: setattr(w.time_slider, "value", 5 * k))
     yield ("resolved rate: damping (re-simulates)", lambda: Wd.resolved_rate_explorer(method="dls"),

@@ -1,19 +1,12 @@
 r"""Interactive explorers for the course (ipywidgets 8 + matplotlib), and their static twins.
 
-Four widgets, each a function returning an ``ipywidgets.VBox`` subclass:
+Two widgets, each a function returning an ``ipywidgets.VBox`` subclass:
 
 * :func:`planar_arm_explorer` (chapters 2 and 5): joint angles and rates, the
   arm with frames {s} and {b}, the tool velocity :math:`\dot p` from
   :math:`J\dot\theta`, a choice of Jacobian shown as a live matrix with its
   formula, velocity and force ellipses, a singularity indicator, a Play button
   that sweeps a joint.
-* :func:`columns_explorer` (chapter 4): which joints change column i of
-  :math:`J_s` (those before i) and of :math:`J_b` (those after i).
-* :func:`gimbal_lock_explorer` (chapter 6): ZYX coordinates of a spherical
-  wrist's tool orientation; :math:`B(\phi)` and :math:`\det B` next to the
-  smallest singular value of the angular rows of J, and the analytic Jacobian
-  blowing up as the ZYX pitch goes to ±90° while the geometric Jacobian stays
-  well-conditioned (on a ZYZ wrist, away from its own singularity θ2 = 0).
 * :func:`resolved_rate_explorer` (chapter 9): a planar arm following a path with
   the pseudo-inverse or damped least squares; joint rates plotted; what happens
   near a singularity.
@@ -25,6 +18,12 @@ moving artists with ``set_data`` and draws only those over the kept bitmap
 (blitting), then sends the PNG to an ``ipywidgets.Image``. That works in any
 Jupyter with a kernel and is easy to test: every widget has a ``set(...)``
 method and exposes what it drew.
+
+Which joints change which column of :math:`J_s` and :math:`J_b` (chapter 4)
+and the gimbal lock of a wrist's coordinates (chapter 6) are live views in the
+browser, no kernel: ``_theme/live/columns_explorer.js`` and
+``_theme/live/gimbal_lock.js``, mounted by the ``{live-view}`` directive
+(models from the library in ``_ext/live_views_spatial.py``).
 
 Static book: each widget has a ``*_animation`` function returning a
 :class:`jacobians.plotting.FrameSource` of the same view (its ``explorer`` is
@@ -41,8 +40,6 @@ resolved-rate runs from :func:`jacobians.velocity.resolved_rate`.
 
 from ..plotting import PALETTE
 from .base import ROW_LABELS, ROW_LABELS_TEX
-from .columns import ColumnsExplorer, columns_explorer, columns_explorer_animation
-from .gimbal import GimbalLockExplorer, gimbal_lock_animation, gimbal_lock_explorer
 from .path_following import ResolvedRateExplorer, resolved_rate_animation, resolved_rate_explorer
 from .planar import (
     FORCE_LABELS,
@@ -58,12 +55,6 @@ __all__ = [
     "PlanarArmExplorer",
     "planar_arm_explorer",
     "planar_arm_explorer_animation",
-    "ColumnsExplorer",
-    "columns_explorer",
-    "columns_explorer_animation",
-    "GimbalLockExplorer",
-    "gimbal_lock_explorer",
-    "gimbal_lock_animation",
     "ResolvedRateExplorer",
     "resolved_rate_explorer",
     "resolved_rate_animation",

@@ -1,0 +1,296 @@
+// The columns explorer, live (issue #13, view 2): which joints move which
+// column of J_s and of J_b, on the spatial 5R arm of the notes. One slider per
+// joint; the arm and its joint (screw) axes in a 3-D view the reader turns;
+// J_s and J_b with their current numbers. After a joint moves, the columns whose
+// numbers changed are coloured and listed: moving θ_k changes the columns of J_s
+// after k and the columns of J_b before k. A watched column i colours the axes
+// by role: the joints before i (they move column i of J_s), joint i, the joints
+// after i (they move column i of J_b), as jacobians.widgets.columns did.
+//
+// anywidget-compatible: `export default { render }`; render({model, el}) reads
+// S (6×n), M (4×4), Q (n×3 joint axis points), theta (n, rad), column (1-based),
+// name, limit (slider range ±limit rad), step (rad), reach, center (3), extent,
+// axis_length (m), palette {space, body, link, joint, muted}; it writes theta and
+// column back (model.set + save_changes) and redraws on "change:theta" /
+// "change:column". _ext/live_views_spatial.py writes the model from the library.
+// Never throws on a reachable input, never shows NaN.
+
+import { evaluate, makeChain } from "./kinematics.js";
+import { CSS as CSS3D, createView3D, fixed, frameItems, groundGrid, html, injectStyle, put, sub, text } from "./view3d.js";
+
+const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
+const CHANGE_TOL = 1e-12; // as jacobians.widgets.columns: a column "changed" if an entry moved by more
+const DEFAULT_PALETTE = { space: "#E69F00", body: "#56B4E9", link: "#0072B2", joint: "#000000", muted: "#999999" };
+const CSS = `
+.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:content}
+.jac-live *{box-sizing:border-box}
+.jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
+.jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
+.jac-live .jl-side{flex:1 1 280px;min-width:0}
+.jac-live label{display:block;font-size:16px}
+.jac-live input[type=range]{width:100%;margin:2px 0 8px}
+.jac-live select{font-size:16px;margin-left:6px}
+.jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
+.jac-live table.jl-matrix{table-layout:fixed;width:21.4em}
+.jac-live table.jl-matrix th[scope=col]:first-child{width:2.4em}
+.jac-live td,.jac-live th{padding:1px 6px;text-align:right;border:0}
+.jac-live caption{caption-side:top;text-align:left;font-size:15px}
+.jac-live sub{font-size:14px;line-height:1}
+.jac-live .jl-key{display:inline-block;width:14px;height:14px;border-radius:50%;vertical-align:-2px;margin-right:6px;
+  border:1px solid #000000}
+.jac-live .jl-changes{font-size:15px;margin:6px 0;min-height:2.7em}
+.jac-live .jl-legend{font-size:14px;margin:4px 0 0;padding:0;list-style:none}
+.jac-live .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
+.jac-live td.jl-watch,.jac-live th.jl-watch{outline:2px solid #000000;outline-offset:-2px}
+`;
+
+function render({ model, el }) {
+  const doc = el.ownerDocument;
+  injectStyle(doc, "jac-live-style-columns", CSS + CSS3D);
+  el.classList.add("jac-live");
+  const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
+  const n = chain.n;
+  const pal = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
+  const limit = Number(model.get("limit")) || 3.14;
+  const step = Number(model.get("step")) || 0.01;
+  const reach = Number(model.get("reach")) || 1;
+  const axisLen = Number(model.get("axis_length")) || 0.15 * reach;
+  const name = model.get("name") || `${n}-joint arm`;
+  const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
+  // translucent backgrounds of the changed columns, from the palette's space and body colours
+  const tint = (hex, a) => `rgba(${parseInt(hex.slice(1, 3), 16)},${parseInt(hex.slice(3, 5), 16)},`
+    + `${parseInt(hex.slice(5, 7), 16)},${a})`;
+
+  const wrap = html("div", { class: "jl-wrap" }, el);
+  const plot = html("div", { class: "jl-plot" }, wrap);
+  const side = html("div", { class: "jl-side" }, wrap);
+
+  // ---- the 3-D drawing
+  const view = createView3D(plot, {
+    id: uid, center: model.get("center") || [0, 0, 0], extent: Number(model.get("extent")) || 1.3 * reach,
+    azimuth: -1.05, elevation: 0.5,
+    label: `${name}: the arm, its joint axes numbered 1 to ${n} (coloured by which column of J_s or J_b they move), `
+      + "the frames {s} and {b}",
+  });
+  groundGrid(view, 0.75 * reach, 6);
+  const sFrame = frameItems(view, "{s}", 0.35 * reach / 2, { letters: true });
+  const eye = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+  sFrame.set(eye, [0, 0, 0]);
+  const links = [];
+  for (let k = 0; k < n; k++) {
+    links.push(view.segment("solid", { stroke: pal.link, "stroke-width": 7, class: `jl-link jl-link-${k + 1}` }));
+  }
+  const axes = [];
+  for (let i = 0; i < n; i++) axes.push(view.segment("solid", { "stroke-width": 4, class: `jl-axis jl-axis-${i + 1}` }));
+  const joints = [];
+  for (let i = 0; i < n; i++) {
+    joints.push(view.dot("solid", { r: 7, fill: "#ffffff", stroke: pal.joint, "stroke-width": 2.5 }));
+  }
+  const bFrame = frameItems(view, "{b}", 0.35 * reach / 2);
+  const axisDots = [];
+  const axisNums = [];
+  for (let i = 0; i < n; i++) {
+    axisDots.push(view.dot("front", { r: 13, stroke: "#000000", "stroke-width": 1.5, class: "jl-axis-key" }));
+    axisNums.push(view.label("front", String(i + 1), { "font-weight": "bold", stroke: "none", class: "jl-axis-num" }));
+  }
+
+  // ---- the controls
+  const colLabel = html("label", { for: `${uid}-col` }, side, "Watch column");
+  const select = html("select", { id: `${uid}-col`, class: "jl-column" }, colLabel);
+  for (let i = 1; i <= n; i++) html("option", { value: i }, select, `${i}`);
+  const sliders = [];
+  const values = [];
+  const keys = [];
+  const theta0 = model.get("theta");
+  for (let i = 0; i < n; i++) {
+    const id = `${uid}-t${i + 1}`;
+    const lab = html("label", { for: id }, side);
+    keys.push(html("span", { class: "jl-key", "aria-hidden": "true" }, lab));
+    lab.append(`θ${String.fromCharCode(0x2081 + i)} = `);
+    values.push(html("output", { for: id, class: "jl-value" }, lab));
+    const s = html("input", { type: "range", id, min: -limit, max: limit, step, class: "jl-theta", "data-joint": i + 1 },
+      side);
+    s.value = String(theta0[i]);
+    sliders.push(s);
+  }
+  const legend = html("ul", { class: "jl-legend" }, side);
+  const changes = html("p", { class: "jl-changes", "aria-live": "polite" }, side);
+  const tables = html("div", { class: "jl-tables" }, side);
+  function makeTable(symbol, cls, words) {
+    const table = html("table", { class: `jl-matrix ${cls}` }, tables);
+    const caption = html("caption", {}, table);
+    sub(caption, symbol).append(`(θ), ${words}`);
+    const hr = html("tr", {}, html("thead", {}, table));
+    html("th", { scope: "col" }, hr, "");
+    const heads = Array.from({ length: n }, (_, i) => html("th", { scope: "col" }, hr, `${i + 1}`));
+    const tbody = html("tbody", {}, table);
+    const cells = ROW_LABELS.map((lab) => {
+      const tr = html("tr", {}, tbody);
+      sub(html("th", { scope: "row" }, tr), lab);
+      return Array.from({ length: n }, () => html("td", {}, tr, ""));
+    });
+    return { table, heads, cells };
+  }
+  const tS = makeTable(["J", "s"], "jl-space", "space Jacobian");
+  const tB = makeTable(["J", "b"], "jl-body", "body Jacobian");
+
+  // ---- state -> picture
+  function readTheta() {
+    const th = model.get("theta");
+    return Array.from({ length: n }, (_, i) => {
+      const v = Number(th && th[i]);
+      return Number.isFinite(v) ? Math.max(-limit, Math.min(limit, v)) : 0;
+    });
+  }
+  function readColumn() {
+    const c = Math.round(Number(model.get("column")));
+    return c >= 1 && c <= n ? c : 1;
+  }
+  const state = { theta: null, column: null, Js: null, Jb: null, moved: [], changedS: [], changedB: [], changeKey: null };
+  const roleColor = (k, i) => (k < i ? pal.space : k > i ? pal.body : "#000000");
+
+  function changedColumns(A, B) {
+    const out = [];
+    if (!A || !B) return out;
+    for (let c = 0; c < n; c++) {
+      let d = 0;
+      for (let r = 0; r < 6; r++) d = Math.max(d, Math.abs(A[r][c] - B[r][c]));
+      if (d > CHANGE_TOL) out.push(c + 1);
+    }
+    return out;
+  }
+  const list = (xs) => (xs.length ? xs.join(", ") : "none");
+
+  function draw() {
+    const th = readTheta();
+    const col = readColumn();
+    const e = evaluate(chain, th);
+    const pts = e.points;
+    // what changed since the last drawing
+    const moved = state.theta ? th.map((t, k) => (t !== state.theta[k] ? k + 1 : 0)).filter(Boolean) : [];
+    if (moved.length) {
+      state.changedS = changedColumns(state.Js, e.Js);
+      state.changedB = changedColumns(state.Jb, e.Jb);
+      state.moved = moved;
+    }
+    // the arm
+    for (let k = 0; k < n; k++) links[k].set(pts[k], pts[k + 1]);
+    for (let i = 0; i < n; i++) {
+      const c = roleColor(i + 1, col);
+      const w = [e.Js[0][i], e.Js[1][i], e.Js[2][i]]; // ω_s,i: axis i's direction in {s}
+      const q = pts[i];
+      axes[i].set([q[0] - axisLen * w[0], q[1] - axisLen * w[1], q[2] - axisLen * w[2]],
+        [q[0] + axisLen * w[0], q[1] + axisLen * w[1], q[2] + axisLen * w[2]]);
+      put(axes[i].el, "stroke", c);
+      put(axes[i].el, "stroke-width", i + 1 === col ? 6 : 4);
+      joints[i].set(q);
+      const tip = [q[0] + 1.25 * axisLen * w[0], q[1] + 1.25 * axisLen * w[1], q[2] + 1.25 * axisLen * w[2]];
+      axisDots[i].set(tip);
+      put(axisDots[i].el, "fill", i + 1 === col ? "#ffffff" : c);
+      axisNums[i].set(tip);
+      put(keys[i], "style", `background:${i + 1 === col ? "#ffffff" : c}`);
+      put(sliders[i], "style", `accent-color:${i + 1 === col ? "#000000" : c}`);
+    }
+    const R = [e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)];
+    bFrame.set(R, pts[n]);
+    view.render();
+    // numbers
+    for (const [t, J, changed, colour] of [[tS, e.Js, state.changedS, pal.space], [tB, e.Jb, state.changedB, pal.body]]) {
+      for (let c = 0; c < n; c++) {
+        const isChanged = changed.includes(c + 1);
+        const isWatched = c + 1 === col;
+        const style = isChanged ? `background:${tint(colour, 0.35)}` : "";
+        const cls = `${isWatched ? "jl-watch" : ""}${isChanged ? " jl-changed" : ""}`.trim();
+        put(t.heads[c], "class", cls);
+        put(t.heads[c], "style", style);
+        for (let r = 0; r < 6; r++) {
+          const cell = t.cells[r][c];
+          text(cell, fixed(J[r][c]));
+          put(cell, "class", cls);
+          put(cell, "style", style);
+        }
+      }
+    }
+    if (col !== state.column) legendFor(col);
+    const changeKey = `${state.moved}|${state.changedS}|${state.changedB}`;
+    if (changeKey !== state.changeKey) describeChanges();
+    state.changeKey = changeKey;
+    for (let i = 0; i < n; i++) {
+      text(values[i], `${fixed((th[i] * 180) / Math.PI, 1)}°`);
+      if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
+    }
+    if (Number(select.value) !== col) select.value = String(col);
+    Object.assign(state, { theta: th, column: col, Js: e.Js, Jb: e.Jb, T: e.T, points: pts });
+    el.dataset.theta = JSON.stringify(th);
+    el.dataset.column = String(col);
+    el.dataset.moved = state.moved.join(",");
+    el.dataset.changedS = state.changedS.join(",");
+    el.dataset.changedB = state.changedB.join(",");
+  }
+
+  function legendFor(col) {
+    const before = Array.from({ length: col - 1 }, (_, k) => k + 1);
+    const after = Array.from({ length: n - col }, (_, k) => col + k + 1);
+    legend.textContent = "";
+    const l1 = html("li", {}, legend);
+    html("span", { class: "jl-key", style: `background:${pal.space}` }, l1);
+    l1.append(`axes ${list(before)} (before ${col}): they move column ${col} of `);
+    sub(l1, ["J", "s"]);
+    const l2 = html("li", {}, legend);
+    html("span", { class: "jl-key", style: `background:${pal.body}` }, l2);
+    l2.append(`axes ${list(after)} (after ${col}): they move column ${col} of `);
+    sub(l2, ["J", "b"]);
+    const l3 = html("li", {}, legend);
+    html("span", { class: "jl-key", style: "background:#ffffff" }, l3);
+    l3.append(`axis ${col}, outlined in the tables: it moves neither`);
+  }
+
+  function describeChanges() {
+    changes.textContent = "";
+    if (state.moved.length === 1) {
+      const k = state.moved[0];
+      changes.append(`You moved θ${String.fromCharCode(0x2080 + k)}: columns of `);
+      sub(changes, ["J", "s"]).append(` that changed: ${list(state.changedS)} (after ${k}); of `);
+      sub(changes, ["J", "b"]).append(`: ${list(state.changedB)} (before ${k}).`);
+    } else if (state.moved.length > 1) {
+      changes.append(`Joints ${state.moved.join(", ")} moved: columns of `);
+      sub(changes, ["J", "s"]).append(` that changed: ${list(state.changedS)}; of `);
+      sub(changes, ["J", "b"]).append(`: ${list(state.changedB)}.`);
+    } else {
+      changes.append("Move one joint and watch which columns change (coloured).");
+    }
+  }
+
+  // ---- input -> state
+  const onInput = (ev) => {
+    const th = readTheta();
+    const i = Number(ev.target.dataset.joint) - 1;
+    const v = Number(ev.target.value);
+    if (!Number.isFinite(v)) return;
+    th[i] = v;
+    model.set("theta", th);
+    model.save_changes();
+  };
+  const onColumn = () => {
+    model.set("column", Number(select.value));
+    model.save_changes();
+  };
+  sliders.forEach((s) => s.addEventListener("input", onInput));
+  select.addEventListener("change", onColumn);
+  model.on("change:theta", draw);
+  model.on("change:column", draw);
+  draw();
+  el.jacLive = state;
+  el.jacView = view;
+  return () => {
+    model.off("change:theta", draw);
+    model.off("change:column", draw);
+    sliders.forEach((s) => s.removeEventListener("input", onInput));
+    select.removeEventListener("change", onColumn);
+    view.destroy();
+    el.textContent = "";
+  };
+}
+
+export { render };
+export default { render };

@@ -1,0 +1,375 @@
+// A small orthographic 3-D view in SVG, shared by the spatial live views
+// (columns_explorer.js, gimbal_lock.js; issue #13). No dependencies.
+//
+// The camera looks at `center` from the direction (cos e cos a, cos e sin a, sin e)
+// (a = azimuth, e = elevation, world z up). A point p goes to the screen by
+//   x = (p − c)·r,  y = −(p − c)·u   (SVG y points down),  depth = (p − c)·d,
+// r = (−sin a, cos a, 0) to the right, u = (−sin e cos a, −sin e sin a, cos e) up,
+// d = the direction to the viewer (larger depth = nearer). Orthographic: the
+// sphere of radius `extent` about `center` always fits the square viewBox.
+//
+// The reader turns it by dragging on the drawing (mouse, pen or touch: the SVG
+// alone has touch-action none, so the page still scrolls elsewhere) or, once it
+// has the keyboard focus, with the arrow keys (5° a press; Home: the first view).
+//
+// Items keep their world coordinates; render() projects them all, so a camera
+// change redraws without recomputing the kinematics. Items in the "solid" layer
+// are drawn back to front (painter's order by depth).
+
+const SVGNS = "http://www.w3.org/2000/svg";
+export const VIEWBOX = 400; // SVG units across; strokes are in screen pixels (non-scaling)
+export const FONT = 18; // SVG units: ≥ 14 px when the drawing is ≥ 312 px wide
+const KEY_STEP = (5 * Math.PI) / 180;
+const DRAG_GAIN = 0.01; // rad per screen pixel
+const MAX_ELEVATION = (89 * Math.PI) / 180;
+
+export const CSS = `
+.jac-live .jl-view3d{position:relative}
+.jac-live .jl-view3d svg{width:100%;height:auto;display:block;touch-action:none;cursor:grab;user-select:none;
+  -webkit-user-select:none;border:1px solid #cccccc;border-radius:6px;background:#ffffff}
+.jac-live .jl-view3d svg:focus{outline:none}
+.jac-live .jl-view3d svg:focus-visible{outline:3px solid #0072B2;outline-offset:2px}
+.jac-live .jl-view3d svg.jl-dragging{cursor:grabbing}
+.jac-live .jl-help{font-size:14px;margin:4px 0 0;color:#333333}
+`;
+
+export function svg(tag, attrs = {}, parent = null) {
+  const e = document.createElementNS(SVGNS, tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
+  if (parent) parent.appendChild(e);
+  return e;
+}
+
+export function html(tag, attrs = {}, parent = null, text = null) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
+  if (text !== null) e.textContent = text;
+  if (parent) parent.appendChild(e);
+  return e;
+}
+
+/** Append text with a subscript (e.g. ["J", "s"] gives J_s) to `parent`. */
+export function sub(parent, [base, index]) {
+  parent.append(base);
+  if (index) html("sub", {}, parent, index);
+  return parent;
+}
+
+/** A number with fixed decimals, never "−0.00"; a true minus sign; "—" for a non-finite number. */
+export function fixed(x, digits = 2) {
+  if (!Number.isFinite(x)) return "—";
+  const s = x.toFixed(digits);
+  return /^-0\.?0*$/.test(s) ? s.slice(1) : s.replace("-", "\u2212");
+}
+
+/** el.setAttribute(k, v) only when v differs from what this helper last wrote (a redraw writes little). */
+export function put(el, k, v) {
+  const c = el.jlAttrs || (el.jlAttrs = {});
+  const s = String(v);
+  if (c[k] !== s) {
+    c[k] = s;
+    el.setAttribute(k, s);
+  }
+}
+
+/** el.textContent = s only when it differs. */
+export function text(el, s) {
+  if (el.jlText !== s) {
+    el.jlText = s;
+    el.textContent = s;
+  }
+}
+
+export function injectStyle(doc, id, css) {
+  if (doc.getElementById(id)) return;
+  const s = doc.createElement("style");
+  s.id = id;
+  s.textContent = css;
+  doc.head.appendChild(s);
+}
+
+const sub3 = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const dot3 = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const finite3 = (p) => Number.isFinite(p[0]) && Number.isFinite(p[1]) && Number.isFinite(p[2]);
+
+/**
+ * An orthographic 3-D view in `parent`.
+ * options: center (3), extent (world radius that must fit), azimuth, elevation (rad),
+ * label (the aria-label: what is drawn), help (a visible line of how to turn it), id.
+ * Returns {svg, layers: {back, solid, front}, camera, project, render, setCamera, items, destroy, onCamera}.
+ */
+export function createView3D(parent, options) {
+  const center = options.center || [0, 0, 0];
+  const extent = options.extent || 1;
+  const scale = (0.5 * VIEWBOX) / extent; // SVG units per metre
+  const home = { azimuth: options.azimuth ?? -1.0, elevation: options.elevation ?? 0.45 };
+  const camera = { ...home };
+  const box = html("div", { class: "jl-view3d" }, parent);
+  const helpId = `${options.id || "jl3d"}-help`;
+  const root = svg("svg", {
+    viewBox: `${-VIEWBOX / 2} ${-VIEWBOX / 2} ${VIEWBOX} ${VIEWBOX}`, tabindex: 0, role: "img",
+    "aria-roledescription": "turnable 3-D view", "aria-label": options.label || "3-D view",
+    "aria-describedby": helpId, class: "jl-3d", "font-size": FONT, "font-family": "inherit",
+  }, box);
+  const layers = { back: svg("g", { class: "jl-back" }, root), solid: svg("g", { class: "jl-solid" }, root),
+    front: svg("g", { class: "jl-front" }, root) };
+  const help = html("p", { class: "jl-help", id: helpId }, box,
+    options.help || "Turn the view: drag it, or focus it (Tab) and press the arrow keys; Home resets.");
+  let basis = null;
+  function updateBasis() {
+    const ca = Math.cos(camera.azimuth), sa = Math.sin(camera.azimuth);
+    const ce = Math.cos(camera.elevation), se = Math.sin(camera.elevation);
+    basis = { r: [-sa, ca, 0], u: [-se * ca, -se * sa, ce], d: [ce * ca, ce * sa, se] };
+  }
+  updateBasis();
+  /** World point -> [x, y, depth] in SVG units (y down). */
+  function project(p) {
+    const q = sub3(p, center);
+    return [scale * dot3(q, basis.r), -scale * dot3(q, basis.u), dot3(q, basis.d)];
+  }
+  const items = [];
+  const listeners = [];
+  function render() {
+    for (const it of items) it.draw(project, basis);
+    const solid = items.filter((it) => it.layer === "solid" && it.visible);
+    solid.sort((a, b) => a.depth - b.depth);
+    let i = 0;
+    let inOrder = true;
+    for (const child of layers.solid.children) {
+      if (i >= solid.length || child !== solid[i].el) { inOrder = false; break; }
+      i++;
+    }
+    if (!inOrder || i !== solid.length) for (const it of solid) layers.solid.appendChild(it.el);
+  }
+  function setCamera(azimuth, elevation) {
+    camera.azimuth = Number.isFinite(azimuth) ? azimuth : camera.azimuth;
+    camera.elevation = Math.max(-MAX_ELEVATION, Math.min(MAX_ELEVATION,
+      Number.isFinite(elevation) ? elevation : camera.elevation));
+    updateBasis();
+    render();
+    root.dataset.azimuth = camera.azimuth.toFixed(4);
+    root.dataset.elevation = camera.elevation.toFixed(4);
+    listeners.forEach((f) => f(camera));
+  }
+  // ---- the reader turns it
+  let drag = null;
+  const onDown = (ev) => {
+    if (ev.button !== undefined && ev.button !== 0) return;
+    drag = { x: ev.clientX, y: ev.clientY, id: ev.pointerId };
+    try {
+      root.setPointerCapture(ev.pointerId);
+    } catch {
+      // a synthetic event has no active pointer to capture
+    }
+    root.classList.add("jl-dragging");
+    ev.preventDefault();
+  };
+  const onMove = (ev) => {
+    if (!drag) return;
+    const dx = ev.clientX - drag.x, dy = ev.clientY - drag.y;
+    drag.x = ev.clientX;
+    drag.y = ev.clientY;
+    if (!Number.isFinite(dx) || !Number.isFinite(dy)) return;
+    setCamera(camera.azimuth - DRAG_GAIN * dx, camera.elevation + DRAG_GAIN * dy);
+  };
+  const onUp = () => {
+    drag = null;
+    root.classList.remove("jl-dragging");
+  };
+  const onKey = (ev) => {
+    const k = ev.key;
+    if (k === "ArrowLeft") setCamera(camera.azimuth + KEY_STEP, camera.elevation);
+    else if (k === "ArrowRight") setCamera(camera.azimuth - KEY_STEP, camera.elevation);
+    else if (k === "ArrowUp") setCamera(camera.azimuth, camera.elevation + KEY_STEP);
+    else if (k === "ArrowDown") setCamera(camera.azimuth, camera.elevation - KEY_STEP);
+    else if (k === "Home") setCamera(home.azimuth, home.elevation);
+    else return;
+    ev.preventDefault();
+    ev.stopPropagation(); // a deck must not change slides while the view is being turned
+  };
+  root.addEventListener("pointerdown", onDown);
+  root.addEventListener("pointermove", onMove);
+  root.addEventListener("pointerup", onUp);
+  root.addEventListener("pointercancel", onUp);
+  root.addEventListener("keydown", onKey);
+  root.dataset.azimuth = camera.azimuth.toFixed(4);
+  root.dataset.elevation = camera.elevation.toFixed(4);
+
+  // ---- items: each keeps world data, draw() projects it
+  function add(item) {
+    items.push(item);
+    return item;
+  }
+  /** A segment p–q (world), stroke in px. set(p, q); hide(). */
+  function segment(layer, attrs) {
+    const el = svg("line", { "vector-effect": "non-scaling-stroke", "stroke-linecap": "round", ...attrs },
+      layers[layer]);
+    const it = {
+      el, layer, visible: true, depth: 0, p: [0, 0, 0], q: [0, 0, 0],
+      set(p, q) { this.p = p; this.q = q; this.visible = finite3(p) && finite3(q); return this; },
+      draw(pr) {
+        put(el, "visibility", this.visible ? "visible" : "hidden");
+        if (!this.visible) return;
+        const a = pr(this.p), b = pr(this.q);
+        put(el, "x1", a[0].toFixed(2)); put(el, "y1", a[1].toFixed(2));
+        put(el, "x2", b[0].toFixed(2)); put(el, "y2", b[1].toFixed(2));
+        this.depth = 0.5 * (a[2] + b[2]);
+      },
+    };
+    return add(it);
+  }
+  /** A polyline through world points. set(points). */
+  function polyline(layer, attrs) {
+    const el = svg("polyline", { fill: "none", "vector-effect": "non-scaling-stroke", "stroke-linejoin": "round",
+      "stroke-linecap": "round", ...attrs }, layers[layer]);
+    const it = {
+      el, layer, visible: true, depth: 0, pts: [],
+      set(pts) { this.pts = pts; this.visible = pts.every(finite3); return this; },
+      draw(pr) {
+        put(el, "visibility", this.visible ? "visible" : "hidden");
+        if (!this.visible) return;
+        let d = 0;
+        put(el, "points", this.pts.map((p) => {
+          const a = pr(p);
+          d += a[2];
+          return `${a[0].toFixed(2)},${a[1].toFixed(2)}`;
+        }).join(" "));
+        this.depth = d / Math.max(1, this.pts.length);
+      },
+    };
+    return add(it);
+  }
+  /** An arrow from p along the world vector v; its head (px) drawn on screen. set(p, v). */
+  function arrow(layer, color, width = 2.5, headPx = 11) {
+    const g = svg("g", { fill: color, stroke: color }, layers[layer]);
+    const line = svg("line", { "stroke-width": width, "vector-effect": "non-scaling-stroke",
+      "stroke-linecap": "round" }, g);
+    const head = svg("polygon", { stroke: "none" }, g);
+    const it = {
+      el: g, layer, visible: true, depth: 0, p: [0, 0, 0], v: [0, 0, 0],
+      set(p, v) { this.p = p; this.v = v; this.visible = finite3(p) && finite3(v); return this; },
+      draw(pr) {
+        const a = pr(this.p), b = pr([this.p[0] + this.v[0], this.p[1] + this.v[1], this.p[2] + this.v[2]]);
+        const dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy);
+        const show = this.visible && L > 1e-6;
+        put(g, "visibility", show ? "visible" : "hidden");
+        this.depth = 0.5 * (a[2] + b[2]);
+        if (!show) return;
+        const ux = dx / L, uy = dy / L, h = Math.min(headPx, 0.5 * L), w = 0.45 * h;
+        const bx = b[0] - h * ux, by = b[1] - h * uy;
+        put(line, "x1", a[0].toFixed(2)); put(line, "y1", a[1].toFixed(2));
+        put(line, "x2", bx.toFixed(2)); put(line, "y2", by.toFixed(2));
+        put(head, "points", `${b[0].toFixed(2)},${b[1].toFixed(2)} ${(bx - w * uy).toFixed(2)},`
+          + `${(by + w * ux).toFixed(2)} ${(bx + w * uy).toFixed(2)},${(by - w * ux).toFixed(2)}`);
+      },
+    };
+    return add(it);
+  }
+  /** A text label at a world point (offset in SVG units). set(p, text?). */
+  function label(layer, text, attrs = {}) {
+    const el = svg("text", { "text-anchor": "middle", "dominant-baseline": "central", "paint-order": "stroke",
+      stroke: "#ffffff", "stroke-width": 4, "stroke-linejoin": "round", ...attrs }, layers[layer]);
+    el.textContent = text;
+    const it = {
+      el, layer, visible: true, depth: 0, p: [0, 0, 0], dx: 0, dy: 0,
+      set(p, t = null, dx = 0, dy = 0) {
+        this.p = p; this.dx = dx; this.dy = dy; this.visible = finite3(p);
+        if (t !== null && el.textContent !== t) el.textContent = t;
+        return this;
+      },
+      draw(pr) {
+        put(el, "visibility", this.visible ? "visible" : "hidden");
+        if (!this.visible) return;
+        const a = pr(this.p);
+        put(el, "x", (a[0] + this.dx).toFixed(2));
+        put(el, "y", (a[1] + this.dy).toFixed(2));
+        this.depth = a[2];
+      },
+    };
+    return add(it);
+  }
+  /** A dot (screen radius in SVG units) at a world point. set(p). */
+  function dot(layer, attrs) {
+    const el = svg("circle", { "vector-effect": "non-scaling-stroke", ...attrs }, layers[layer]);
+    const it = {
+      el, layer, visible: true, depth: 0, p: [0, 0, 0],
+      set(p) { this.p = p; this.visible = finite3(p); return this; },
+      draw(pr) {
+        put(el, "visibility", this.visible ? "visible" : "hidden");
+        if (!this.visible) return;
+        const a = pr(this.p);
+        put(el, "cx", a[0].toFixed(2)); put(el, "cy", a[1].toFixed(2));
+        this.depth = a[2];
+      },
+    };
+    return add(it);
+  }
+  /** A circle of world radius about `c`, in the plane normal to unit `n`, as a closed polyline. set(c, n, radius). */
+  function ring(layer, attrs, segments = 40) {
+    const line = polyline(layer, attrs);
+    const base = line.set;
+    line.set = function set(c, n, radius) {
+      // two unit vectors e1, e2 normal to n
+      const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+      const k = dot3(a, n);
+      let e1 = [a[0] - k * n[0], a[1] - k * n[1], a[2] - k * n[2]];
+      const L = Math.hypot(...e1);
+      e1 = e1.map((x) => x / L);
+      const e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
+      const pts = [];
+      for (let s = 0; s <= segments; s++) {
+        const t = (2 * Math.PI * s) / segments, cs = radius * Math.cos(t), sn = radius * Math.sin(t);
+        pts.push([c[0] + cs * e1[0] + sn * e2[0], c[1] + cs * e1[1] + sn * e2[1], c[2] + cs * e1[2] + sn * e2[2]]);
+      }
+      return base.call(this, pts);
+    };
+    return line;
+  }
+  return {
+    svg: root, box, help, layers, camera, items, project, render, setCamera, segment, polyline, arrow, label, dot,
+    ring, scale,
+    onCamera(f) { listeners.push(f); },
+    destroy() {
+      root.removeEventListener("pointerdown", onDown);
+      root.removeEventListener("pointermove", onMove);
+      root.removeEventListener("pointerup", onUp);
+      root.removeEventListener("pointercancel", onUp);
+      root.removeEventListener("keydown", onKey);
+      listeners.length = 0;
+    },
+  };
+}
+
+/** The frame axes x, y, z (red-free Okabe–Ito: vermillion, bluish green, blue) as arrows from p. */
+export const AXIS_COLORS = ["#D55E00", "#009E73", "#0072B2"];
+
+/**
+ * Arrows of a frame and its name ("{s}", placed below its origin); axis letters x, y, z when `letters`.
+ * set(R, p, length) with R's columns the axes.
+ */
+export function frameItems(view, name, length, { letters = false, layer = "solid", width = 2.5 } = {}) {
+  const arrows = AXIS_COLORS.map((c) => view.arrow(layer, c, width));
+  const labels = letters ? ["x", "y", "z"].map((a, k) => view.label("front", a, { fill: AXIS_COLORS[k] })) : [];
+  const title = view.label("front", name, { fill: "#000000" });
+  return {
+    arrows, labels, title,
+    set(R, p, len = length) {
+      for (let k = 0; k < 3; k++) {
+        const v = [R[0][k] * len, R[1][k] * len, R[2][k] * len];
+        arrows[k].set(p, v);
+        if (labels[k]) labels[k].set([p[0] + 1.25 * v[0], p[1] + 1.25 * v[1], p[2] + 1.25 * v[2]]);
+      }
+      title.set(p, null, -16, 16);
+    },
+  };
+}
+
+/** A ground grid in the plane z = z0, half-width `half` with `n` cells a side, in the back layer. */
+export function groundGrid(view, half, n, z0 = 0) {
+  const step = (2 * half) / n;
+  for (let k = 0; k <= n; k++) {
+    const t = -half + k * step;
+    view.segment("back", { stroke: "#e8e8e8", "stroke-width": 1 }).set([t, -half, z0], [t, half, z0]);
+    view.segment("back", { stroke: "#e8e8e8", "stroke-width": 1 }).set([-half, t, z0], [half, t, z0]);
+  }
+}

@@ -1,0 +1,68 @@
+"""_ext/live_views_spatial.py: the models of the 3-D live views, and their errors on bad options."""
+
+from __future__ import annotations
+
+import html
+import json
+import math
+import re
+
+import live_views
+import live_views_spatial as spatial
+import numpy as np
+import pytest
+
+import jacobians as jac
+from jacobians.plotting.style import PALETTE
+
+
+def test_columns_model_is_the_library_chain():
+    chain = jac.robots.spatial_5r()
+    m = spatial.columns_model(theta=[0.1, 0.2, 0.3, 0.4, 0.5], column=2)
+    assert np.array_equal(m["S"], chain.screw_axes) and np.array_equal(m["M"], chain.home)
+    assert np.array_equal(m["Q"], chain.axis_points())
+    assert m["theta"] == [0.1, 0.2, 0.3, 0.4, 0.5] and m["column"] == 2
+    assert m["palette"]["space"] == PALETTE["space"] and m["palette"]["body"] == PALETTE["body"]
+    # the view's sphere holds the arm at every sampled pose, less a margin for rare stretched poses
+    rng = np.random.default_rng(1)
+    P = chain.joint_positions(rng.uniform(-np.pi, np.pi, (500, 5)))
+    assert np.percentile(np.linalg.norm(P - np.array(m["center"]), axis=-1), 90) < m["extent"]
+    json.dumps(m, allow_nan=False)
+
+
+def test_gimbal_model_holds_both_wrists():
+    m = spatial.gimbal_model("zyx_wrist", [0.1, 1.5, -0.2], "zyz")
+    assert m["wrist"] == "zyx_wrist" and m["rep"] == "zyz" and m["theta"] == [0.1, 1.5, -0.2]
+    for key, make in (("zyz_wrist", jac.robots.zyz_wrist), ("zyx_wrist", jac.robots.zyx_wrist)):
+        chain = make(spatial.WRIST_TOOL)
+        assert np.array_equal(m["wrists"][key]["S"], chain.screw_axes)
+        assert np.array_equal(m["wrists"][key]["M"], chain.home) and m["wrists"][key]["name"] == chain.name
+    assert spatial.gimbal_model()["theta"] == pytest.approx([math.radians(30.0), math.radians(60.0), 0.0])
+    json.dumps(m, allow_nan=False)
+
+
+@pytest.mark.parametrize("call,message", [
+    (lambda: spatial.columns_model("ur5"), "Expected robot one of spatial_5r, got 'ur5'"),
+    (lambda: spatial.columns_model(theta=[0.1]), "Expected theta with 5 angles (rad) for spatial_5r, got 1"),
+    (lambda: spatial.columns_model(theta=[0, 0, 0, 0, 4.0]), "Expected theta as finite angles within ±3.14 rad"),
+    (lambda: spatial.columns_model(column=6), "Expected column as an integer from 1 to 5, got 6"),
+    (lambda: spatial.gimbal_model("puma"), "Expected robot one of zyz_wrist, zyx_wrist, got 'puma'"),
+    (lambda: spatial.gimbal_model(rep="exp"), "Expected rep one of zyx, zyz, got 'exp'"),
+    (lambda: spatial.gimbal_model(theta=[0.0, float("nan"), 0.0]), "Expected theta as finite angles"),
+    (lambda: spatial.spatial_model("columns_explorer", {"column": "three"}), "Expected :column: as an integer"),
+    (lambda: spatial.spatial_model("columns_explorer", {"rep": "zyx"}), "Expected options robot, theta, column"),
+    (lambda: spatial.spatial_model("gimbal_lock", {"column": "1"}), "Expected options robot, theta, rep"),
+    (lambda: spatial.spatial_model("planar", {}), "Expected a 3-D live view one of columns_explorer, gimbal_lock"),
+])
+def test_bad_options_say_what_was_expected(call, message):
+    with pytest.raises(ValueError, match=re.escape(message)):
+        call()
+
+
+@pytest.mark.parametrize("view", spatial.SPATIAL_VIEWS)
+def test_host_html_loads_the_view_module(view):
+    model = spatial.spatial_model(view, {"theta": "0.1 0.2 0.3" if view == "gimbal_lock" else "0 0 0 0 0"})
+    out = live_views.host_html(view, model, 1, "jac-live-x-0")
+    assert f'from "../_static/live/{view}.js"' in out and "http" not in out
+    data = re.search(r'data-model="([^"]*)"', out)
+    assert data is not None and json.loads(html.unescape(data.group(1))) == model
