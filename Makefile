@@ -14,13 +14,14 @@ JB_FLAGS := -W -n --keep-going
 # inline backend, or plt.show() draws nothing into the book and the slides)
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
-.PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides bench lab slides exercises clean distclean vendor browser
+.PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides bench lab slides slides-pdf exercises clean distclean vendor browser
 
 help:
 	@echo "make book       build the book into _build/html"
 	@echo "make test       run every test (static checks, library, notebooks, book build, browser, decks)"
 	@echo "make lab        JupyterLab on the chapters, live widgets"
-	@echo "make slides     reveal.js decks into _build/slides"
+	@echo "make slides     reveal.js decks into _build/html/slides (after make book)"
+	@echo "make slides-pdf one PDF handout per deck into _build/slides-pdf"
 	@echo "make exercises  student notebooks into _build/exercises"
 	@echo "make bench      speed benchmark against modern_robotics and Pinocchio"
 
@@ -53,7 +54,7 @@ book: vendor
 	$(PY) -m tools.cache_guard _build/.jupyter_cache
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
-	$(PY) -m tools.build_slides _build/html/slides
+	$(PY) -m tools.build_slides
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
 
 # ------------------------------------------------------------------ tests
@@ -107,4 +108,10 @@ exercises: setup
 	$(PY) -m tools.make_exercises _build/exercises
 
 slides: vendor
-	$(PY) -m tools.build_slides _build/slides
+	$(PY) -m tools.build_slides
+
+# PDF handouts of the decks (one page per slide) with Debian's Chromium, into _build/slides-pdf
+slides-pdf: setup browser
+	@test -f _build/html/slides/decks.json || $(MAKE) book
+	$(PY) -m tools.slides_pdf _build/slides-pdf
+	$(PY) -m tools.build_slides --no-build
