@@ -217,12 +217,24 @@ def _display(block: nodes.Node) -> list[nodes.Node]:
     return []
 
 
+def _is_picture(node: nodes.Node) -> bool:
+    if isinstance(node, nodes.image | nodes.raw | nodes.figure):
+        return True
+    return isinstance(node, nodes.Element) and any(
+        True for _ in node.findall(lambda n: isinstance(n, nodes.image | nodes.raw)))
+
+
 class _Slide:
     def __init__(self, title: nodes.Node | None, ids: list[str]):
         self.title = title
         self.ids = ids
         self.body: list[nodes.Node] = []
         self.notes: list[nodes.Node] = []
+        #: holds display material of the book (not only slide text and notes)
+        self.display = False
+        #: holds a picture (figure, animation, live view) or a statement (definition, theorem): one a slide
+        self.picture = False
+        self.statement = False
 
     def empty(self) -> bool:
         return not self.body and not self.notes
@@ -255,7 +267,8 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
             continue
         if event == "cell":
             kind = value
-            if kind in ("slide", "subslide") and not current.empty():
+            # a new slide, unless this one holds only its heading, slide text and notes so far
+            if kind in ("slide", "subslide") and current.display:
                 current = start(section_title, section_ids)
             continue
         block = value
@@ -289,18 +302,32 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
         if isinstance(block, nodes.Element) and not found_only:
             for inner in block.findall(slide_notes):
                 current.notes.append(inner.deepcopy())
+        if not shown:
+            continue
+        picture = any(_is_picture(s) for s in shown)
+        statement = any(type(s).__name__ in DISPLAY_PRF for s in shown)
+        # one idea a slide: a picture or a statement gets a slide of its own, with the section's heading
+        if (picture and current.display) or current.picture or (statement and current.statement):
+            current = start(current.title.deepcopy() if current.title is not None else section_title,
+                            section_ids)
         if kind == "fragment":
             shown = [nodes.container("", s, classes=["fragment"]) for s in shown]
         current.body.extend(shown)
+        current.display = True
+        current.picture = current.picture or picture
+        current.statement = current.statement or statement
 
     # title slide, then every slide with something on it
     new_top = nodes.section("", ids=list(top["ids"]), classes=["title-slide"])
     new_top += title
     new_top += nodes.paragraph("", app.config.html_title or app.config.project, classes=["deck-course"])
-    for slide in slides:
+    for number, slide in enumerate(slides):
         if not slide.body and not slide.notes:
             continue
-        sec = nodes.section("", ids=list(slide.ids))
+        # a slide of its own title has an id of its own (HTML writers number titles by their section's id)
+        sec = nodes.section("", ids=list(slide.ids) or [f"slide-{number}"])
+        if not slide.ids:  # and no section number (the writer would fall back to the chapter's)
+            app.env.toc_secnumbers.setdefault(docname, {})[f"#slide-{number}"] = ()
         sec += slide.title if slide.title is not None else title.deepcopy()
         for item in slide.body:
             sec += item

@@ -26,7 +26,6 @@ ROOT = Path(__file__).resolve().parents[2]
 SITE = ROOT / "_build" / "html"
 SLIDES = SITE / "slides"
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
-CHROMIUM = "/usr/bin/chromium"
 SOURCES = build_slides.deck_sources()
 IDS = [s.stem for s in SOURCES]
 
@@ -96,18 +95,6 @@ def server():
 class _Quiet(http.server.SimpleHTTPRequestHandler):
     def log_message(self, *args: Any) -> None:
         pass
-
-
-@pytest.fixture(scope="session")
-def deck_browser():
-    if not Path(CHROMIUM).exists():
-        pytest.skip("Debian chromium is installed by `make test`")
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
-        yield b
-        b.close()
 
 
 _WALKS: dict[str, dict[str, Any]] = {}
