@@ -321,9 +321,15 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
     new_top = nodes.section("", ids=list(top["ids"]), classes=["title-slide"])
     new_top += title
     new_top += nodes.paragraph("", app.config.html_title or app.config.project, classes=["deck-course"])
-    for number, slide in enumerate(slides):
-        if not slide.body and not slide.notes:
+    kept: list[_Slide] = []
+    for slide in slides:
+        authored = any(isinstance(n, slide_notes) for n in slide.notes)
+        if not slide.body and not authored:
+            if kept:   # the book's notes of a slide with nothing to show go to the slide before
+                kept[-1].notes.extend(slide.notes)
             continue
+        kept.append(slide)
+    for number, slide in enumerate(kept):
         # a slide of its own title has an id of its own (HTML writers number titles by their section's id)
         sec = nodes.section("", ids=list(slide.ids) or [f"slide-{number}"])
         if not slide.ids:  # and no section number (the writer would fall back to the chapter's)
