@@ -29,10 +29,6 @@ ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
 SOURCES = build_slides.deck_sources()
 IDS = [s.stem for s in SOURCES]
 
-#: chapters whose slide text and speaker notes are not written yet (issue #14): their
-#: notes test is expected to fail, and passes strictly once a chapter is done
-NOTES_TODO = {"appendix_library", "conventions"}
-
 MIN_FONT_PX = 24
 MIN_SCALE = 0.9
 #: the book draws labels at 11 pt or more at dpi 80 (AUTHORING.md): 12.2 px at natural size
@@ -211,9 +207,7 @@ def test_figures_are_wide_with_large_labels(deck_browser, server, source):
                      + "\n".join(bad))
 
 
-@pytest.mark.parametrize("source", [pytest.param(s, marks=pytest.mark.xfail(
-    s.stem in NOTES_TODO, reason="speaker notes not written yet (issue #14)", strict=True)) for s in SOURCES],
-    ids=IDS)
+@pytest.mark.parametrize("source", SOURCES, ids=IDS)
 def test_every_content_slide_has_notes_with_minutes(deck_browser, server, source):
     w = walk(deck_browser, server, source)
     missing = [s["index"] for s in w["slides"] if not s["title"] and not re.search(r"About \d+", s["notes"])]
