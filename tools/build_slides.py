@@ -40,8 +40,11 @@ BUILD = ROOT / "_build" / "revealjs"
 BOOK_HTML = ROOT / "_build" / "html"
 PDF_DIR = ROOT / "_build" / "slides-pdf"
 #: reveal.js files a deck loads (of the tree bundled with sphinx-revealjs)
-REVEAL_KEEP = ("dist/reveal.js", "dist/reveal.css", "dist/theme/white.css", "dist/theme/fonts/source-sans-pro",
-               "plugin/notes/notes.js", "LICENSE")
+#: (the browser loads the woff fonts; the theme's .eot/.ttf copies and the source map are left out)
+REVEAL_KEEP = ("dist/reveal.js", "dist/reveal.css", "dist/theme/white.css", "plugin/notes/notes.js", "LICENSE",
+               "dist/theme/fonts/source-sans-pro/source-sans-pro.css", "dist/theme/fonts/source-sans-pro/LICENSE",
+               *(f"dist/theme/fonts/source-sans-pro/source-sans-pro-{w}.woff"
+                 for w in ("regular", "italic", "semibold", "semibolditalic")))
 _URL = re.compile(r"""(?P<up>(?:\.\./)+)(?P<tree>_static|_images)/(?P<path>[^"'?#\s)<>]+)""")
 
 
@@ -136,8 +139,7 @@ def assemble(dest: Path, book: Path, root: Path = ROOT) -> list[dict[str, str]]:
     for p in sorted(dest.rglob("*"), reverse=True):
         rel = p.relative_to(dest).as_posix()
         if p.is_file() and rel.startswith(("_static/", "_images/")):
-            in_reveal = p.is_relative_to(reveal) and any(
-                p.relative_to(reveal).as_posix().startswith(k) for k in REVEAL_KEEP)
+            in_reveal = p.is_relative_to(reveal) and p.relative_to(reveal).as_posix() in REVEAL_KEEP
             if rel not in linked and not in_reveal:
                 p.unlink()
         elif p.is_dir() and not any(p.iterdir()):
@@ -146,9 +148,14 @@ def assemble(dest: Path, book: Path, root: Path = ROOT) -> list[dict[str, str]]:
 
 
 def write_index(dest: Path, decks: list[dict[str, str]]) -> None:
+    """The slides index: each deck, its PDF handout (once `make slides-pdf` has made it) and its chapter."""
+    def pdf(d: dict[str, str]) -> str:
+        if (dest / d["pdf"]).is_file():
+            return f'· <a href="{html.escape(d["pdf"])}">PDF handout</a> '
+        return "· PDF handout: <code>make slides-pdf</code> "
+
     rows = "\n".join(
-        f'<li><a href="{html.escape(d["file"])}">{html.escape(d["title"])}</a> '
-        f'· <a href="{html.escape(d["pdf"])}">PDF handout</a> '
+        f'<li><a href="{html.escape(d["file"])}">{html.escape(d["title"])}</a> {pdf(d)}'
         f'· <a href="{html.escape(d["chapter"])}">chapter in the book</a></li>'
         for d in decks)
     dest.joinpath("index.html").write_text(

@@ -151,8 +151,10 @@ def test_deck_is_built_and_listed(server, source):
     for m in re.finditer(r"<(?:script|link|img)\b[^>]*\b(?:src|href)=[\"']([^\"']+)", html):
         assert not re.match(r"^(?:https?:)?//", m.group(1)), m.group(0)[:200]
     index = (SLIDES / "index.html").read_text(encoding="utf-8")
-    for href in (decks[source.stem]["file"], decks[source.stem]["pdf"], decks[source.stem]["chapter"]):
+    for href in (decks[source.stem]["file"], decks[source.stem]["chapter"]):
         assert f'href="{href}"' in index
+    # the handout is linked once `make slides-pdf` has made it, and never linked missing
+    assert (f'href="{decks[source.stem]["pdf"]}"' in index) == (SLIDES / decks[source.stem]["pdf"]).is_file()
     assert (SLIDES / decks[source.stem]["chapter"]).resolve().is_file()
 
 
@@ -212,3 +214,19 @@ def test_every_content_slide_has_notes_with_minutes(deck_browser, server, source
     w = walk(deck_browser, server, source)
     missing = [s["index"] for s in w["slides"] if not s["title"] and not re.search(r"About \d+", s["notes"])]
     assert not missing, f"content slides without speaker notes (key point, question, minutes): {missing}"
+
+
+def test_index_loads_without_a_failed_request_and_every_link_resolves(deck_browser, server):
+    page = deck_browser.new_page()
+    bad: list[str] = []
+    page.on("requestfailed", lambda r: bad.append(f"failed {r.url}"))
+    page.on("response", lambda r: bad.append(f"HTTP {r.status} {r.url}") if r.status >= 400 else None)
+    page.goto(server + "slides/index.html", wait_until="load")
+    page.wait_for_timeout(300)
+    hrefs = page.evaluate("[...document.querySelectorAll('a')].map(a => a.getAttribute('href'))")
+    page.close()
+    assert not bad, bad
+    decks = json.loads((SLIDES / "decks.json").read_text())
+    assert len(hrefs) >= 2 * len(decks) + 1
+    for href in hrefs:
+        assert (SLIDES / href).resolve().is_file(), f"the index links {href}, which is not there"
