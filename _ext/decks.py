@@ -243,6 +243,9 @@ class _Slide:
 def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
     """Rewrite a resolved doctree into one section per slide (revealjs builder only)."""
     if app.builder.name != BUILDER:
+        # the book: slide text and notes are not on the page, so not in its search index either
+        for node in list(doctree.findall(lambda n: isinstance(n, slide_only | slide_notes))):
+            node.parent.remove(node)
         return
     top = next(iter(doctree.findall(nodes.section)), None)
     if top is None:

@@ -155,7 +155,10 @@ def test_deck_is_built_and_listed(server, source):
         assert f'href="{href}"' in index
     # the handout is linked once `make slides-pdf` has made it, and never linked missing
     assert (f'href="{decks[source.stem]["pdf"]}"' in index) == (SLIDES / decks[source.stem]["pdf"]).is_file()
-    assert (SLIDES / decks[source.stem]["chapter"]).resolve().is_file()
+    chapter = (SLIDES / decks[source.stem]["chapter"]).resolve()
+    assert chapter.is_file()
+    # slide text and speaker notes are the deck's: not on the book's page
+    assert "Key point:" in html and "Key point:" not in chapter.read_text(encoding="utf-8")
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
