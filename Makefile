@@ -17,14 +17,14 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
 
-.PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides bench lab slides exercises clean distclean vendor browser
-.PHONY: grade
+.PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides bench lab slides slides-pdf exercises clean distclean vendor browser grade
 
 help:
 	@echo "make book       build the book into _build/html"
 	@echo "make test       run every test (static checks, library, notebooks, book build, browser, decks)"
 	@echo "make lab        JupyterLab on the chapters, live widgets"
-	@echo "make slides     reveal.js decks into _build/slides"
+	@echo "make slides     reveal.js decks into _build/html/slides (after make book)"
+	@echo "make slides-pdf one PDF handout per deck into _build/slides-pdf"
 	@echo "make exercises  student notebooks into _build/exercises"
 	@echo "make bench      speed benchmark against modern_robotics and Pinocchio"
 	@echo "make grade SUBMISSIONS=<dir>  grade every student notebook under <dir> (gradebook.csv, reports/)"
@@ -59,7 +59,7 @@ book: vendor
 	$(PY) -m tools.cache_guard _build/.jupyter_cache
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
-	$(PY) -m tools.build_slides _build/html/slides
+	$(PY) -m tools.build_slides
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
 
 # ------------------------------------------------------------------ tests
@@ -77,7 +77,7 @@ lint: setup
 	$(BIN)/mypy _ext
 
 test-lib: setup
-	MPLBACKEND=Agg $(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+	MPLBACKEND=Agg $(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
@@ -94,6 +94,7 @@ bench: setup
 	$(PY) -m tools.bench
 	$(PY) -m tools.bench_widgets
 	$(PY) -m tools.bench_live
+	$(PY) -m tools.bench_live_spatial
 	$(PY) -m tools.bench_grade
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
@@ -119,4 +120,10 @@ exercises: setup
 	$(PY) -m tools.make_exercises _build/exercises
 
 slides: vendor
-	$(PY) -m tools.build_slides _build/slides
+	$(PY) -m tools.build_slides
+
+# PDF handouts of the decks (one page per slide) with Debian's Chromium, into _build/slides-pdf
+slides-pdf: setup browser
+	@test -f _build/html/slides/decks.json || $(MAKE) book
+	$(PY) -m tools.slides_pdf _build/slides-pdf
+	$(PY) -m tools.build_slides --no-build

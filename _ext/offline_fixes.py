@@ -72,7 +72,7 @@ def _count_page(app: Sphinx, pagename: str, templatename: str, context: dict[str
 def check_tally(app: Sphinx, exception: Exception | None) -> None:
     """After a full build, fail for each per-page handler that changed no page."""
     full = app.parallel <= 1 and _TALLY["pages"] >= len(app.env.found_docs) > 0
-    if exception is not None or not full:
+    if exception is not None or not full or app.builder.name != "html":  # the book, not the decks
         return
     for handler in _PER_PAGE:
         if _TALLY[handler] == 0:
@@ -288,7 +288,7 @@ def remove_unloaded_theme_files(app: Sphinx, exception: Exception | None) -> Non
     copied again, and removed again, by every build). The browser tests see
     every request a page makes; none goes to these files.
     """
-    if exception is not None or app.builder.format != "html":
+    if exception is not None or app.builder.name != "html":  # (not the decks' revealjs build)
         return
     static = Path(app.outdir) / "_static"
     found = list(dict.fromkeys(p for pattern in UNLOADED_THEME_FILES for p in static.glob(pattern)))
@@ -346,7 +346,7 @@ def trim_font_awesome(app: Sphinx, exception: Exception | None) -> None:
         raise ProblemGone("trim_font_awesome", f"{css_path.name} holds {n} icon rules, {len(codepoints)} of them used")
     css_path.write_text(trimmed + "\n" + _TRIMMED + "\n", encoding="utf-8")
 
-    from fontTools import subset  # matplotlib's dependency; woff2 needs brotli
+    from fontTools import subset  # type: ignore[import-untyped]  # (matplotlib needs it; woff2 needs brotli)
 
     options = subset.Options()
     options.flavor = "woff2"

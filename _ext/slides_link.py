@@ -1,10 +1,10 @@
 """Sphinx extension: a "Lecture slides for this chapter" link on each chapter page.
 
 `make slides` (tools/build_slides.py) builds one reveal.js deck per page of
-_toc.yml that :func:`notebook_pages.has_deck` accepts, named
-``<stem>.slides.html``. This extension puts, right under the page title of
-each such page, a link to ``slides/<stem>.slides.html`` relative to the root
-of the built HTML, so the link works when the decks are built into
+_toc.yml that :func:`notebook_pages.has_deck` accepts, at the page's own path
+under ``slides/`` (``slides/chapters/<stem>.html``). This extension puts, right
+under the page title of each such page, a link to it relative to the page, so
+the link works when the decks are built into
 ``_build/html/slides/`` (see the Makefile's book target) and the HTML folder
 is deployed as is. Both sides call the same rule (``_ext/notebook_pages.py``);
 tests/browser/test_site.py checks that the built links and decks agree.
@@ -26,9 +26,8 @@ SLIDES_DIR = "slides"
 
 def slides_href(docname: str) -> str:
     """Link from the page of ``docname`` to its deck, relative to the page."""
-    stem = posixpath.basename(docname)
     depth = docname.count("/")
-    return "../" * depth + f"{SLIDES_DIR}/{stem}.slides.html"
+    return "../" * depth + posixpath.join(SLIDES_DIR, docname + ".html")
 
 
 def add_link(app: Sphinx, doctree: nodes.document) -> None:

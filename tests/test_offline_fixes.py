@@ -27,7 +27,7 @@ def app(tmp_path: Path, **config: Any) -> SimpleNamespace:
     for key, value in config.items():
         setattr(cfg, key, value)
     return SimpleNamespace(config=cfg, doctreedir=str(tmp_path / "doctrees"), outdir=str(tmp_path / "html"),
-                           builder=SimpleNamespace(format="html"), parallel=1,
+                           builder=SimpleNamespace(format="html", name="html"), parallel=1,
                            env=SimpleNamespace(found_docs={"a", "b"}))
 
 
@@ -189,6 +189,10 @@ def test_unloaded_theme_files_are_removed_and_loaded_ones_kept(tmp_path):
                     "vendor/fontawesome/webfonts/fa-solid-900.woff2"]
     with pytest.raises(fx.ProblemGone, match="remove_unloaded_theme_files"):
         fx.remove_unloaded_theme_files(app(tmp_path), None)  # a second time: nothing left to remove
+    decks = app(tmp_path)
+    decks.builder.name = "revealjs"   # the decks' build (_ext/decks.py) is not the book's: left alone
+    fx.remove_unloaded_theme_files(decks, None)
+    fx.check_tally(decks, None)
 
 
 def _doctree(rst: str) -> nodes.document:

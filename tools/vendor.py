@@ -10,19 +10,16 @@ and that every copied tree is used):
   served as ``_static/``): MathJax 3 only. No page shows a live widget (the
   chapters show animations), so there is no widget manager and no require.js;
   ``_ext/offline_fixes.py`` stops the build if a page ever shows one.
-* the decks (:data:`DECKS`, into ``<slides>/vendor/``): reveal.js with its notes
-  and math plugins, and require.js, which loads them. (No jQuery: nothing in a
-  deck uses it. No font-awesome: the course's animations draw their buttons
-  with plain characters.) A deck built inside the book
-  (``_build/html/slides``) uses the book's MathJax from ``../_static``; a deck
-  built elsewhere gets its own copy (:func:`deck_urls`).
+* the decks vendor nothing: they are a Sphinx build of the same sources
+  (``_ext/decks.py``, ``tools/build_slides.py``) that loads reveal.js from
+  the copy bundled with sphinx-revealjs, and the book's MathJax and styles
+  from the book's ``_static``.
 
 Usage: python -m tools.vendor            (writes _vendor/)
 """
 
 from __future__ import annotations
 
-import os
 import shutil
 import sys
 from dataclasses import dataclass
@@ -78,18 +75,7 @@ MATHJAX = Package("mathjax", "mathjax",
                   (*(f"es5/{c}.js" for c in MATHJAX_COMPONENTS),
                    "es5/output/chtml/fonts/woff-v2", "es5/input/tex/extensions"),
                   "es5/startup.js")
-REVEAL = Package("reveal.js", "reveal.js",
-                 ("dist/reveal.js", "dist/reveal.css", "dist/theme/white.css",
-                  "dist/theme/fonts/source-sans-pro/source-sans-pro.css",
-                  *(f"dist/theme/fonts/source-sans-pro/source-sans-pro-{w}.woff"
-                    for w in ("regular", "italic", "semibold", "semibolditalic")),
-                  "plugin/notes/notes.js", "plugin/math/math.js"),
-                 "dist/reveal.js")
-REQUIREJS = Package("requirejs", "requirejs", ("require.js",), "require.js")
-
 BOOK: tuple[Package, ...] = (MATHJAX,)
-DECKS: tuple[Package, ...] = (REVEAL, REQUIREJS)
-DECK_VENDOR = "vendor"
 
 
 def book(dest: Path = BOOK_VENDOR, site_static: Path | None = SITE_STATIC) -> None:
@@ -111,29 +97,6 @@ def book(dest: Path = BOOK_VENDOR, site_static: Path | None = SITE_STATIC) -> No
                 shutil.rmtree(stale)
             elif stale.exists():
                 stale.unlink()
-
-
-def deck_urls(slides_dir: Path, book_static: Path | None = None) -> dict[str, str]:
-    """Copy what the decks in ``slides_dir`` load; return the URL of each entry file.
-
-    Keys are the npm names. A package of :data:`BOOK` already in
-    ``book_static`` (default: ``slides_dir/../_static``, the book the decks sit
-    in) is linked there instead of copied, so the site holds one copy.
-    """
-    book_static = book_static if book_static is not None else slides_dir.parent / "_static"
-    vendor = slides_dir / DECK_VENDOR
-    shutil.rmtree(vendor, ignore_errors=True)
-    vendor.mkdir(parents=True)
-    urls: dict[str, str] = {}
-    for package in (*DECKS, *BOOK):
-        shared = package in BOOK and (book_static / package.folder / package.entry).is_file()
-        if shared:
-            base = Path(os.path.relpath(book_static / package.folder, slides_dir)).as_posix()
-        else:
-            package.copy(vendor)
-            base = f"{DECK_VENDOR}/{package.folder}"
-        urls[package.npm] = f"{base}/{package.entry}"
-    return urls
 
 
 def main(argv: list[str]) -> int:

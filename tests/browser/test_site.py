@@ -40,7 +40,7 @@ def _size(folder: Path) -> int:
 def _pages(site: Path) -> dict[Path, str]:
     """Every HTML page of the site (book pages and decks), outside _static and the decks' vendor folder."""
     return {p: p.read_text(encoding="utf-8", errors="replace") for p in site.rglob("*.html")
-            if "_static" not in p.parts and vendor.DECK_VENDOR not in p.relative_to(site).parts}
+            if "_static" not in p.parts}
 
 
 def _referenced(target: Path, pages: dict[Path, str]) -> list[Path]:
@@ -68,7 +68,7 @@ def test_site_is_at_most_25_mb(book_html, capsys):
 
 def test_every_vendored_tree_is_loaded_by_a_page_or_deck(book_html):
     pages = _pages(book_html)
-    decks = [p for p in pages if p.name.endswith(".slides.html")]
+    decks = [p for p in pages if p.relative_to(book_html).parts[:2] == ("slides", "chapters")]
     assert decks, "no deck in the site: `make book` builds them into slides/"
     static = book_html / "_static"
     for package in vendor.BOOK:
@@ -84,13 +84,8 @@ def test_every_vendored_tree_is_loaded_by_a_page_or_deck(book_html):
         assert any(_referenced(f, pages) for f in files), f"no page loads a script of _static/{name}"
     unknown = sorted(p.name for p in static.iterdir() if p.is_dir() and p.name not in ours | THEME_DIRS | course_dirs)
     assert not unknown, f"trees in _static that tools/vendor.py does not vendor (left by an older build?): {unknown}"
-    deck_vendor = book_html / "slides" / vendor.DECK_VENDOR
-    for package in vendor.DECKS:
-        entry = deck_vendor / package.folder / package.entry
-        assert entry.is_file(), f"{entry} is missing"
-        assert _referenced(entry, {d: pages[d] for d in decks}), f"no deck loads {entry.relative_to(book_html)}"
-    extra = sorted(p.name for p in deck_vendor.iterdir() if p.name not in {q.folder for q in vendor.DECKS})
-    assert not extra, f"the decks' vendor folder holds trees no deck loads: {extra}"
+    # the decks vendor nothing of their own: reveal.js comes with sphinx-revealjs (tools/build_slides.py)
+    assert not (book_html / "slides" / "vendor").exists()
 
 
 def test_one_copy_of_each_front_end_package(book_html):
@@ -102,11 +97,11 @@ def test_one_copy_of_each_front_end_package(book_html):
     for package, found in copies.items():
         assert len(found) <= 1, f"{package}: {len(found)} copies in the site: {found}"
     assert not copies["jupyter widget manager"], "no page shows a widget: the widget manager is not vendored"
-    assert copies["MathJax"] and copies["reveal.js"] and copies["require.js"], copies
+    assert copies["MathJax"] and copies["reveal.js"], copies
 
 
 def test_chapter_pages_link_exactly_the_decks(book_html):
-    decks = {p.name for p in (book_html / "slides").glob("*.slides.html")}
+    decks = {p.name for p in (book_html / "slides" / "chapters").glob("*.html")}
     linked = {}
     for page in (book_html / "chapters").glob("*.html"):
         m = re.search(r'<p class="slides-link">.*?href="([^"]+)"', page.read_text(encoding="utf-8"), re.S)
@@ -117,7 +112,7 @@ def test_chapter_pages_link_exactly_the_decks(book_html):
     assert {Path(h).name for h in linked.values()} == decks, "every deck is linked from its chapter"
 
 
-@pytest.mark.parametrize("package", vendor.BOOK + vendor.DECKS, ids=lambda p: p.npm)
+@pytest.mark.parametrize("package", vendor.BOOK, ids=lambda p: p.npm)
 def test_vendored_package_is_in_package_json(package):
     import json
 

@@ -43,9 +43,9 @@ def test_notebook_rule_is_the_books(tmp_path):
 
 
 @pytest.mark.parametrize("docname, href", [
-    ("chapters/02_space_jacobian", "../slides/02_space_jacobian.slides.html"),
-    ("index", "slides/index.slides.html"),
-    ("a/b/c", "../../slides/c.slides.html"),
+    ("chapters/02_space_jacobian", "../slides/chapters/02_space_jacobian.html"),
+    ("index", "slides/index.html"),
+    ("a/b/c", "../../slides/a/b/c.html"),
 ])
 def test_href_is_relative_to_the_page(docname, href):
     assert slides_link.slides_href(docname) == href

@@ -1,0 +1,435 @@
+"""Sphinx extension: lecture decks from the chapter sources, by the book's own toolchain.
+
+The decks are a second Sphinx build of the same sources with the ``revealjs``
+builder of ``sphinx-revealjs`` (``tools/build_slides.py`` runs it after the
+book). Both builds load this extension and ``sphinx_revealjs`` with the same
+configuration, so the deck build reuses the book's pickled environment: no
+page is read or executed again, and every directive, role, cross-reference
+and number on a slide is the one the book resolved.
+
+What a slide shows (:func:`to_slides`, run on ``doctree-resolved`` for the
+``revealjs`` builder only; the book's pages are untouched):
+
+* one slide per ``##``/``###`` heading, per cell whose slide type is
+  ``slide`` or ``subslide``, and per ``{slide} Title`` block; every slide has
+  a heading (the block's title, else the section's);
+* the book's *display* material of cells not typed ``skip``: display math,
+  figures and images, code-cell outputs (images and HTML, never a text
+  printout; code only with the tag ``slide-show-code``), definitions,
+  theorems and propositions (proofs, exercises, solutions and admonitions stay
+  in the book);
+* words only from ``{slide}`` blocks: slide-only text written beside the book
+  text in the chapter source (the book shows nothing of it). Book prose never
+  reaches a slide; it is what the book is for;
+* speaker notes from ``{slide-notes}`` blocks (``:minutes:`` the rough time),
+  also invisible in the book, and from cells typed ``notes``;
+* a cell typed ``fragment`` appears on the next key press.
+
+Cross-references on a slide point to the book's page (the deck sits in
+``slides/`` of the built book), so a reference opens the text it names.
+"""
+
+from __future__ import annotations
+
+import posixpath
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+from docutils import nodes
+from docutils.parsers.rst import directives
+from sphinx.application import Sphinx
+from sphinx.util import logging
+from sphinx.util.docutils import SphinxDirective
+
+logger = logging.getLogger(__name__)
+
+BUILDER = "revealjs"
+#: reveal.js canvas, the size the decks are designed and tested at
+WIDTH, HEIGHT = 1280, 720
+#: the decks' own CSS and script (not in the book's _static)
+STATIC = Path(__file__).resolve().parent / "decks_static"
+
+
+class slide_cell(nodes.Element, nodes.Invisible):
+    """Where a Markdown cell starts, with its slide type (``slideshow.slide_type``)."""
+
+
+class slide_only(nodes.General, nodes.Element):
+    """Content written for the deck (``{slide}``); ``title`` starts a new slide."""
+
+
+class slide_notes(nodes.General, nodes.Element):
+    """Speaker notes (``{slide-notes}``); not shown in the book."""
+
+
+def _skip(self: Any, node: nodes.Node) -> None:
+    raise nodes.SkipNode
+
+
+def _visit_notes(self: Any, node: nodes.Element) -> None:
+    if self.builder.name != BUILDER:
+        raise nodes.SkipNode
+    self.body.append('<aside class="notes">\n')
+    if node.get("minutes"):
+        self.body.append(f'<p class="minutes">About {node["minutes"]} min.</p>\n')
+
+
+def _depart_notes(self: Any, node: nodes.Element) -> None:
+    self.body.append("</aside>\n")
+
+
+def _visit_only(self: Any, node: nodes.Element) -> None:
+    if self.builder.name != BUILDER:
+        raise nodes.SkipNode
+
+
+def _depart_only(self: Any, node: nodes.Element) -> None:
+    pass
+
+
+class SlideDirective(SphinxDirective):
+    """``{slide} [Title]``: text for the deck only; with a title it opens a new slide."""
+
+    has_content = True
+    optional_arguments = 1
+    final_argument_whitespace = True
+
+    def run(self) -> list[nodes.Node]:
+        node = slide_only(title=self.arguments[0] if self.arguments else "")
+        self.set_source_info(node)
+        if self.arguments:
+            textnodes, _ = self.state.inline_text(self.arguments[0], self.lineno)
+            node["title_nodes"] = len(textnodes)
+            node += nodes.rubric("", "", *textnodes, classes=["slide-title"])
+        node += self.parse_content_to_nodes()
+        return [node]
+
+
+class SlideNotesDirective(SphinxDirective):
+    """``{slide-notes}``: speaker notes for the slide it sits in (``:minutes:`` its rough time)."""
+
+    has_content = True
+    option_spec = {"minutes": directives.unchanged}
+
+    def run(self) -> list[nodes.Node]:
+        node = slide_notes(minutes=self.options.get("minutes", ""))
+        self.set_source_info(node)
+        node += self.parse_content_to_nodes()
+        return [node]
+
+
+# ---------------------------------------------------------------- cell markers
+
+
+def _patch_markdown_cells() -> None:
+    """Keep each Markdown cell's slide type in the doctree (myst-nb drops Markdown cell metadata)."""
+    from myst_nb.core.render import MditRenderMixin
+
+    original = MditRenderMixin.render_nb_cell_markdown
+    if getattr(original, "_decks", False):
+        return
+
+    def render_nb_cell_markdown(self: Any, token: Any) -> None:
+        meta = token.meta.get("metadata", {}) or {}
+        kind = (meta.get("slideshow") or {}).get("slide_type", "-")
+        self.current_node.append(slide_cell(slide_type=kind))
+        original(self, token)
+
+    render_nb_cell_markdown._decks = True  # type: ignore[attr-defined]
+    MditRenderMixin.render_nb_cell_markdown = render_nb_cell_markdown
+
+
+# ---------------------------------------------------------------- doctree -> slides
+
+
+DISPLAY_PRF = {"definition_node", "theorem_node", "proposition_node", "corollary_node", "lemma_node"}
+
+
+def _code_kind(node: nodes.Element) -> str:
+    meta = node.get("cell_metadata") or {}
+    return str((meta.get("slideshow") or {}).get("slide_type", "-"))
+
+
+def _is_code_cell(node: nodes.Node) -> bool:
+    return isinstance(node, nodes.container) and node.get("nb_element") == "cell_code"
+
+
+def _events(section: nodes.Element, level: int) -> Iterator[tuple[str, Any]]:
+    """The section's content in reading order: headings, cell starts and blocks."""
+    for child in section.children:
+        if isinstance(child, nodes.title):
+            continue
+        if isinstance(child, nodes.section):
+            yield "heading", child
+            yield from _events(child, level + 1)
+        elif isinstance(child, slide_cell):
+            yield "cell", child["slide_type"]
+        elif _is_code_cell(child):
+            yield "cell", _code_kind(child)
+            yield "block", child
+        elif isinstance(child, nodes.target):
+            continue
+        else:
+            yield "block", child
+
+
+def _code_for_slide(cell: nodes.Element) -> nodes.Element | None:
+    """A code cell as a slide shows it: outputs that are pictures or HTML, code only if tagged."""
+    tags = (cell.get("cell_metadata") or {}).get("tags", [])
+    keep = nodes.container("", classes=list(cell.get("classes", [])))
+    for part in cell.findall(nodes.container):
+        kind = part.get("nb_element", "")
+        if kind == "cell_code_source" and "slide-show-code" in tags:
+            keep += part.deepcopy()
+        elif kind == "cell_code_output":
+            out = part.deepcopy()
+            for lit in list(out.findall(nodes.literal_block)):
+                lit.parent.remove(lit)       # text printouts belong to the book
+            if any(True for _ in out.findall(lambda n: isinstance(n, (nodes.image, nodes.raw)))):
+                keep += out
+    if not keep.children:
+        return None
+    return keep
+
+
+def _display(block: nodes.Node) -> list[nodes.Node]:
+    """What of a book block a slide shows (see the module docstring)."""
+    if isinstance(block, nodes.math_block | nodes.figure | nodes.image):
+        return [block.deepcopy()]
+    if _is_code_cell(block):
+        cell = _code_for_slide(block)
+        return [cell] if cell is not None else []
+    if type(block).__name__ in DISPLAY_PRF:
+        return [block.deepcopy()]
+    if isinstance(block, nodes.raw) or (isinstance(block, nodes.container) and block.get("nb_element") is None
+                                        and "live-view" in block.get("classes", [])):
+        return [block.deepcopy()]
+    if isinstance(block, nodes.paragraph | nodes.bullet_list | nodes.enumerated_list | nodes.table
+                  | nodes.block_quote | nodes.Admonition | nodes.comment | nodes.literal_block
+                  | nodes.definition_list | nodes.rubric | nodes.line_block):
+        return []
+    if isinstance(block, nodes.container | nodes.compound):
+        out: list[nodes.Node] = []
+        for child in block.children:
+            out.extend(_display(child))
+        return out
+    return []
+
+
+def _is_picture(node: nodes.Node) -> bool:
+    if isinstance(node, nodes.image | nodes.raw | nodes.figure):
+        return True
+    return isinstance(node, nodes.Element) and any(
+        True for _ in node.findall(lambda n: isinstance(n, nodes.image | nodes.raw)))
+
+
+class _Slide:
+    def __init__(self, title: nodes.Node | None, ids: list[str]):
+        self.title = title
+        self.ids = ids
+        self.body: list[nodes.Node] = []
+        self.notes: list[nodes.Node] = []
+        #: holds display material of the book (not only slide text and notes)
+        self.display = False
+        #: holds a picture (figure, animation, live view) or a statement (definition, theorem): one a slide
+        self.picture = False
+        self.statement = False
+
+    def empty(self) -> bool:
+        return not self.body and not self.notes
+
+
+def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
+    """Rewrite a resolved doctree into one section per slide (revealjs builder only)."""
+    if app.builder.name != BUILDER:
+        # the book: slide text and notes are not on the page, so not in its search index either
+        for node in list(doctree.findall(lambda n: isinstance(n, slide_only | slide_notes))):
+            node.parent.remove(node)
+        return
+    top = next(iter(doctree.findall(nodes.section)), None)
+    if top is None:
+        return
+    _book_links(doctree, docname)
+    title = top[0].deepcopy() if top.children and isinstance(top[0], nodes.title) else nodes.title("", docname)
+    slides: list[_Slide] = []
+    current = _Slide(None, [])
+    section_title: nodes.Node | None = None
+    section_ids: list[str] = []
+    kind = "-"
+
+    def start(heading: nodes.Node | None, ids: list[str]) -> _Slide:
+        slides.append(_Slide(heading, ids))
+        return slides[-1]
+
+    for event, value in _events(top, 1):
+        if event == "heading":
+            section_title = value[0].deepcopy() if value.children and isinstance(value[0], nodes.title) else None
+            section_ids = list(value["ids"])
+            current = start(section_title, section_ids)
+            continue
+        if event == "cell":
+            kind = value
+            # a new slide, unless this one holds only its heading, slide text and notes so far
+            if kind in ("slide", "subslide") and current.display:
+                current = start(section_title, section_ids)
+            continue
+        block = value
+        if isinstance(block, slide_notes):
+            current.notes.append(block.deepcopy())
+            continue
+        found_only = isinstance(block, slide_only)
+        if found_only:
+            if block.get("title"):
+                rubric = block[0]
+                heading = nodes.title("", "", *[c.deepcopy() for c in rubric.children])
+                current = start(heading, [])
+                body = [c.deepcopy() for c in block.children[1:]]
+            else:
+                body = [c.deepcopy() for c in block.children]
+            for item in body:
+                if isinstance(item, slide_notes):
+                    current.notes.append(item)
+                else:
+                    current.body.append(item)
+            continue
+        if kind == "skip":
+            # notes and slide-only text inside a skipped cell still count
+            for inner in list(block.findall(slide_notes)) if isinstance(block, nodes.Element) else []:
+                current.notes.append(inner.deepcopy())
+            continue
+        if kind == "notes":
+            current.notes.append(nodes.container("", block.deepcopy(), classes=["book-notes"]))
+            continue
+        shown = _display(block)
+        if isinstance(block, nodes.Element) and not found_only:
+            for inner in block.findall(slide_notes):
+                current.notes.append(inner.deepcopy())
+        if not shown:
+            continue
+        picture = any(_is_picture(s) for s in shown)
+        statement = any(type(s).__name__ in DISPLAY_PRF for s in shown)
+        # one idea a slide: a picture or a statement gets a slide of its own, with the section's heading
+        if (picture and current.display) or current.picture or (statement and current.statement):
+            current = start(current.title.deepcopy() if current.title is not None else section_title,
+                            section_ids)
+        if kind == "fragment":
+            shown = [nodes.container("", s, classes=["fragment"]) for s in shown]
+        current.body.extend(shown)
+        current.display = True
+        current.picture = current.picture or picture
+        current.statement = current.statement or statement
+
+    # title slide, then every slide with something on it
+    new_top = nodes.section("", ids=list(top["ids"]), classes=["title-slide"])
+    new_top += title
+    new_top += nodes.paragraph("", app.config.html_title or app.config.project, classes=["deck-course"])
+    kept: list[_Slide] = []
+    for slide in slides:
+        authored = any(isinstance(n, slide_notes) for n in slide.notes)
+        if not slide.body and not authored:
+            if kept:   # the book's notes of a slide with nothing to show go to the slide before
+                kept[-1].notes.extend(slide.notes)
+            continue
+        kept.append(slide)
+    for number, slide in enumerate(kept):
+        # a slide of its own title has an id of its own (HTML writers number titles by their section's id)
+        sec = nodes.section("", ids=list(slide.ids) or [f"slide-{number}"])
+        if not slide.ids:  # and no section number (the writer would fall back to the chapter's)
+            app.env.toc_secnumbers.setdefault(docname, {})[f"#slide-{number}"] = ()
+        sec += slide.title if slide.title is not None else title.deepcopy()
+        for item in slide.body:
+            sec += item
+        if slide.notes:
+            box = slide_notes(minutes="")
+            for note in slide.notes:
+                if isinstance(note, slide_notes):
+                    if note.get("minutes") and not box.get("minutes"):
+                        box["minutes"] = note["minutes"]
+                    box.extend(c.deepcopy() for c in note.children)
+                else:
+                    box += note
+            sec += box
+        new_top += sec
+    # sections inside blocks (sphinx-proof wraps a statement in one) are not slides
+    for inner in list(new_top.findall(nodes.section)):
+        if inner is not new_top and not isinstance(inner.parent, nodes.section):
+            box = nodes.container("", *inner.children, classes=["slide-block"])
+            inner.replace_self(box)
+    doctree.children = []
+    doctree += new_top
+
+
+def _book_links(doctree: nodes.document, docname: str) -> None:
+    """Internal references open the book's page (the deck is in ``slides/`` of the book)."""
+    up = "../" * (docname.count("/") + 1)
+    here = posixpath.dirname(docname)
+    for ref in doctree.findall(nodes.reference):
+        uri = ref.get("refuri", "")
+        if not ref.get("internal") or not uri or "://" in uri:
+            continue
+        if uri.startswith("#"):
+            target = posixpath.basename(docname) + ".html" + uri
+            ref["refuri"] = up + posixpath.join(here, target)
+        else:
+            ref["refuri"] = up + posixpath.normpath(posixpath.join(here, uri))
+
+
+# ---------------------------------------------------------------- configuration
+
+
+#: scripts of the book's theme and extensions that a deck does not use
+UNUSED_SCRIPTS = ("clipboard", "copybutton", "sphinx-book-theme", "togglebutton", "design-tabs", "thebe",
+                  "documentation_options", "doctools", "sphinx_highlight", "searchtools", "language_data")
+UNUSED_STYLES = ("copybutton", "togglebutton", "sphinx-thebe", "basic.css", "pygments")
+
+
+def deck_assets(app: Sphinx, pagename: str, templatename: str, context: dict[str, Any], doctree: Any) -> None:
+    """A deck loads reveal.js, MathJax, its own CSS and script and the styles of the book's boxes."""
+    if app.builder.name != BUILDER:
+        return
+    context["script_files"] = [s for s in context.get("script_files", [])
+                               if not any(u in str(getattr(s, "filename", s) or "") for u in UNUSED_SCRIPTS)]
+    context["css_files"] = [c for c in context.get("css_files", [])
+                            if not any(u in str(getattr(c, "filename", c) or "") for u in UNUSED_STYLES)]
+    for css in ("_static/proof.css", "_static/sphinx-design.min.css"):
+        if css not in [str(getattr(c, "filename", c)) for c in context["css_files"]]:
+            context["css_files"].insert(2, css)
+
+
+def configure(app: Sphinx, config: Any) -> None:
+    """Settings of the deck build; the same in both builds, so the environment is shared."""
+    html = [("revealjs", mime, prio) for mime, prio in (
+        ("application/vnd.jupyter.widget-view+json", 10), ("application/javascript", 20), ("text/html", 30),
+        ("image/svg+xml", 40), ("image/png", 50), ("image/gif", 60), ("image/jpeg", 70),
+        ("text/markdown", 80), ("text/latex", 90), ("text/plain", 100))]
+    config.nb_mime_priority_overrides = list(config.nb_mime_priority_overrides or []) + html
+    config.revealjs_html_theme = "revealjs-basic"
+    config.revealjs_style_theme = "white"
+    config.revealjs_static_path = [str(STATIC)]
+    config.revealjs_css_files = ["course_decks.css"]
+    config.revealjs_js_files = [("course_decks.js", {})]
+    config.revealjs_script_conf = {
+        "width": WIDTH, "height": HEIGHT, "margin": 0.04, "minScale": 0.2, "maxScale": 2.0,
+        "hash": True, "slideNumber": "c/t", "transition": "none", "center": False,
+        "pdfMaxPagesPerSlide": 1, "pdfSeparateFragments": False,
+    }
+    config.revealjs_script_plugins = [{"name": "RevealNotes", "src": "revealjs/plugin/notes/notes.js"}]
+
+
+def setup(app: Sphinx) -> dict[str, Any]:
+    app.setup_extension("sphinx_revealjs")
+    _patch_markdown_cells()
+    visitors: dict[str, Any] = {"html": (_skip, None), "latex": (_skip, None), "text": (_skip, None),
+                "man": (_skip, None), "texinfo": (_skip, None)}
+    app.add_node(slide_cell, **visitors)
+    app.add_node(slide_only, **{**visitors, "html": (_visit_only, _depart_only),
+                                BUILDER: (_visit_only, _depart_only)})
+    app.add_node(slide_notes, **{**visitors, "html": (_visit_notes, _depart_notes),
+                                 BUILDER: (_visit_notes, _depart_notes)})
+    app.add_directive("slide", SlideDirective)
+    app.add_directive("slide-notes", SlideNotesDirective)
+    app.connect("config-inited", configure, priority=900)
+    app.connect("doctree-resolved", to_slides)
+    app.connect("html-page-context", deck_assets, priority=900)
+    return {"version": "1.0", "env_version": 1, "parallel_read_safe": True, "parallel_write_safe": True}
