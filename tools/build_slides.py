@@ -11,7 +11,8 @@ Usage: python -m tools.build_slides [DEST] [--book BOOK_HTML] [--no-build]
    book's layout (``DEST/chapters/<stem>.html``); every ``_static``/``_images``
    file a deck links that the book already has, byte for byte, is linked in
    the book instead of copied (one copy of each file in the site); reveal.js
-   (the copy bundled with sphinx-revealjs) keeps only the files a deck loads;
+   is npm's (``node_modules/reveal.js``, pinned in package-lock.json to the
+   version sphinx-revealjs bundles, 5.2.1), and only the files a deck loads;
 3. ``DEST/index.html`` lists each deck, its PDF (``make slides-pdf``) and its
    chapter; ``DEST/decks.json`` the same for the tests.
 
@@ -37,9 +38,10 @@ from _ext.notebook_pages import has_deck
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "_build" / "revealjs"
+NODE_MODULES = ROOT / "node_modules"
 BOOK_HTML = ROOT / "_build" / "html"
 PDF_DIR = ROOT / "_build" / "slides-pdf"
-#: reveal.js files a deck loads (of the tree bundled with sphinx-revealjs)
+#: reveal.js files a deck loads (from npm's reveal.js, the release sphinx-revealjs bundles)
 #: (the browser loads the woff fonts; the theme's .eot/.ttf copies and the source map are left out)
 REVEAL_KEEP = ("dist/reveal.js", "dist/reveal.css", "dist/theme/white.css", "plugin/notes/notes.js", "LICENSE",
                "dist/theme/fonts/source-sans-pro/source-sans-pro.css", "dist/theme/fonts/source-sans-pro/LICENSE",
@@ -144,7 +146,30 @@ def assemble(dest: Path, book: Path, root: Path = ROOT) -> list[dict[str, str]]:
                 p.unlink()
         elif p.is_dir() and not any(p.iterdir()):
             p.rmdir()
+    reveal_from_npm(reveal)
     return decks
+
+
+def reveal_from_npm(reveal: Path, node_modules: Path = NODE_MODULES) -> None:
+    """Put npm's reveal.js files (the ones a deck loads) in place of sphinx-revealjs's bundled copy.
+
+    The front-end files of the site come from npm, pinned in package-lock.json.
+    The two copies must be the same release: a sphinx-revealjs whose bundled
+    reveal.js differs from the pinned one stops the build, naming the file.
+    """
+    npm = node_modules / "reveal.js"
+    if not (npm / "package.json").is_file():
+        raise FileNotFoundError(f"{npm} is missing: run `npm ci` (make does this) first")
+    for rel in REVEAL_KEEP:
+        src, dst = npm / rel, reveal / rel
+        if not src.is_file():
+            raise FileNotFoundError(f"npm's reveal.js has no {rel}: package.json pins the wrong release")
+        if dst.is_file() and not filecmp.cmp(src, dst, shallow=False):
+            version = json.loads((npm / "package.json").read_text(encoding="utf-8"))["version"]
+            raise ValueError(f"sphinx-revealjs bundles another reveal.js than npm's {version} ({rel} differs): "
+                             "pin in package.json the release sphinx-revealjs bundles")
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(src, dst)
 
 
 def write_index(dest: Path, decks: list[dict[str, str]]) -> None:

@@ -84,8 +84,15 @@ def test_every_vendored_tree_is_loaded_by_a_page_or_deck(book_html):
         assert any(_referenced(f, pages) for f in files), f"no page loads a script of _static/{name}"
     unknown = sorted(p.name for p in static.iterdir() if p.is_dir() and p.name not in ours | THEME_DIRS | course_dirs)
     assert not unknown, f"trees in _static that tools/vendor.py does not vendor (left by an older build?): {unknown}"
-    # the decks vendor nothing of their own: reveal.js comes with sphinx-revealjs (tools/build_slides.py)
+    # the decks vendor nothing of their own but reveal.js, from npm (tools/build_slides.py)
     assert not (book_html / "slides" / "vendor").exists()
+    from tools import build_slides
+
+    reveal = book_html / "slides" / "_static" / "revealjs"
+    shipped = sorted(p.relative_to(reveal).as_posix() for p in reveal.rglob("*") if p.is_file())
+    assert shipped == sorted(build_slides.REVEAL_KEEP)
+    for rel in shipped:
+        assert (reveal / rel).read_bytes() == (build_slides.NODE_MODULES / "reveal.js" / rel).read_bytes(), rel
 
 
 def test_one_copy_of_each_front_end_package(book_html):

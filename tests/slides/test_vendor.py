@@ -63,3 +63,29 @@ def test_the_books_mathjax_loader_names_only_vendored_components():
     packages = cfg["tex"]["packages"]["[+]"]
     assert sorted(packages) == sorted(c[6:] for c in load if c.startswith("[tex]/"))
     assert "configmacros" in packages, "the macros (Ad, ad) need the configmacros package"
+
+
+def test_reveal_js_comes_from_npm_and_a_different_bundled_release_stops_the_build(tmp_path):
+    from tools import build_slides
+
+    reveal = tmp_path / "revealjs"
+    (reveal / "dist").mkdir(parents=True)
+    (reveal / "dist" / "reveal.js").write_text("/* another release */")
+    with pytest.raises(ValueError, match="another reveal.js than npm's"):
+        build_slides.reveal_from_npm(reveal)
+    (reveal / "dist" / "reveal.js").unlink()
+    build_slides.reveal_from_npm(reveal)
+    for rel in build_slides.REVEAL_KEEP:
+        assert (reveal / rel).read_bytes() == (vendor.NODE_MODULES / "reveal.js" / rel).read_bytes()
+    with pytest.raises(FileNotFoundError, match="npm ci"):
+        build_slides.reveal_from_npm(reveal, node_modules=tmp_path / "nowhere")
+
+
+def test_the_pinned_reveal_js_is_the_release_sphinx_revealjs_bundles():
+    """package.json pins the reveal.js that sphinx-revealjs was made for: the files a deck loads are the same bytes."""
+    import sphinx_revealjs
+    from tools import build_slides
+
+    bundled = Path(sphinx_revealjs.__file__).parent / "_static" / "revealjs"
+    for rel in build_slides.REVEAL_KEEP:
+        assert (bundled / rel).read_bytes() == (vendor.NODE_MODULES / "reveal.js" / rel).read_bytes(), rel
