@@ -31,8 +31,8 @@ def test_default_theta_is_the_matplotlib_explorers():
 
 
 @pytest.mark.parametrize("args,message", [
-    (("ur5", None, "space"), "Expected robot one of planar_2r, planar_3r, got 'ur5'"),
-    (("planar_2r", None, "analytic"), "Expected frame one of space, body, geometric, got 'analytic'"),
+    (("ur5", None, "space"), "Expected robot one of planar_2r, planar_3r or a planar SerialChain, got 'ur5'"),
+    (("planar_2r", None, "jacobian"), "Expected frame one of space, body, geometric, analytic, got 'jacobian'"),
     (("planar_2r", [0.1], "space"), "Expected theta with 2 angles (rad) for planar_2r, got 1"),
     (("planar_2r", [0.1, float("nan")], "space"), "Expected theta as finite angles within ±3.14 rad"),
     (("planar_2r", [0.1, 4.0], "space"), "Expected theta as finite angles within ±3.14 rad, got [4.0]"),
@@ -57,5 +57,30 @@ def test_host_html_paths_follow_the_page_depth(depth, prefix):
     data = re.search(r'data-model="([^"]*)"', out)
     assert data is not None and json.loads(html.unescape(data.group(1))) == model
     assert "http" not in out  # nothing from another host
-    with pytest.raises(ValueError, match="Expected a live view one of planar_explorer, got 'gimbal'"):
+    with pytest.raises(ValueError, match="Expected a live view one of planar_explorer, resolved_rate, got 'gimbal'"):
         live_views.host_html("gimbal", model, 0, "x")
+
+
+def test_planar_model_force_and_sweep():
+    m = live_views.planar_model("planar_3r", [0.1, 0.2, 0.3], "analytic", sweep=1)
+    assert m["force_scale"] == pytest.approx(0.9) and m["force_clip"] == pytest.approx(3.75) and m["sweep"] == 1
+    with pytest.raises(ValueError, match=re.escape("Expected sweep as a joint index 0..2 (the joint Play turns), got 3")):
+        live_views.planar_model("planar_3r", None, "space", sweep=3)
+
+
+def test_resolved_rate_model_and_directive_options():
+    m = live_views.model_for("resolved_rate", {"robot": "planar_3r", "path": "circle", "method": "dls",
+                                               "damping": "0.05"})
+    chain = jac.robots.planar_3r()
+    assert np.array_equal(m["S"], chain.screw_axes) and m["reach"] == pytest.approx(3.0)
+    assert (m["path"], m["method"], m["damping"], m["step"], m["drawn"]) == ("circle", "dls", 0.05, 0, None)
+    assert (m["n_steps"], m["duration"], m["gain"]) == (160, 4.0, 2.0)  # ResolvedRateExplorer's run
+    for options, message in [({"path": "spiral"}, "Expected path one of circle, to full reach, close past the base"),
+                             ({"method": "newton"}, "Expected method 'pinv' or 'dls', got 'newton'"),
+                             ({"damping": "0"}, "Expected damping λ in [0.001, 1] m, got 0.0"),
+                             ({"damping": "lots"}, "Expected a number, got 'lots'"),
+                             ({"frame": "body"}, "do not all apply to resolved_rate")]:
+        with pytest.raises(ValueError, match=re.escape(message)):
+            live_views.model_for("resolved_rate", options)
+    with pytest.raises(ValueError, match=re.escape("Expected a whole number, got '1.5'")):
+        live_views.model_for("planar_explorer", {"sweep": "1.5"})

@@ -22,6 +22,7 @@
 //       analytic_jacobian(chain, theta, rep, on_singularity="nan", tol); returns
 //       {J, phi, margin, singular}: at a representation singularity J is null and
 //       singular is true (never NaN, never a throw).
+//   planarAnalyticJacobian(chain, theta)    analytic_jacobian(chain, theta, "zyx")[[3, 4, 0]]: rows ẋ, ẏ, φ̇ of a planar arm
 //   coordinatesFromRotation(R, rep)         representations.coordinates_from_rotation
 //   rateToAngularVelocity(phi, rep)         representations.rate_to_angular_velocity (B(φ))
 //   representationSingularityMargin(phi, rep)  representations.representation_singularity_margin
@@ -309,6 +310,24 @@ export function analyticJacobian(chain, theta, rep = "zyx", tol = 1e-9) {
     J[0][i] = w[0]; J[1][i] = w[1]; J[2][i] = w[2];
   }
   return { J, phi, margin: m, singular: false };
+}
+
+/**
+ * The analytic Jacobian of a planar arm (every joint axis along ±z, in the plane z = 0) in the
+ * coordinates x = (x, y, φ) of the tool, φ the angle of its x axis: the rows ẋ, ẏ and φ̇ of
+ * analyticJacobian(chain, θ, "zyx") (φ is the ZYX yaw; pitch and roll stay 0, so no singularity).
+ * Returns a 3×n matrix. Throws on a chain that is not planar.
+ */
+export function planarAnalyticJacobian(chain, theta) {
+  const c = checkChain(chain);
+  for (let i = 0; i < c.n; i++) {
+    const { w, v } = c.joints[i];
+    if (Math.abs(w[0]) > UNIT_TOL || Math.abs(w[1]) > UNIT_TOL || Math.abs(v[2]) > UNIT_TOL) {
+      throw new Error(`Expected a planar arm (axes along z, in the plane z = 0), got joint ${i} with ω = (${w}), v = (${v})`);
+    }
+  }
+  const a = analyticJacobian(c, theta, "zyx");
+  return [a.J[3], a.J[4], a.J[0]];
 }
 
 /** The Jacobian in frame "space", "body", "geometric" (a 6×n matrix) or "analytic" (as analyticJacobian). */
