@@ -30,8 +30,8 @@ const ANALYTIC_ROWS = [["ẋ", ""], ["ẏ", ""], ["φ̇", ""]];
 const STEP = 0.01; // rad, as the matplotlib explorer's sliders
 const MAX_STEP = 0.2; // rad, largest joint change of one DLS iteration of a tool drag
 const LIMIT = 3.14; // slider range ±LIMIT rad (a multiple of STEP: the initial θ keeps its value)
-const PLAY_STEP = (2 * Math.PI) / 144; // rad per frame of Play (2.5°)
-const PLAY_MS = 50;
+const PLAY_STEP = 0.02; // rad per frame of Play: from -LIMIT it passes 0 exactly (the singularity of a stretched arm)
+const PLAY_MS = 30;
 
 const clamp = (x) => Math.min(LIMIT, Math.max(-LIMIT, x));
 
@@ -332,12 +332,12 @@ function render({ model, el }) {
     h.addEventListener("pointerup", onUp);
     h.addEventListener("pointercancel", onUp);
   }
-  // Play: sweep one joint, 2.5° a frame, from -LIMIT to LIMIT and round again
+  // Play: sweep one joint, PLAY_STEP a frame, up to LIMIT, then from -LIMIT again
   let timer = null;
   function tick() {
     const th = readTheta();
     const i = Number(sweepSel.value);
-    th[i] = th[i] + PLAY_STEP > LIMIT ? -LIMIT : th[i] + PLAY_STEP;
+    th[i] = th[i] + PLAY_STEP > LIMIT + 1e-9 ? -LIMIT : Math.round((th[i] + PLAY_STEP) / STEP) * STEP; // on the slider's grid
     setTheta(th);
   }
   function stop() {

@@ -268,18 +268,22 @@ class ResolvedRate(LiveView):
         _, self.chain = _chain(robot)
         super().__init__("resolved_rate", resolved_rate_model(self.chain, path, method, damping))
 
-    @property
-    def run(self) -> _velocity.ResolvedRateResult:
-        """``velocity.resolved_rate`` of the current path (a preset), method and λ, from the view's start."""
-        from .path_following import ResolvedRateExplorer, _planar_path
+    def target(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None]:
+        """The times t (N), desired positions (N×2) and velocities (N×2, None for a drawn path) of the run."""
+        from .path_following import _planar_path
 
         n = int(self.n_steps)
         drawn = resample(self.drawn, n) if self.path == "drawn" and self.drawn else None
         if drawn is not None:  # as the view: evenly along the drawn line over the run, forward differences
-            t, x, v = np.linspace(0.0, float(self.duration), n), drawn, None
-        else:
-            path = self.path if self.path in PATHS else "circle"
-            t, x, v = _planar_path(path, arm_reach(self.chain), n)
+            return np.linspace(0.0, float(self.duration), n), drawn, None
+        return _planar_path(self.path if self.path in PATHS else "circle", arm_reach(self.chain), n)
+
+    @property
+    def run(self) -> _velocity.ResolvedRateResult:
+        """``velocity.resolved_rate`` of the current path, method and λ from the view's start (as the view)."""
+        from .path_following import ResolvedRateExplorer
+
+        t, x, v = self.target()
         th0 = ResolvedRateExplorer._start_configuration(self, x[0])  # type: ignore[arg-type]
         return _velocity.resolved_rate(self.chain, th0, x, t[1] - t[0], method=self.method, damping=self.damping,
                                        gain=self.gain, target_velocities=v)
