@@ -18,8 +18,8 @@
 
 import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "./kinematics.js";
 import {
-  PALETTE, capture, columnColor, fixed, html, injectStyle, makeArrow, planarCanvas, setArrow, setEllipse, sub, svg,
-  toWorld,
+  PALETTE, capture, columnColor, fixed, html, injectStyle, makeArrow, planarCanvas, setArrow, setEllipse, sub,
+  suppressShortcuts, svg, toWorld,
 } from "./ui.js";
 
 export { fixed };
@@ -359,6 +359,7 @@ function render({ model, el }) {
   model.on("change:theta", draw);
   model.on("change:frame", draw);
   draw();
+  suppressShortcuts(el);
   el.jacLive = state;
   return () => {
     stop();

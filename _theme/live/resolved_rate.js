@@ -14,7 +14,9 @@
 // and step back and redraws on their "change:" events.
 
 import { dlsRates, evaluate, makeChain, resolvedRate } from "./kinematics.js";
-import { PALETTE, capture, columnColor, fixed, html, injectStyle, planarCanvas, sub, svg, toWorld } from "./ui.js";
+import {
+  PALETTE, capture, columnColor, fixed, html, injectStyle, planarCanvas, sub, suppressShortcuts, svg, toWorld,
+} from "./ui.js";
 
 export const PATHS = ["circle", "to full reach", "close past the base"];
 const METHODS = { pinv: "pseudo-inverse", dls: "damped least squares" };
@@ -325,6 +327,7 @@ function render({ model, el }) {
   const keys = ["path", "drawn", "method", "damping", "step"].map((k) => `change:${k}`).join(" ");
   model.on(keys, draw);
   draw();
+  suppressShortcuts(el);
   el.jacLive = state;
   return () => {
     stop();

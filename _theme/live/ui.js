@@ -142,3 +142,13 @@ export function setEllipse(e, c, a, b, directions, minAxis) {
   e.setAttribute("ry", Math.max(b, minAxis));
   e.setAttribute("transform", `rotate(${Number.isFinite(ang) ? ang : 0} ${c[0]} ${c[1]})`);
 }
+
+/**
+ * JupyterLab (Lumino) handles keys before the page does, with bindings whose selectors can match a
+ * focused control in an output; the attribute data-lm-suppress-shortcuts on the view and on each of
+ * its controls hands the keys to them. A static page ignores it.
+ */
+export function suppressShortcuts(el) {
+  el.setAttribute("data-lm-suppress-shortcuts", "true");
+  for (const c of el.querySelectorAll("input, select, button")) c.setAttribute("data-lm-suppress-shortcuts", "true");
+}
