@@ -236,7 +236,7 @@ function render({ model, el }) {
     if (doc.activeElement !== stepIn || Number(stepIn.value) !== k) stepIn.value = String(k);
     if (pathSel.value !== o.path) pathSel.value = o.path;
     if (methodSel.value !== o.method) methodSel.value = o.method;
-    Object.assign(state, { step: k, sim, level, sigmaMin: s, theta: th });
+    Object.assign(state, { step: k, sim, level, sigmaMin: s, theta: th, drawn: o.drawn });
     el.dataset.step = String(k);
     el.dataset.theta = JSON.stringify(th);
     el.dataset.level = level;
