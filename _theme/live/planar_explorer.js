@@ -56,6 +56,11 @@ function linearColumns(e, frame, n) {
   return { P, V };
 }
 
+/** Set a node's text only when it changes (no needless layout). */
+function setText(node, text) {
+  if (node.textContent !== text) node.textContent = text;
+}
+
 function legendItem(ul, color, parts, dashed = false) {
   const li = html("li", {}, ul);
   const style = dashed ? `border-top:3px dashed ${color};height:0` : `background:${color}`;
@@ -157,6 +162,10 @@ function render({ model, el }) {
     rowsFor = labels;
   }
   const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
+  sub(status, ["σ", "min"]);
+  sub(status, ["(J", "v"]);
+  const sigmaText = doc.createTextNode("");
+  status.append(sigmaText);
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   const legend = html("ul", { class: "jl-legend" }, side);
   const legendCols = html("li", {}, legend);
@@ -214,11 +223,11 @@ function render({ model, el }) {
     clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
     clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
     const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
-    forceItem.lastChild.textContent = forceState === "inf"
+    setText(forceItem.lastChild, forceState === "inf"
       ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
       : forceState === "clipped"
         ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
-        : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`;
+        : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
     const s = Math.max(axes[1], 0);
     let level;
     let word;
@@ -233,26 +242,28 @@ function render({ model, el }) {
       word = "";
     }
     link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
-    status.textContent = "";
-    sub(status, ["σ", "min"]);
-    sub(status, ["(J", "v"]).append(`) = ${fixed(s, 3)} m`);
-    banner.textContent = word;
-    banner.hidden = level === "ok";
-    banner.style.borderColor = PALETTE[level];
+    setText(sigmaText, `) = ${fixed(s, 3)} m`);
+    if (level !== state.level) {
+      banner.textContent = word;
+      banner.hidden = level === "ok";
+      banner.style.borderColor = PALETTE[level];
+    }
     // numbers
     const labels = frame === "analytic" ? ANALYTIC_ROWS : TWIST_ROWS;
     if (rowsFor !== labels) buildRows(labels);
-    caption.textContent = "";
-    sub(caption, SYMBOLS[frame]).append(frame === "analytic"
-      ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${frame} Jacobian`);
-    for (let r = 0; r < labels.length; r++) for (let i = 0; i < n; i++) cells[r][i].textContent = fixed(J[r][i]);
-    legendCols.textContent = "";
-    for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
-    legendCols.append(frame === "space" ? "linear parts of the columns, at the origin of {s}"
-      : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
-        : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
+    if (frame !== state.frame) {
+      caption.textContent = "";
+      sub(caption, SYMBOLS[frame]).append(frame === "analytic"
+        ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${frame} Jacobian`);
+      legendCols.textContent = "";
+      for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
+      legendCols.append(frame === "space" ? "linear parts of the columns, at the origin of {s}"
+        : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
+          : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
+    }
+    for (let r = 0; r < labels.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
     for (let i = 0; i < n; i++) {
-      values[i].textContent = `${fixed((th[i] * 180) / Math.PI, 1)}°`;
+      setText(values[i], `${fixed((th[i] * 180) / Math.PI, 1)}°`);
       if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
     }
     if (select.value !== frame) select.value = frame;

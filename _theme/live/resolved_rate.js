@@ -73,7 +73,7 @@ export function startConfiguration(chain, x0) {
 }
 
 /** The whole run: {t, xd, theta0, run (velocity.resolved_rate's fields)}; presets use their exact velocity. */
-export function simulate(chain, { path, drawn, method, damping, nSteps, duration, gain, reach }) {
+export function simulate(chain, { path, drawn, method, damping, nSteps, duration, gain, reach }, starts = null) {
   let t, x, v;
   if (path === "drawn" && drawn) {
     x = resample(drawn, nSteps);
@@ -81,7 +81,10 @@ export function simulate(chain, { path, drawn, method, damping, nSteps, duration
     v = null; // forward differences, as the library's default
   }
   if (!x) ({ t, x, v } = planarPath(path === "drawn" ? "circle" : path, reach, nSteps, duration));
-  const theta0 = startConfiguration(chain, x[0]);
+  // the start depends on the path only: a change of method or λ reuses it
+  const key = `${x[0][0]},${x[0][1]}`;
+  const theta0 = (starts && starts.get(key)) || startConfiguration(chain, x[0]);
+  if (starts) starts.set(key, theta0);
   const run = resolvedRate(chain, theta0, x, t[1] - t[0], method, damping, gain, v);
   return { t, xd: x, theta0, run };
 }
@@ -169,6 +172,12 @@ function render({ model, el }) {
   const help = html("p", { class: "jl-status" }, side,
     "Keys in the view: P play/pause, → or . one step on, ← or , one step back.");
   const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
+  const statusT = doc.createTextNode("");
+  status.append(statusT);
+  sub(status, ["σ", "min"]);
+  sub(status, ["(J", "v"]);
+  const statusS = doc.createTextNode("");
+  status.append(statusS);
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   void help;
 
@@ -184,12 +193,13 @@ function render({ model, el }) {
   };
   let sim = null;
   let simKey = null;
+  const starts = new Map();
   const state = { step: 0, sim: null, level: null };
   function ensure() {
     const o = options();
     const k = JSON.stringify([o.path, o.path === "drawn" ? o.drawn : null, o.method, o.method === "dls" ? o.damping : 0]);
     if (k === simKey) return false;
-    sim = simulate(chain, o);
+    sim = simulate(chain, o, starts);
     simKey = k;
     desLine.setAttribute("points", sim.xd.map((p) => `${p[0]},${p[1]}`).join(" "));
     return true;
@@ -219,15 +229,16 @@ function render({ model, el }) {
     let peak = 0;
     for (let j = 0; j <= k; j++) for (const r of run.rates[j]) peak = Math.max(peak, Math.abs(r));
     const level = s < 0.02 * reach ? "singular" : s < 0.1 * reach ? "warning" : "ok";
-    status.textContent = `t = ${fixed(t[k], 2)} s, `;
-    sub(status, ["σ", "min"]);
-    sub(status, ["(J", "v"]).append(`) = ${fixed(s, 3)} m; ‖θ̇‖ = ${fixed(now, 2)} rad/s, `
-      + `peak |θ̇ᵢ| so far ${fixed(peak, 1)} rad/s; tracking error ${fixed(1000 * run.errors[k], 1)} mm`);
-    banner.hidden = level === "ok";
-    banner.textContent = level === "ok" ? "" : level === "singular"
-      ? "At a singularity: the tool has almost lost a direction; pseudo-inverse rates blow up, DLS gives up accuracy"
-      : "Near a singularity: the joint rates grow";
-    banner.style.borderColor = PALETTE[level];
+    statusT.textContent = `t = ${fixed(t[k], 2)} s, `;
+    statusS.textContent = `) = ${fixed(s, 3)} m; ‖θ̇‖ = ${fixed(now, 2)} rad/s, `
+      + `peak |θ̇ᵢ| so far ${fixed(peak, 1)} rad/s; tracking error ${fixed(1000 * run.errors[k], 1)} mm`;
+    if (level !== state.level) {
+      banner.hidden = level === "ok";
+      banner.textContent = level === "ok" ? "" : level === "singular"
+        ? "At a singularity: the tool has almost lost a direction; pseudo-inverse rates blow up, DLS gives up accuracy"
+        : "Near a singularity: the joint rates grow";
+      banner.style.borderColor = PALETTE[level];
+    }
     link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
     lamOut.textContent = `${fixed(o.damping, 3)} m`;
     lam.disabled = o.method !== "dls";

@@ -11,7 +11,7 @@ export const COLUMN_COLORS = ["#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F
 export const columnColor = (i) => COLUMN_COLORS[i % COLUMN_COLORS.length];
 
 const CSS = `
-.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em}
+.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:layout}
 .jac-live *{box-sizing:border-box}
 .jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
@@ -25,6 +25,7 @@ const CSS = `
 .jac-live button{font-size:16px;margin:2px 6px 6px 0;padding:3px 10px;min-height:32px}
 .jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
 .jac-live td,.jac-live th{padding:1px 8px;text-align:right;border:0}
+.jac-live td{min-width:4.2em}
 .jac-live caption{caption-side:top;text-align:left;font-size:15px;white-space:normal}
 .jac-live sub{font-size:14px;line-height:1}
 .jac-live .jl-status{font-size:15px;margin:4px 0}
