@@ -106,7 +106,7 @@ def module_source(view: str) -> str:
 
 def _chain(robot: str | SerialChain) -> tuple[str, SerialChain]:
     if isinstance(robot, SerialChain):
-        return robot.name, check_planar(robot, "a planar live view")
+        return robot.name or "the arm", check_planar(robot, "a planar live view")
     if robot not in ROBOTS:
         raise ValueError(f"Expected robot one of {', '.join(ROBOTS)} or a planar SerialChain, got {robot!r}")
     return robot, ROBOTS[robot]()
@@ -170,7 +170,7 @@ def resolved_rate_model(robot: str | SerialChain = "planar_2r", path: str = "clo
 
 
 def resample(points: Sequence[Sequence[float]], n: int) -> NDArray[np.float64] | None:
-    """A drawn polyline resampled to ``n`` points evenly spaced along its length, as resolved_rate.js (None if no length).
+    """A drawn polyline resampled to ``n`` points evenly along its length, as resolved_rate.js (None: no length).
 
     >>> resample([[0, 0], [1, 0], [1, 1]], 5).tolist()
     [[0.0, 0.0], [0.5, 0.0], [1.0, 0.0], [1.0, 0.5], [1.0, 1.0]]
@@ -284,7 +284,7 @@ class ResolvedRate(LiveView):
         from .path_following import ResolvedRateExplorer
 
         t, x, v = self.target()
-        th0 = ResolvedRateExplorer._start_configuration(self, x[0])  # type: ignore[arg-type]
+        th0 = ResolvedRateExplorer._start_configuration(self, x[0])  # uses self.chain only
         return _velocity.resolved_rate(self.chain, th0, x, t[1] - t[0], method=self.method, damping=self.damping,
                                        gain=self.gain, target_velocities=v)
 
