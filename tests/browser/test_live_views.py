@@ -325,6 +325,13 @@ def test_resolved_rate_keys_step_and_play_and_the_run_is_the_librarys(harness):
     got = _rr_check(el, model)
     assert got["level"] in ("warning", "singular")
     assert "Near a singularity" in got["text"] or "At a singularity" in got["text"]
+    # to full reach with the pseudo-inverse: the arm ends stretched (singular), no NaN, no throw
+    el.query_selector("select.jr-path").select_option("to full reach")
+    model["path"] = "to full reach"
+    el.query_selector("input.jr-step").focus()
+    page.keyboard.press("End")
+    got = _rr_check(el, model)
+    assert got["step"] == 159 and got["level"] in ("warning", "singular")  # near the stretched arm
     assert seen["console"] == []
 
 
