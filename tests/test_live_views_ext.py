@@ -84,3 +84,40 @@ def test_resolved_rate_model_and_directive_options():
             live_views.model_for("resolved_rate", options)
     with pytest.raises(ValueError, match=re.escape("Expected a whole number, got '1.5'")):
         live_views.model_for("planar_explorer", {"sweep": "1.5"})
+
+
+def test_module_source_inlines_relative_imports_recursively():
+    import base64
+
+    from jacobians.widgets.live import module_source
+
+    src = module_source("planar_explorer")
+    assert not re.search(r"""from\s*["']\./""", src)  # a blob: URL module cannot resolve ./kinematics.js
+    urls = re.findall(r'from "data:text/javascript;base64,([A-Za-z0-9+/=]+)"', src)
+    inner = [base64.b64decode(u).decode("utf-8") for u in urls]
+    kin = next(t for t in inner if "export function makeChain" in t)
+    assert not re.search(r"""from\s*["']\./""", kin) and 'from "data:text/javascript;base64,' in kin  # linalg.js
+    assert "export default { render }" in src
+    with pytest.raises(ValueError, match="Expected a view module in"):
+        module_source("gimbal_lock_nope")
+    with pytest.raises(ValueError, match="Expected a view name"):
+        module_source("../kinematics")
+
+
+def test_live_view_widget_state_and_library_values():
+    from jacobians.widgets.live import LiveView, PlanarExplorer, ResolvedRate
+
+    w = PlanarExplorer("planar_3r", theta=[0.1, 0.2, 0.3], frame="analytic")
+    assert w.J.shape == (3, 3) and np.allclose(w.J[2], 1)
+    w.theta = [0.4, -0.2, 1.0]
+    w.frame = "body"
+    assert np.allclose(w.J, jac.body_jacobian(jac.robots.planar_3r(), [0.4, -0.2, 1.0]))
+    r = ResolvedRate("planar_2r", path="circle", method="dls", damping=0.05)
+    r.step = 10
+    assert np.allclose(r.theta, r.run.thetas[10])
+    g = LiveView("planar_explorer", live_views.planar_model("planar_2r"))
+    assert g.frame == "space" and g.view == "planar_explorer"
+    with pytest.raises(TypeError, match="either a model or options"):
+        LiveView("planar_explorer", live_views.planar_model("planar_2r"), robot="planar_2r")
+    with pytest.raises(ValueError, match="no builder in MODELS"):
+        LiveView("columns_explorer")

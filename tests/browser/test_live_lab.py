@@ -101,7 +101,7 @@ def lab():
            "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate", "--ServerApp.open_browser=False"]
     if os.geteuid() == 0:
         cmd.append("--allow-root")
-    log = open(work / "lab.log", "wb")  # noqa: SIM115 - closed below
+    log = open(work / "lab.log", "wb")
     proc = subprocess.Popen(cmd, cwd=work / "nb", env=env, stdout=log, stderr=subprocess.STDOUT)
     base = f"http://127.0.0.1:{port}"
     try:
