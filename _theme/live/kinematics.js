@@ -42,7 +42,7 @@
 
 import {
   cross, describe, matrix, mulMM, mulMtv, mulMv, nonNegative, norm, skew, transform, vector,
-  dlsRates, pinvRates, singularValues,
+  ratesAndSigma,
 } from "./linalg.js";
 
 export { dlsRates, forceEllipsoid, pinvRates, singularValues, velocityEllipsoid } from "./linalg.js";
@@ -356,8 +356,7 @@ function step(chain, theta, target, targetVelocity, dt, method, damping, gain) {
   const J = geometricRows(sw).slice(3, 3 + d);
   const p = sw.p.slice(0, d);
   const v = target.map((x, i) => targetVelocity[i] + gain * (x - p[i]));
-  const rate = method === "pinv" ? pinvRates(J, v) : dlsRates(J, v, damping);
-  const sv = singularValues(J);
+  const { rate, sigma: sv } = ratesAndSigma(J, v, method, damping); // = pinvRates/dlsRates and singularValues
   const sigmaMin = sv.length === d ? sv[d - 1] : 0;
   return { theta: theta.map((t, i) => t + rate[i] * dt), rate, position: p, sigmaMin };
 }

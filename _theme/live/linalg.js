@@ -143,10 +143,12 @@ export function singularValues(A) {
 // θ̇ = Σ_i h(σ_i) ... with h(σ) = gain(σ)/σ; the thin SVD of J, V the wanted velocity.
 function svdSolve(J, V, h) {
   const A = matrix(J, "J");
-  const m = A.length, n = A[0].length;
-  const b = vector(V, "V", m);
+  const b = vector(V, "V", A.length);
   const d = svd(A);
-  const hs = h(d.sigma);
+  return apply(d, b, h(d.sigma), A.length, A[0].length);
+}
+
+function apply(d, b, hs, m, n) {
   const out = new Array(n).fill(0);
   for (let i = 0; i < d.sigma.length; i++) {
     if (hs[i] === 0) continue;
@@ -165,17 +167,29 @@ function svdSolve(J, V, h) {
   return out;
 }
 
+const pinvGain = (rcond) => (sigma) => sigma.map((s) => (s > rcond * sigma[0] ? 1 / (s * s) : 0));
+const dlsGain = (lam2) => (sigma) => sigma.map((s) => { const den = s * s + lam2; return den > 0 ? 1 / den : 0; });
+
+/**
+ * For the resolved-rate loop, on a J and V it built itself (not checked again): one SVD gives
+ * {rate: pinvRates(J, V) or dlsRates(J, V, damping), sigma: singularValues(J)}, the same numbers.
+ */
+export function ratesAndSigma(J, V, method, damping) {
+  const d = svd(J);
+  const h = method === "pinv" ? pinvGain(1e-10) : dlsGain(damping * damping);
+  return { rate: apply(d, V, h(d.sigma), J.length, J[0].length), sigma: d.sigma };
+}
+
 /** Damped least squares θ̇ = (JᵀJ + λ²I)⁻¹JᵀV (m×n J, m-vector V), λ = damping >= 0, as velocity.dls_rates. */
 export function dlsRates(J, V, damping) {
   const lam = nonNegative(damping, "damping", true);
-  const lam2 = lam * lam;
-  return svdSolve(J, V, (sigma) => sigma.map((s) => { const den = s * s + lam2; return den > 0 ? 1 / den : 0; }));
+  return svdSolve(J, V, dlsGain(lam * lam));
 }
 
 /** Pseudo-inverse rates J⁺V; singular values below rcond·σ_max count as zero (velocity.pinv_rates). */
 export function pinvRates(J, V, rcond = 1e-10) {
   nonNegative(rcond, "rcond", false);
-  return svdSolve(J, V, (sigma) => sigma.map((s) => (s > rcond * sigma[0] ? 1 / (s * s) : 0)));
+  return svdSolve(J, V, pinvGain(rcond));
 }
 
 function ellipsoid(A) {
