@@ -19,7 +19,7 @@
 import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "./kinematics.js";
 import {
   PALETTE, capture, columnColor, fixed, html, injectStyle, makeArrow, planarCanvas, setArrow, setEllipse, sub,
-  suppressShortcuts, svg, toWorld,
+  holdTouch, suppressShortcuts, svg, toWorld,
 } from "./ui.js";
 
 export { fixed };
@@ -333,10 +333,12 @@ function render({ model, el }) {
     if (!target) return;
     setTheta(drag < 0 ? solve(target) : turn(drag, target));
   };
-  const onUp = () => {
+  const onUp = (ev) => {
+    if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
     drag = null;
   };
   const draggable = [handle, ...joints.slice(1)];
+  const unhold = draggable.map(holdTouch);
   for (const h of draggable) {
     h.addEventListener("pointerdown", onDown);
     h.addEventListener("pointermove", onMove);
@@ -383,6 +385,7 @@ function render({ model, el }) {
       h.removeEventListener("pointerup", onUp);
       h.removeEventListener("pointercancel", onUp);
     }
+    unhold.forEach((f) => f());
     play.removeEventListener("click", onPlay);
     select.removeEventListener("change", onFrame);
     el.textContent = "";

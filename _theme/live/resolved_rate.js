@@ -15,7 +15,8 @@
 
 import { dlsRates, evaluate, makeChain, resolvedRate } from "./kinematics.js";
 import {
-  PALETTE, capture, columnColor, fixed, html, injectStyle, planarCanvas, sub, suppressShortcuts, svg, toWorld,
+  PALETTE, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub, suppressShortcuts, svg,
+  toWorld,
 } from "./ui.js";
 
 export const PATHS = ["circle", "to full reach", "close past the base"];
@@ -322,8 +323,10 @@ function render({ model, el }) {
     stroke.push(p);
     ink.setAttribute("points", stroke.map((q) => `${q[0]},${q[1]}`).join(" "));
   }]);
-  const finish = () => {
+  const finish = (ev) => {
     if (!stroke) return;
+    const last = ev.type === "pointerup" && toWorld(root, ev);
+    if (last) stroke.push(last); // a touch's last move can come only with the lift
     const pts = stroke;
     stroke = null;
     ink.setAttribute("points", "");
@@ -335,6 +338,7 @@ function render({ model, el }) {
   };
   on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
   for (const [t, e, f] of on) t.addEventListener(e, f);
+  const unhold = holdTouch(pad); // the pad is there only while drawing
   const keys = ["path", "drawn", "method", "damping", "step"].map((k) => `change:${k}`).join(" ");
   model.on(keys, draw);
   draw();
@@ -344,6 +348,7 @@ function render({ model, el }) {
     stop();
     model.off(keys, draw);
     for (const [t, e, f] of on) t.removeEventListener(e, f);
+    unhold();
     el.textContent = "";
   };
 }

@@ -153,3 +153,14 @@ export function suppressShortcuts(el) {
   el.setAttribute("data-lm-suppress-shortcuts", "true");
   for (const c of el.querySelectorAll("input, select, button")) c.setAttribute("data-lm-suppress-shortcuts", "true");
 }
+
+/**
+ * touch-action on an SVG shape is not honoured (Chromium cancels the pointer once the finger pans):
+ * a touch that starts on `el` must not scroll the page, so its touchstart is cancelled. The rest of
+ * the drawing still scrolls the page. Returns the listener's remover.
+ */
+export function holdTouch(el) {
+  const f = (ev) => ev.preventDefault();
+  el.addEventListener("touchstart", f, { passive: false });
+  return () => el.removeEventListener("touchstart", f);
+}

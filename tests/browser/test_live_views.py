@@ -450,3 +450,30 @@ def test_on_the_built_chapter_page(browser_context, book_html, chapter, view):
     assert f'data-view="{view}"' in built.read_text(encoding="utf-8"), (
         f"{built} has no {view} live view, but chapters/{chapter}.md mounts one: rebuild the book")
     assert check_built_page(browser_context, book_html, f"chapters/{chapter}.html")["views"] >= 1
+
+
+def test_touch_drag_moves_the_tool(harness):
+    """A finger on the dashed ring (real touch events through the DevTools protocol): the tool follows it."""
+    page, open_view, seen, _ = harness
+    el = open_view("planar_2r", [0.3, 1.2], "space")
+    cdp = page.context.new_cdp_session(page)
+    try:
+        cdp.send("Emulation.setTouchEmulationEnabled", {"enabled": True, "maxTouchPoints": 1})
+        box = el.query_selector("circle.jl-handle").bounding_box()
+        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+        chain = live_views.ROBOTS["planar_2r"]()
+        start = chain.fk(np.array([0.3, 1.2]))[:2, 3]
+        target = np.array([0.9, 1.1])
+        cdp.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
+        for k in range(1, 6):
+            px, py = page.evaluate(SCREEN_JS, [el, *(start + (target - start) * k / 5)])
+            cdp.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": px, "y": py}]})
+            page.evaluate("() => new Promise((r) => requestAnimationFrame(() => r()))")  # moves are sent per frame
+        cdp.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+        got = _check_state(el, "planar_2r")
+        assert np.linalg.norm(chain.fk(np.array(got["theta"]))[:2, 3] - target) < 0.015, got["theta"]
+        assert el.evaluate("(el) => getComputedStyle(el.querySelector('circle.jl-handle')).touchAction") == "none"
+    finally:
+        cdp.send("Emulation.setTouchEmulationEnabled", {"enabled": False})
+        cdp.detach()
+    assert seen["console"] == []
