@@ -76,7 +76,7 @@ def _explorer_frames(sweep):
 
 def test_ch02_explorer_sweeps_joint_1_so_the_J_s_table_changes():
     explore = section(CH02, "ch02-explore")
-    assert "sweep=2" not in CH02 and "sweep=1" in explore
+    assert "sweep=2" not in CH02 and ":sweep: 0" in explore  # the live view's Play turns joint 1
     # the old promises that the figure did not keep
     assert "the formula each column comes from" not in flat(CH02)
     assert "turns red" not in flat(CH02)

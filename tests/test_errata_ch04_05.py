@@ -198,7 +198,8 @@ def test_ch05_links_the_terminology_box_and_warns_about_note_003_names():
 
 def test_ch05_explorer_path_passes_the_singularities_the_text_promises():
     text = _flat(_text(CH5))
-    assert "theta=[0.5, 0.0, 0.0]" in text and "frames=17" in text
+    # the live view sweeps theta_2 (Play) from (0.5, 1.2, 0) with theta_3 held straight
+    assert ":theta: 0.5 1.2 0.0" in text and ":sweep: 1" in text and ":robot: planar_3r" in text
     assert "sweeps the elbow of a planar 3R arm through its singular configurations" not in text
     arm = jac.robots.planar_3r()
     sweep = np.linspace(-np.pi, np.pi, 17)

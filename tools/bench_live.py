@@ -11,9 +11,17 @@ is cross-origin isolated, so the clock is fine-grained), in two forms:
   and the 6×3 matrix written as text, then a forced layout
   (``getBoundingClientRect``). The real views (issue #13) will draw more.
 
-Also prints the size of every module under ``_theme/live/``. Budgets
-(issue #13): one update, compute plus redraw with forced layout, median
-<= 4 ms and worst <= 16 ms; live modules <= 150 KB per page.
+Then the real views, mounted on ``tests/browser/live_view_harness.html`` from
+the directive's models, one update at a time, each followed by a forced layout
+(``getBoundingClientRect`` of the view): the planar explorer (2R and 3R) on a
+slider input and on a tool drag (``pointermove``: up to 60 DLS iterations),
+the resolved-rate view on a step (a Play frame) and on a damping change (the
+whole 160-step run again).
+
+Also prints the size of every module under ``_theme/live/`` and the modules
+each view's page loads (its import graph). Budgets (issue #13): one update,
+compute plus redraw with forced layout, median <= 4 ms and worst <= 16 ms;
+live modules <= 150 KB per page.
 
     .venv/bin/python -m tools.bench_live [--n 2000]
 """
@@ -24,6 +32,7 @@ import argparse
 import functools
 import http.server
 import os
+import re
 import shutil
 import statistics
 import tempfile
@@ -36,6 +45,7 @@ import jacobians as jac
 ROOT = Path(__file__).resolve().parent.parent
 LIVE = ROOT / "_theme" / "live"
 HARNESS = "tests/browser/live_harness.html"
+VIEW_HARNESS = "tests/browser/live_view_harness.html"
 CHROMIUM = "/usr/bin/chromium"
 ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
 
@@ -88,6 +98,59 @@ BENCH_JS = """({S, M, n, seed, redraw}) => {
 }"""
 
 
+VIEW_JS = """({view, model, n, kind, seed}) => {
+  window.mountView(view, model);
+  const el = document.getElementById("host");
+  let s = seed >>> 0;
+  const rand = () => { s = (1664525 * s + 1013904223) >>> 0; return s / 4294967296; };
+  const sliders = el.querySelectorAll("input.jl-theta");
+  const handle = el.querySelector("circle.jl-handle");
+  const box = el.querySelector("svg").getBoundingClientRect();
+  if (kind === "drag") handle.dispatchEvent(new PointerEvent("pointerdown", {bubbles: true, pointerId: 1}));
+  const times = [];
+  let sink = 0;
+  for (let k = 0; k < n; k++) {
+    const t0 = performance.now();
+    if (kind === "slider") {
+      const sl = sliders[k % sliders.length];
+      sl.value = ((2 * rand() - 1) * 3.14).toFixed(2);
+      sl.dispatchEvent(new Event("input", {bubbles: true}));
+    } else if (kind === "drag") {
+      handle.dispatchEvent(new PointerEvent("pointermove", {bubbles: true, pointerId: 1,
+        clientX: box.left + box.width * (0.1 + 0.8 * rand()), clientY: box.top + box.height * (0.1 + 0.8 * rand())}));
+    } else if (kind === "step") {
+      const st = el.querySelector("input.jr-step");
+      st.value = String(k % 160);
+      st.dispatchEvent(new Event("input", {bubbles: true}));
+    } else {
+      const lam = el.querySelector("input.jr-damping");
+      lam.value = (-3 + 0.1 * (k % 31)).toFixed(1);
+      lam.dispatchEvent(new Event("input", {bubbles: true}));
+    }
+    sink += el.getBoundingClientRect().height + el.offsetWidth;  // forced style and layout
+    times.push(performance.now() - t0);
+  }
+  if (kind === "drag") handle.dispatchEvent(new PointerEvent("pointerup", {bubbles: true, pointerId: 1}));
+  return {times, sink};
+}"""
+
+_IMPORT = re.compile(r"""(?:\bfrom|\bimport)\s*["']\./([A-Za-z0-9_]+\.js)["']""")
+
+
+def page_modules(view: str) -> dict[str, int]:
+    """The modules a page with ``view`` loads: host.js and the view's import graph, with their bytes."""
+    seen: dict[str, int] = {}
+    todo = ["host.js", f"{view}.js"]
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        text = (LIVE / name).read_text(encoding="utf-8")
+        seen[name] = len(text.encode("utf-8"))
+        todo.extend(_IMPORT.findall(text))
+    return seen
+
+
 class _IsolatedHandler(http.server.SimpleHTTPRequestHandler):
     """Serves the repository with the headers that give performance.now() its fine resolution."""
 
@@ -131,6 +194,22 @@ def run(n: int) -> dict[str, Any]:
                 r = page.evaluate(BENCH_JS, {**args, "redraw": redraw})
                 out[label] = r["times"]
                 out["resolution"] = r["resolution"]
+            from jacobians.widgets.live import planar_model, resolved_rate_model
+
+            page.goto(f"http://127.0.0.1:{httpd.server_port}/{VIEW_HARNESS}", wait_until="load")
+            page.wait_for_selector("body[data-ready='1']", state="attached", timeout=10_000)
+            out["views"] = {}
+            cases = [("planar_explorer 2R: slider", "planar_explorer", planar_model("planar_2r"), "slider"),
+                     ("planar_explorer 3R: slider", "planar_explorer", planar_model("planar_3r"), "slider"),
+                     ("planar_explorer 3R: tool drag", "planar_explorer", planar_model("planar_3r"), "drag"),
+                     ("resolved_rate: step", "resolved_rate", resolved_rate_model(), "step"),
+                     ("resolved_rate: damping (new run)", "resolved_rate",
+                      resolved_rate_model(method="dls"), "damping")]
+            for label, view, model, kind in cases:
+                m = max(50, n // 10) if kind in ("drag", "damping") else n
+                page.evaluate(VIEW_JS, {"view": view, "model": model, "n": 50, "kind": kind, "seed": 1})  # warm up
+                out["views"][label] = page.evaluate(VIEW_JS, {"view": view, "model": model, "n": m, "kind": kind,
+                                                              "seed": 17})["times"]
             context.close()
     finally:
         httpd.shutdown()
@@ -154,6 +233,16 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  {label:18s} median {statistics.median(t):.4f} ms   mean {statistics.fmean(t):.4f} ms   "
               f"p99 {sorted(t)[int(0.99 * len(t))]:.3f} ms   worst {max(t):.3f} ms   "
               f"over 4 ms: {sum(x > 4 for x in t)}, over 16 ms: {sum(x > 16 for x in t)}")
+    print("Live views, one update with forced layout (issue #13 budget: median <= 4 ms, worst <= 16 ms):")
+    for label, t in out["views"].items():
+        ok = statistics.median(t) <= 4 and max(t) <= 16
+        print(f"  {label:34s} n {len(t):5d}  median {statistics.median(t):.3f} ms   "
+              f"p99 {sorted(t)[int(0.99 * len(t))]:.3f} ms   worst {max(t):.3f} ms   "
+              f"over 16 ms: {sum(x > 16 for x in t)}   {'within' if ok else 'OVER'} budget")
+    for view in ("planar_explorer", "resolved_rate"):
+        mods = page_modules(view)
+        print(f"  a page with {view} loads {', '.join(f'{k} {v / 1024:.1f} KB' for k, v in mods.items())}: "
+              f"{sum(mods.values()) / 1024:.1f} KB (budget 150 KB)")
     total = sum(out["sizes"].values())
     sizes = ", ".join(f"{k} {v / 1024:.1f} KB" for k, v in out["sizes"].items())
     print(f"  modules under _theme/live/: {sizes}; total {total / 1024:.1f} KB")

@@ -22,6 +22,7 @@
 //       analytic_jacobian(chain, theta, rep, on_singularity="nan", tol); returns
 //       {J, phi, margin, singular}: at a representation singularity J is null and
 //       singular is true (never NaN, never a throw).
+//   planarAnalyticJacobian(chain, theta)    analytic_jacobian(chain, theta, "zyx")[[3, 4, 0]]: rows ẋ, ẏ, φ̇ of a planar arm
 //   coordinatesFromRotation(R, rep)         representations.coordinates_from_rotation
 //   rateToAngularVelocity(phi, rep)         representations.rate_to_angular_velocity (B(φ))
 //   representationSingularityMargin(phi, rep)  representations.representation_singularity_margin
@@ -39,65 +40,19 @@
 // says what was expected and what came. The SVD is a one-sided Jacobi
 // (Hestenes) iteration on the smaller side: small matrices, full accuracy.
 
-const EPS = 2.220446049250313e-16;
+import {
+  cross, describe, matrix, mulMM, mulMtv, mulMv, nonNegative, norm, skew, transform, vector,
+  ratesAndSigma,
+} from "./linalg.js";
+
+export { dlsRates, forceEllipsoid, pinvRates, singularValues, velocityEllipsoid } from "./linalg.js";
+
 const SMALL = 1e-4; // lie._SMALL: below this angle the series expansions are used
 const UNIT_TOL = 1e-6; // _validation.UNIT_TOL
 const REPRESENTATIONS = ["zyx", "zyz"];
 const FRAMES = ["space", "body", "geometric", "analytic"];
 
 // ------------------------------------------------------------ validation
-
-function describe(x) {
-  if (Array.isArray(x)) {
-    if (x.length && Array.isArray(x[0])) return `an array of ${x.length} rows of ${x[0].length}`;
-    return `an array of length ${x.length}`;
-  }
-  if (ArrayBuffer.isView(x)) return `a typed array of length ${x.length}`;
-  if (x === null) return "null";
-  return `${typeof x} ${String(x).slice(0, 60)}`;
-}
-
-function vector(x, name, len) {
-  const ok = Array.isArray(x) || (ArrayBuffer.isView(x) && !(x instanceof DataView));
-  if (!ok || (len !== undefined && x.length !== len) || x.length === 0) {
-    const want = len === undefined ? "a non-empty array of numbers" : `an array of ${len} numbers`;
-    throw new Error(`Expected ${name} as ${want}, got ${describe(x)}`);
-  }
-  const out = new Array(x.length);
-  for (let i = 0; i < x.length; i++) {
-    const v = x[i];
-    if (typeof v !== "number" || !Number.isFinite(v)) {
-      throw new Error(`Expected finite numbers in ${name}, got ${String(v)} at index ${i}`);
-    }
-    out[i] = v;
-  }
-  return out;
-}
-
-function matrix(A, name, rows, cols) {
-  const shape = `${rows ?? "m"}×${cols ?? "n"}`;
-  if (!Array.isArray(A) || A.length === 0 || (rows !== undefined && A.length !== rows)) {
-    throw new Error(`Expected ${name} with shape ${shape} (an array of rows), got ${describe(A)}`);
-  }
-  const c = cols ?? (A[0] && A[0].length);
-  const out = new Array(A.length);
-  for (let r = 0; r < A.length; r++) {
-    const row = A[r];
-    const isRow = Array.isArray(row) || (ArrayBuffer.isView(row) && !(row instanceof DataView));
-    if (!isRow || row.length !== c || c === 0) {
-      throw new Error(`Expected ${name} with shape ${shape} (an array of rows), got row ${r} as ${describe(row)}`);
-    }
-    out[r] = vector(row, `${name}[${r}]`, c);
-  }
-  return out;
-}
-
-function nonNegative(x, name, allowZero) {
-  if (typeof x !== "number" || !Number.isFinite(x) || x < 0 || (!allowZero && x === 0)) {
-    throw new Error(`Expected ${name} as a ${allowZero ? "non-negative" : "positive"} finite number, got ${String(x)}`);
-  }
-  return x;
-}
 
 function representation(rep) {
   if (!REPRESENTATIONS.includes(rep)) {
@@ -111,34 +66,6 @@ function checkChain(chain) {
     throw new Error(`Expected a chain made by makeChain(S, M), got ${describe(chain)}`);
   }
   return chain;
-}
-
-// ------------------------------------------------------------ 3-vectors, 3×3
-
-const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-const mulMv = (R, x) => [
-  R[0][0] * x[0] + R[0][1] * x[1] + R[0][2] * x[2],
-  R[1][0] * x[0] + R[1][1] * x[1] + R[1][2] * x[2],
-  R[2][0] * x[0] + R[2][1] * x[1] + R[2][2] * x[2],
-];
-const mulMtv = (R, x) => [
-  R[0][0] * x[0] + R[1][0] * x[1] + R[2][0] * x[2],
-  R[0][1] * x[0] + R[1][1] * x[1] + R[2][1] * x[2],
-  R[0][2] * x[0] + R[1][2] * x[1] + R[2][2] * x[2],
-];
-function mulMM(A, B) {
-  const C = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
-  for (let i = 0; i < 3; i++) {
-    for (let j = 0; j < 3; j++) C[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j] + A[i][2] * B[2][j];
-  }
-  return C;
-}
-const skew = (w) => [[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]];
-const norm = (x) => Math.hypot(...x);
-
-function transform(R, p) {
-  return [[R[0][0], R[0][1], R[0][2], p[0]], [R[1][0], R[1][1], R[1][2], p[1]],
-    [R[2][0], R[2][1], R[2][2], p[2]], [0, 0, 0, 1]];
 }
 
 // ------------------------------------------------------------ chain
@@ -385,6 +312,24 @@ export function analyticJacobian(chain, theta, rep = "zyx", tol = 1e-9) {
   return { J, phi, margin: m, singular: false };
 }
 
+/**
+ * The analytic Jacobian of a planar arm (every joint axis along ±z, in the plane z = 0) in the
+ * coordinates x = (x, y, φ) of the tool, φ the angle of its x axis: the rows ẋ, ẏ and φ̇ of
+ * analyticJacobian(chain, θ, "zyx") (φ is the ZYX yaw; pitch and roll stay 0, so no singularity).
+ * Returns a 3×n matrix. Throws on a chain that is not planar.
+ */
+export function planarAnalyticJacobian(chain, theta) {
+  const c = checkChain(chain);
+  for (let i = 0; i < c.n; i++) {
+    const { w, v } = c.joints[i];
+    if (Math.abs(w[0]) > UNIT_TOL || Math.abs(w[1]) > UNIT_TOL || Math.abs(v[2]) > UNIT_TOL) {
+      throw new Error(`Expected a planar arm (axes along z, in the plane z = 0), got joint ${i} with ω = (${w}), v = (${v})`);
+    }
+  }
+  const a = analyticJacobian(c, theta, "zyx");
+  return [a.J[3], a.J[4], a.J[0]];
+}
+
 /** The Jacobian in frame "space", "body", "geometric" (a 6×n matrix) or "analytic" (as analyticJacobian). */
 export function jacobian(chain, theta, frame, rep = "zyx", tol = 1e-9) {
   if (!FRAMES.includes(frame)) {
@@ -393,126 +338,6 @@ export function jacobian(chain, theta, frame, rep = "zyx", tol = 1e-9) {
   if (frame === "analytic") return analyticJacobian(chain, theta, rep, tol);
   const sw = sweep(chain, theta);
   return frame === "space" ? spaceRows(sw) : frame === "body" ? bodyRows(sw) : geometricRows(sw);
-}
-
-// ------------------------------------------------------------ SVD (one-sided Jacobi)
-
-function rotate(x, y, c, s) {
-  for (let i = 0; i < x.length; i++) {
-    const xi = x[i], yi = y[i];
-    x[i] = c * xi - s * yi;
-    y[i] = s * xi + c * yi;
-  }
-}
-
-// Orthogonalise the vectors xs (k vectors of one length) by plane rotations:
-// [b_1 … b_k] = [x_1 … x_k] W with W (k×k, columns w_i) orthogonal and the b_i
-// mutually orthogonal. σ_i = |b_i|, sorted in descending order.
-function jacobi(xs) {
-  const k = xs.length;
-  const b = xs.map((x) => x.slice());
-  const W = Array.from({ length: k }, (_, i) => Array.from({ length: k }, (_, j) => (i === j ? 1 : 0)));
-  const dot = (x, y) => { let s = 0; for (let i = 0; i < x.length; i++) s += x[i] * y[i]; return s; };
-  for (let sweepNo = 0; sweepNo < 60; sweepNo++) {
-    let rotated = false;
-    for (let p = 0; p < k - 1; p++) {
-      for (let q = p + 1; q < k; q++) {
-        const alpha = dot(b[p], b[p]), beta = dot(b[q], b[q]), gamma = dot(b[p], b[q]);
-        if (gamma === 0 || Math.abs(gamma) <= EPS * Math.sqrt(alpha * beta)) continue;
-        rotated = true;
-        const zeta = (beta - alpha) / (2 * gamma);
-        const t = (zeta >= 0 ? 1 : -1) / (Math.abs(zeta) + Math.hypot(1, zeta));
-        const c = 1 / Math.hypot(1, t), s = c * t;
-        rotate(b[p], b[q], c, s);
-        rotate(W[p], W[q], c, s);
-      }
-    }
-    if (!rotated) break;
-  }
-  // W is stored by columns: W[i] is w_i.
-  const order = b.map((x, i) => [norm(x), i]).sort((u, v) => v[0] - u[0]);
-  return { sigma: order.map((o) => o[0]), b: order.map((o) => b[o[1]]), w: order.map((o) => W[o[1]]) };
-}
-
-// The vectors of the smaller side of A (m×n): its rows if m <= n (then w_i are
-// the left singular vectors u_i and b_i = Aᵀ u_i = σ_i v_i), else its columns
-// (then w_i are the right singular vectors v_i and b_i = A v_i = σ_i u_i).
-function svd(A) {
-  const m = A.length, n = A[0].length;
-  if (m <= n) return { rowsSide: true, ...jacobi(A) };
-  return { rowsSide: false, ...jacobi(Array.from({ length: n }, (_, j) => A.map((row) => row[j]))) };
-}
-
-/** Singular values of A (m×n), min(m, n) of them, descending. */
-export function singularValues(A) {
-  return svd(matrix(A, "A")).sigma;
-}
-
-// θ̇ = Σ_i h(σ_i) ... with h(σ) = gain(σ)/σ; the thin SVD of J, V the wanted velocity.
-function svdSolve(J, V, h) {
-  const A = matrix(J, "J");
-  const m = A.length, n = A[0].length;
-  const b = vector(V, "V", m);
-  const d = svd(A);
-  const hs = h(d.sigma);
-  const out = new Array(n).fill(0);
-  for (let i = 0; i < d.sigma.length; i++) {
-    if (hs[i] === 0) continue;
-    if (d.rowsSide) {
-      // J = Σ σ_i u_i v_iᵀ, u_i = w_i, σ_i v_i = b_i
-      let uv = 0;
-      for (let r = 0; r < m; r++) uv += d.w[i][r] * b[r];
-      for (let j = 0; j < n; j++) out[j] += hs[i] * uv * d.b[i][j];
-    } else {
-      // v_i = w_i, σ_i u_i = b_i
-      let uv = 0;
-      for (let r = 0; r < m; r++) uv += d.b[i][r] * b[r];
-      for (let j = 0; j < n; j++) out[j] += hs[i] * uv * d.w[i][j];
-    }
-  }
-  return out;
-}
-
-/** Damped least squares θ̇ = (JᵀJ + λ²I)⁻¹JᵀV (m×n J, m-vector V), λ = damping >= 0, as velocity.dls_rates. */
-export function dlsRates(J, V, damping) {
-  const lam = nonNegative(damping, "damping", true);
-  const lam2 = lam * lam;
-  return svdSolve(J, V, (sigma) => sigma.map((s) => { const den = s * s + lam2; return den > 0 ? 1 / den : 0; }));
-}
-
-/** Pseudo-inverse rates J⁺V; singular values below rcond·σ_max count as zero (velocity.pinv_rates). */
-export function pinvRates(J, V, rcond = 1e-10) {
-  nonNegative(rcond, "rcond", false);
-  return svdSolve(J, V, (sigma) => sigma.map((s) => (s > rcond * sigma[0] ? 1 / (s * s) : 0)));
-}
-
-function ellipsoid(A) {
-  const a = matrix(A, "A");
-  const k = a.length, n = a[0].length;
-  const d = jacobi(a); // the rows of A: w_i are its left singular vectors, |b_i| = σ_i
-  const axes = d.sigma.map((s, i) => (i < Math.min(k, n) ? s : 0));
-  const directions = Array.from({ length: k }, (_, r) => d.w.map((w) => w[r]));
-  return { axes, directions, k, n };
-}
-
-/**
- * Velocity ellipsoid of a k×n block A (e.g. the x, y rows of the geometric Jacobian):
- * {axes: σ_i descending (k of them, 0 where k > n), directions: k×k, column i the direction of axis i}.
- */
-export function velocityEllipsoid(A) {
-  const { axes, directions } = ellipsoid(A);
-  return { axes, directions };
-}
-
-/**
- * Force ellipsoid: the same directions, semi-axes 1/σ_i, Infinity where σ_i <= rtol·σ_max
- * (default rtol = max(k, n)·ε), as analysis.force_ellipsoid. A view must clip Infinity.
- */
-export function forceEllipsoid(A, rtol = null) {
-  const { axes, directions, k, n } = ellipsoid(A);
-  const tol = rtol === null ? Math.max(k, n) * EPS : nonNegative(rtol, "rtol", false);
-  const smax = axes[0];
-  return { axes: axes.map((s) => (s <= tol * smax ? Infinity : 1 / s)), directions };
 }
 
 // ------------------------------------------------------------ resolved-rate motion
@@ -531,8 +356,7 @@ function step(chain, theta, target, targetVelocity, dt, method, damping, gain) {
   const J = geometricRows(sw).slice(3, 3 + d);
   const p = sw.p.slice(0, d);
   const v = target.map((x, i) => targetVelocity[i] + gain * (x - p[i]));
-  const rate = method === "pinv" ? pinvRates(J, v) : dlsRates(J, v, damping);
-  const sv = singularValues(J);
+  const { rate, sigma: sv } = ratesAndSigma(J, v, method, damping); // = pinvRates/dlsRates and singularValues
   const sigmaMin = sv.length === d ? sv[d - 1] : 0;
   return { theta: theta.map((t, i) => t + rate[i] * dt), rate, position: p, sigmaMin };
 }

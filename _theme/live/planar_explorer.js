@@ -1,126 +1,42 @@
 // The planar arm explorer, live (issue #13): a 2R or 3R arm the reader moves
-// with one slider per joint, or by dragging the tool (mouse, pen or touch:
-// damped least squares on J_v); the chosen Jacobian's numbers, the linear parts
-// of its columns as arrows, the velocity ellipse of J_v (the x, y rows of the
-// geometric Jacobian, i.e. the tool point's (ẋ, ẏ)) and σ_min(J_v), with a
-// banner near a singularity. What is drawn follows the book's matplotlib
-// explorer (jacobians.widgets.planar, jacobians.plotting.planar.column_arrows)
-// and its colours (jacobians.plotting.style.PALETTE, COLUMN_COLORS).
+// with one slider per joint, by dragging a joint (it turns the joint before
+// it) or the tool (mouse, pen or touch: damped least squares on J_v), or with
+// Play, which sweeps one joint; the chosen Jacobian's numbers (space, body,
+// geometric, or the analytic Jacobian in (x, y, φ)), the linear parts of its
+// columns as arrows, the velocity and force ellipses of J_v (the x, y rows of
+// the geometric Jacobian) and σ_min(J_v), with a banner near a singularity.
+// What is drawn follows the book's matplotlib explorer
+// (jacobians.widgets.planar, jacobians.plotting.planar.column_arrows).
 //
-// anywidget-compatible: `export default { render }`, render({model, el}) reads
+// anywidget-compatible: `export default { render }`; render({model, el}) reads
 // model.get(key) for S (6×n), M (4×4), Q (n×3 joint axis points), theta (n, rad),
-// frame ("space" | "body" | "geometric"), reach (m), sing_tol (m), vel_scale,
-// name; it writes theta and frame back with model.set + model.save_changes and
-// redraws on "change:theta" / "change:frame". On a static page
-// _ext/live_views.py writes the model and _theme/live/host.js mounts it.
+// frame ("space" | "body" | "geometric" | "analytic"), reach (m), sing_tol (m),
+// vel_scale (drawn m per m/s), force_scale (drawn m per N/(N m)), force_clip (m),
+// sweep (joint Play turns, 0-based), name; it writes theta and frame back with
+// model.set + model.save_changes and redraws on "change:theta" / "change:frame".
 // Returns a cleanup function. Never throws at a singularity, never shows NaN.
 
-import { dlsRates, evaluate, makeChain, velocityEllipsoid } from "./kinematics.js";
+import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "./kinematics.js";
+import {
+  PALETTE, capture, columnColor, fixed, html, injectStyle, makeArrow, planarCanvas, setArrow, setEllipse, sub,
+  holdTouch, suppressShortcuts, svg, toWorld,
+} from "./ui.js";
 
-const SVGNS = "http://www.w3.org/2000/svg";
-const PALETTE = {
-  link: "#0072B2", joint: "#000000", muted: "#999999", velocity: "#D55E00",
-  ok: "#009E73", warning: "#E69F00", singular: "#D55E00", frame_x: "#D55E00", frame_y: "#009E73",
-};
-const COLUMN_COLORS = ["#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"];
-export const FRAMES = ["space", "body", "geometric"];
-const SYMBOLS = { space: ["J", "s"], body: ["J", "b"], geometric: ["J", ""] };
-const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
-const DIGITS = 2;
+export { fixed };
+export const FRAMES = ["space", "body", "geometric", "analytic"];
+const SYMBOLS = { space: ["J", "s"], body: ["J", "b"], geometric: ["J", ""], analytic: ["J", "a"] };
+const TWIST_ROWS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
+const ANALYTIC_ROWS = [["ẋ", ""], ["ẏ", ""], ["φ̇", ""]];
 const STEP = 0.01; // rad, as the matplotlib explorer's sliders
 const MAX_STEP = 0.2; // rad, largest joint change of one DLS iteration of a tool drag
 const LIMIT = 3.14; // slider range ±LIMIT rad (a multiple of STEP: the initial θ keeps its value)
-const CSS = `
-.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em}
-.jac-live *{box-sizing:border-box}
-.jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
-.jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
-.jac-live .jl-plot svg{width:100%;height:auto;display:block}
-.jac-live .jl-handle{cursor:grab;touch-action:none}
-.jac-live .jl-side{flex:1 1 260px;min-width:0}
-.jac-live label{display:block;font-size:16px}
-.jac-live input[type=range]{width:100%;margin:2px 0 8px}
-.jac-live select{font-size:16px;margin-left:6px}
-.jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
-.jac-live td,.jac-live th{padding:1px 8px;text-align:right;border:0}
-.jac-live caption{caption-side:top;text-align:left;font-size:15px;white-space:nowrap}
-.jac-live sub{font-size:14px;line-height:1}
-.jac-live .jl-status{font-size:15px;margin:4px 0}
-.jac-live .jl-banner{font-size:16px;font-weight:bold;padding:4px 8px;border:3px solid;border-radius:6px;margin:6px 0}
-.jac-live .jl-legend{font-size:14px;margin:4px 0 0;padding:0;list-style:none}
-.jac-live .jl-legend li{margin:0}
-.jac-live .jl-key{display:inline-block;width:18px;height:4px;vertical-align:middle;margin-right:6px}
-`;
+const PLAY_STEP = 0.02; // rad per frame of Play: from -LIMIT it passes 0 exactly (the singularity of a stretched arm)
+const PLAY_MS = 30;
 
-function injectStyle(doc) {
-  if (doc.getElementById("jac-live-style")) return;
-  const s = doc.createElement("style");
-  s.id = "jac-live-style";
-  s.textContent = CSS;
-  doc.head.appendChild(s);
-}
-
-/** A number with fixed decimals, never "-0.00" (a true minus sign otherwise). */
-export function fixed(x, digits = DIGITS) {
-  if (!Number.isFinite(x)) return "—";
-  const s = x.toFixed(digits);
-  return /^-0\.?0*$/.test(s) ? s.slice(1) : s.replace("-", "\u2212");
-}
-
-function svg(tag, attrs = {}, parent = null) {
-  const e = document.createElementNS(SVGNS, tag);
-  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
-  if (parent) parent.appendChild(e);
-  return e;
-}
-
-function html(tag, attrs = {}, parent = null, text = null) {
-  const e = document.createElement(tag);
-  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
-  if (text !== null) e.textContent = text;
-  if (parent) parent.appendChild(e);
-  return e;
-}
-
-/** Append text with a subscript (e.g. J_s) to `parent`. */
-function sub(parent, [base, index]) {
-  parent.append(base);
-  if (index) html("sub", {}, parent, index);
-  return parent;
-}
-
-/** An arrow (shaft + head) in a <g>; hidden when shorter than `tiny`. */
-function makeArrow(parent, color, width) {
-  const g = svg("g", { fill: color, stroke: color }, parent);
-  const line = svg("line", { "stroke-width": width, "vector-effect": "non-scaling-stroke", "stroke-linecap": "round" }, g);
-  const head = svg("polygon", { stroke: "none" }, g);
-  return { g, line, head };
-}
-
-function setArrow(a, p, d, headLen, tiny) {
-  const L = Math.hypot(d[0], d[1]);
-  if (!(L > tiny)) {
-    a.g.setAttribute("visibility", "hidden");
-    return;
-  }
-  a.g.setAttribute("visibility", "visible");
-  const ux = d[0] / L;
-  const uy = d[1] / L;
-  const h = Math.min(headLen, 0.45 * L);
-  const tx = p[0] + d[0];
-  const ty = p[1] + d[1];
-  const bx = tx - h * ux;
-  const by = ty - h * uy;
-  const w = 0.45 * h;
-  a.line.setAttribute("x1", p[0]);
-  a.line.setAttribute("y1", p[1]);
-  a.line.setAttribute("x2", bx);
-  a.line.setAttribute("y2", by);
-  a.head.setAttribute("points", `${tx},${ty} ${bx - w * uy},${by + w * ux} ${bx + w * uy},${by - w * ux}`);
-}
+const clamp = (x) => Math.min(LIMIT, Math.max(-LIMIT, x));
 
 function linearColumns(e, frame, n) {
-  // jacobians.plotting.planar.column_arrows: space at {s}'s origin; body turned into {s} axes; geometric ṗ columns
+  // jacobians.plotting.planar.column_arrows: space at {s}'s origin; body turned into {s} axes; else ṗ columns
   const tip = [e.T[0][3], e.T[1][3]];
   const P = [];
   const V = [];
@@ -130,15 +46,27 @@ function linearColumns(e, frame, n) {
       V.push([e.Js[3][i], e.Js[4][i]]);
     } else if (frame === "body") {
       const v = [e.Jb[3][i], e.Jb[4][i], e.Jb[5][i]];
-      const R = e.T;
       P.push(tip);
-      V.push([0, 1].map((r) => R[r][0] * v[0] + R[r][1] * v[1] + R[r][2] * v[2]));
+      V.push([0, 1].map((r) => e.T[r][0] * v[0] + e.T[r][1] * v[1] + e.T[r][2] * v[2]));
     } else {
       P.push(tip);
       V.push([e.Jg[3][i], e.Jg[4][i]]);
     }
   }
   return { P, V };
+}
+
+/** Set a node's text only when it changes (no needless layout). */
+function setText(node, text) {
+  if (node.textContent !== text) node.textContent = text;
+}
+
+function legendItem(ul, color, parts, dashed = false) {
+  const li = html("li", {}, ul);
+  const style = dashed ? `border-top:3px dashed ${color};height:0` : `background:${color}`;
+  html("span", { class: "jl-key", style }, li);
+  for (const p of parts) (Array.isArray(p) ? sub(li, p) : li.append(p));
+  return li;
 }
 
 function render({ model, el }) {
@@ -150,6 +78,8 @@ function render({ model, el }) {
   const reach = Number(model.get("reach")) || 1;
   const singTol = Number(model.get("sing_tol")) || 0.08 * reach;
   const velScale = Number(model.get("vel_scale")) || 0.35;
+  const forceScale = Number(model.get("force_scale")) || 0.1 * reach * reach;
+  const forceClip = Number(model.get("force_clip")) || 1.25 * reach;
   const name = model.get("name") || `planar ${n}R arm`;
   const R = 1.3 * reach;
   const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
@@ -157,18 +87,8 @@ function render({ model, el }) {
   const wrap = html("div", { class: "jl-wrap" }, el);
   const plot = html("div", { class: "jl-plot" }, wrap);
   const side = html("div", { class: "jl-side" }, wrap);
-
-  // ---- the drawing: world coordinates in metres, y up
-  const root = svg("svg", { viewBox: `${-R} ${-R} ${2 * R} ${2 * R}`, role: "img",
-    "aria-label": `${name}: the arm, the linear parts of the Jacobian columns and the velocity ellipse` }, plot);
-  const world = svg("g", { transform: "scale(1,-1)" }, root);
-  const grid = svg("g", { stroke: "#dddddd", "stroke-width": 1, "vector-effect": "non-scaling-stroke" }, world);
-  for (let k = -Math.floor(R); k <= Math.floor(R); k++) {
-    svg("line", { x1: k, y1: -R, x2: k, y2: R, "vector-effect": "non-scaling-stroke" }, grid);
-    svg("line", { x1: -R, y1: k, x2: R, y2: k, "vector-effect": "non-scaling-stroke" }, grid);
-  }
-  const b = 0.07 * reach;
-  svg("polygon", { points: `0,0 ${-b},${-1.6 * b} ${b},${-1.6 * b}`, fill: PALETTE.muted }, world);
+  const { root, world } = planarCanvas(plot, R, reach,
+    `${name}: the arm, the linear parts of the Jacobian columns, the velocity and force ellipses`);
   const L = 0.22 * reach;
   const head = 0.07 * reach;
   const tiny = 1e-9 * reach;
@@ -176,8 +96,11 @@ function render({ model, el }) {
   const sy = makeArrow(world, PALETTE.muted, 1.5);
   setArrow(sx, [0, 0], [L, 0], head, tiny);
   setArrow(sy, [0, 0], [0, L], head, tiny);
-  const ellipse = svg("ellipse", { fill: "none", stroke: PALETTE.velocity, "stroke-width": 2,
-    "vector-effect": "non-scaling-stroke", class: "jl-ellipse" }, world);
+  const ns = { fill: "none", "stroke-width": 2, "vector-effect": "non-scaling-stroke" };
+  const ellipse = svg("ellipse", { ...ns, stroke: PALETTE.velocity, class: "jl-ellipse" }, world);
+  const force = svg("ellipse", { ...ns, stroke: PALETTE.force, "stroke-dasharray": "6 4", class: "jl-force" }, world);
+  const clipLine = svg("polyline", { ...ns, stroke: PALETTE.force, "stroke-dasharray": "2 3", class: "jl-force-clip" },
+    world);
   const link = svg("polyline", { fill: "none", stroke: PALETTE.link, "stroke-width": 6, "stroke-linejoin": "round",
     "stroke-linecap": "round", "vector-effect": "non-scaling-stroke", class: "jl-link" }, world);
   const bx = makeArrow(world, PALETTE.muted, 1.5);
@@ -185,13 +108,13 @@ function render({ model, el }) {
   const joints = [];
   for (let i = 0; i < n; i++) {
     joints.push(svg("circle", { r: 0.045 * reach, fill: "white", stroke: PALETTE.joint, "stroke-width": 2.2,
-      "vector-effect": "non-scaling-stroke" }, world));
+      "vector-effect": "non-scaling-stroke", class: i ? "jl-joint-handle" : "jl-joint", "data-joint": i + 1 }, world));
+    if (i) svg("title", {}, joints[i]).textContent = `drag joint ${i + 1}: turns joint ${i}`;
   }
   const tool = svg("circle", { r: 0.025 * reach, fill: PALETTE.joint }, world);
   const cols = [];
-  for (let i = 0; i < n; i++) cols.push(makeArrow(world, COLUMN_COLORS[i % COLUMN_COLORS.length], 3));
+  for (let i = 0; i < n; i++) cols.push(makeArrow(world, columnColor(i), 3));
   cols.forEach((a, i) => a.g.setAttribute("class", `jl-col jl-col-${i + 1}`));
-  // drag the tool: damped least squares on J_v (a ring to grab, wider than the dot)
   const handle = svg("circle", { r: 0.1 * reach, fill: "#000000", "fill-opacity": 0.06, stroke: PALETTE.joint,
     "stroke-opacity": 0.5, "stroke-dasharray": "3 3", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke",
     class: "jl-handle" }, world);
@@ -207,37 +130,48 @@ function render({ model, el }) {
     label.append(`θ${String.fromCharCode(0x2081 + i)} = `);
     values.push(html("output", { for: id, class: "jl-value" }, label));
     const s = html("input", { type: "range", id, min: -LIMIT, max: LIMIT, step: STEP, class: "jl-theta",
-      "data-joint": i + 1, style: `accent-color:${COLUMN_COLORS[i % COLUMN_COLORS.length]}` }, side);
+      "data-joint": i + 1, style: `accent-color:${columnColor(i)}` }, side);
     s.value = String(theta0[i]);
     sliders.push(s);
   }
+  const row = html("div", { class: "jl-row" }, side);
+  const play = html("button", { type: "button", class: "jl-play", "aria-pressed": "false" }, row, "▶ Play");
+  const sweepSel = html("select", { class: "jl-sweep", "aria-label": "joint that Play sweeps" }, row);
+  for (let i = 0; i < n; i++) html("option", { value: i }, sweepSel, `sweep θ${String.fromCharCode(0x2081 + i)}`);
+  const sweep0 = Number(model.get("sweep"));
+  sweepSel.value = String(Number.isInteger(sweep0) && sweep0 >= 0 && sweep0 < n ? sweep0 : n - 1);
   const frameLabel = html("label", { for: `${uid}-frame` }, side, "Jacobian:");
   const select = html("select", { id: `${uid}-frame`, class: "jl-frame" }, frameLabel);
-  for (const f of FRAMES) html("option", { value: f }, select, f);
+  for (const f of FRAMES) html("option", { value: f }, select, f === "analytic" ? "analytic (x, y, φ)" : f);
   const table = html("table", { class: "jl-matrix" }, side);
   const caption = html("caption", {}, table);
   const thead = html("thead", {}, table);
   const hr = html("tr", {}, thead);
   html("th", { scope: "col" }, hr, "");
-  for (let i = 0; i < n; i++) {
-    html("th", { scope: "col", style: `color:${COLUMN_COLORS[i % COLUMN_COLORS.length]}` }, hr, `col ${i + 1}`);
-  }
+  for (let i = 0; i < n; i++) html("th", { scope: "col", style: `color:${columnColor(i)}` }, hr, `col ${i + 1}`);
   const tbody = html("tbody", {}, table);
-  const cells = ROW_LABELS.map((lab) => {
-    const tr = html("tr", {}, tbody);
-    sub(html("th", { scope: "row" }, tr), lab);
-    return Array.from({ length: n }, () => html("td", {}, tr, ""));
-  });
+  let cells = [];
+  let rowsFor = null;
+  function buildRows(labels) {
+    tbody.textContent = "";
+    cells = labels.map((lab) => {
+      const tr = html("tr", {}, tbody);
+      sub(html("th", { scope: "row" }, tr), lab);
+      return Array.from({ length: n }, () => html("td", {}, tr, ""));
+    });
+    rowsFor = labels;
+  }
   const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
+  sub(status, ["σ", "min"]);
+  sub(status, ["(J", "v"]);
+  const sigmaText = doc.createTextNode("");
+  status.append(sigmaText);
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   const legend = html("ul", { class: "jl-legend" }, side);
   const legendCols = html("li", {}, legend);
-  const li = html("li", {}, legend);
-  html("span", { class: "jl-key", style: `background:${PALETTE.velocity}` }, li);
-  sub(li, ["velocity ellipse of J", "v"]).append(`: ‖θ̇‖ = 1 (×${velScale} s)`);
-  const li2 = html("li", {}, legend);
-  html("span", { class: "jl-key", style: `background:${PALETTE.muted}` }, li2);
-  li2.append("axes of {s} and {b}; drag the dashed ring at the tool");
+  legendItem(legend, PALETTE.velocity, ["velocity ellipse of J", ["", "v"], `: ‖θ̇‖ = 1 (×${velScale} s)`]);
+  const forceItem = legendItem(legend, PALETTE.force, [""], true);
+  legendItem(legend, PALETTE.muted, ["axes of {s} and {b}; drag a joint or the dashed ring at the tool"]);
 
   // ---- state -> picture
   function readTheta() {
@@ -248,13 +182,14 @@ function render({ model, el }) {
     const f = model.get("frame");
     return FRAMES.includes(f) ? f : "space";
   }
-  const state = { theta: null, frame: null, J: null, sigmaMin: null, level: null };
+  const state = { theta: null, frame: null, J: null, sigmaMin: null, level: null, force: null };
 
   function draw() {
     const th = readTheta();
     const frame = readFrame();
     const e = evaluate(chain, th);
-    const J = frame === "space" ? e.Js : frame === "body" ? e.Jb : e.Jg;
+    const J = frame === "space" ? e.Js : frame === "body" ? e.Jb : frame === "geometric" ? e.Jg
+      : planarAnalyticJacobian(chain, th);
     const pts = e.points;
     link.setAttribute("points", pts.map((p) => `${p[0]},${p[1]}`).join(" "));
     for (let i = 0; i < n; i++) {
@@ -262,10 +197,10 @@ function render({ model, el }) {
       joints[i].setAttribute("cy", pts[i][1]);
     }
     const tip = [e.T[0][3], e.T[1][3]];
-    tool.setAttribute("cx", tip[0]);
-    tool.setAttribute("cy", tip[1]);
-    handle.setAttribute("cx", tip[0]);
-    handle.setAttribute("cy", tip[1]);
+    for (const c of [tool, handle]) {
+      c.setAttribute("cx", tip[0]);
+      c.setAttribute("cy", tip[1]);
+    }
     setArrow(bx, tip, [0.8 * L * e.T[0][0], 0.8 * L * e.T[1][0]], head, tiny);
     setArrow(by, tip, [0.8 * L * e.T[0][1], 0.8 * L * e.T[1][1]], head, tiny);
     const { P, V } = linearColumns(e, frame, n);
@@ -273,12 +208,26 @@ function render({ model, el }) {
     // velocity ellipse of J_v: semi-axes σ_i along the columns of U, drawn ×velScale
     const Jv = [e.Jg[3], e.Jg[4]];
     const { axes, directions } = velocityEllipsoid(Jv);
-    const ang = (Math.atan2(directions[1][0], directions[0][0]) * 180) / Math.PI;
-    ellipse.setAttribute("cx", tip[0]);
-    ellipse.setAttribute("cy", tip[1]);
-    ellipse.setAttribute("rx", Math.max(axes[0], 0) * velScale);
-    ellipse.setAttribute("ry", Math.max(axes[1] * velScale, 1e-4 * reach)); // a segment at a singularity
-    ellipse.setAttribute("transform", `rotate(${Number.isFinite(ang) ? ang : 0} ${tip[0]} ${tip[1]})`);
+    setEllipse(ellipse, tip, axes[0] * velScale, axes[1] * velScale, directions, 1e-4 * reach);
+    // force ellipse: 1/σ_i along the same directions (Infinity at a singularity), drawn ×forceScale, clipped
+    const f = forceEllipsoid(Jv);
+    const drawn = f.axes.map((a) => Math.min(a * forceScale, forceClip));
+    const clipped = f.axes.map((a) => !(a * forceScale <= forceClip));
+    setEllipse(force, tip, drawn[0], drawn[1], f.directions, 1e-4 * reach);
+    const seg = [];
+    clipped.forEach((c, i) => {
+      if (!c) return;
+      const u = [f.directions[0][i], f.directions[1][i]];
+      seg.push(`${tip[0] - forceClip * u[0]},${tip[1] - forceClip * u[1]}`, `${tip[0] + forceClip * u[0]},${tip[1] + forceClip * u[1]}`);
+    });
+    clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
+    clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
+    const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
+    setText(forceItem.lastChild, forceState === "inf"
+      ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
+      : forceState === "clipped"
+        ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
+        : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
     const s = Math.max(axes[1], 0);
     let level;
     let word;
@@ -293,43 +242,48 @@ function render({ model, el }) {
       word = "";
     }
     link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
-    status.textContent = "";
-    sub(status, ["σ", "min"]);
-    sub(status, ["(J", "v"]).append(`) = ${fixed(s, 3)} m`);
-    banner.textContent = word;
-    banner.hidden = level === "ok";
-    banner.style.borderColor = PALETTE[level];
-    // numbers
-    caption.textContent = "";
-    sub(caption, SYMBOLS[frame]).append(`(θ), the ${frame} Jacobian`);
-    for (let r = 0; r < 6; r++) for (let i = 0; i < n; i++) cells[r][i].textContent = fixed(J[r][i]);
-    legendCols.textContent = "";
-    for (let i = 0; i < n; i++) {
-      html("span", { class: "jl-key", style: `background:${COLUMN_COLORS[i % COLUMN_COLORS.length]}` }, legendCols);
+    setText(sigmaText, `) = ${fixed(s, 3)} m`);
+    if (level !== state.level) {
+      banner.textContent = word;
+      banner.hidden = level === "ok";
+      banner.style.borderColor = PALETTE[level];
     }
-    legendCols.append(frame === "space" ? "linear parts of the columns, at the origin of {s}"
-      : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
-        : "linear parts of the columns (ṗ of the tool), at the tool");
+    // numbers
+    const labels = frame === "analytic" ? ANALYTIC_ROWS : TWIST_ROWS;
+    if (rowsFor !== labels) buildRows(labels);
+    if (frame !== state.frame) {
+      caption.textContent = "";
+      sub(caption, SYMBOLS[frame]).append(frame === "analytic"
+        ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${frame} Jacobian`);
+      legendCols.textContent = "";
+      for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
+      legendCols.append(frame === "space" ? "linear parts of the columns, at the origin of {s}"
+        : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
+          : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
+    }
+    for (let r = 0; r < labels.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
     for (let i = 0; i < n; i++) {
-      values[i].textContent = `${fixed((th[i] * 180) / Math.PI, 1)}°`;
+      setText(values[i], `${fixed((th[i] * 180) / Math.PI, 1)}°`);
       if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
     }
     if (select.value !== frame) select.value = frame;
-    Object.assign(state, { theta: th, frame, J, sigmaMin: s, level });
+    Object.assign(state, { theta: th, frame, J, sigmaMin: s, level, force: forceState });
     el.dataset.theta = JSON.stringify(th);
     el.dataset.frame = frame;
     el.dataset.level = level;
   }
 
   // ---- input -> state
-  const onInput = (ev) => {
-    const th = readTheta();
-    const i = Number(ev.target.dataset.joint) - 1;
-    const v = Number(ev.target.value);
-    if (!Number.isFinite(v)) return;
-    th[i] = v;
+  const setTheta = (th) => {
     model.set("theta", th);
     model.save_changes();
+  };
+  const onInput = (ev) => {
+    const th = readTheta();
+    const v = Number(ev.target.value);
+    if (!Number.isFinite(v)) return;
+    th[Number(ev.target.dataset.joint) - 1] = v;
+    setTheta(th);
   };
   const onFrame = () => {
     model.set("frame", select.value);
@@ -346,54 +300,93 @@ function render({ model, el }) {
       const d = dlsRates([e.Jg[3], e.Jg[4]], err, damping);
       const big = Math.max(...d.map(Math.abs));
       const scale = big > MAX_STEP ? MAX_STEP / big : 1; // small steps: the arm follows the pointer continuously
-      for (let i = 0; i < n; i++) th[i] = Math.min(LIMIT, Math.max(-LIMIT, th[i] + scale * d[i]));
+      for (let i = 0; i < n; i++) th[i] = clamp(th[i] + scale * d[i]);
     }
     return th;
   }
-  let dragging = false;
-  const toWorld = (ev) => {
-    const m = root.getScreenCTM();
-    if (!m) return null;
-    const q = new DOMPoint(ev.clientX, ev.clientY).matrixTransform(m.inverse());
-    return [q.x, -q.y];
-  };
+  // joint drag: joint k's point turns about joint k-1 towards the pointer (θ_{k-1} changes alone)
+  function turn(k, target) {
+    const th = readTheta();
+    const pts = evaluate(chain, th).points;
+    const a = pts[k - 1];
+    const b = pts[k];
+    const d = Math.atan2(target[1] - a[1], target[0] - a[0]) - Math.atan2(b[1] - a[1], b[0] - a[0]);
+    if (Math.hypot(target[0] - a[0], target[1] - a[1]) < 1e-6 * reach || !Number.isFinite(d)) return th;
+    const wz = chain.joints[k - 1].w[2] < 0 ? -1 : 1;
+    let t = th[k - 1] + wz * Math.atan2(Math.sin(d), Math.cos(d));
+    if (t > Math.PI) t -= 2 * Math.PI;
+    if (t < -Math.PI) t += 2 * Math.PI;
+    th[k - 1] = clamp(t);
+    return th;
+  }
+  let drag = null;
   const onDown = (ev) => {
-    dragging = true;
-    try {
-      handle.setPointerCapture(ev.pointerId);
-    } catch {
-      // a synthetic event has no active pointer to capture
-    }
+    const k = ev.currentTarget === handle ? -1 : Number(ev.currentTarget.dataset.joint) - 1;
+    drag = k;
+    stop();
+    capture(ev.currentTarget, ev);
     ev.preventDefault();
   };
   const onMove = (ev) => {
-    if (!dragging) return;
-    const target = toWorld(ev);
-    if (!target || !Number.isFinite(target[0]) || !Number.isFinite(target[1])) return;
-    model.set("theta", solve(target));
-    model.save_changes();
+    if (drag === null) return;
+    const target = toWorld(root, ev);
+    if (!target) return;
+    setTheta(drag < 0 ? solve(target) : turn(drag, target));
   };
-  const onUp = () => {
-    dragging = false;
+  const onUp = (ev) => {
+    if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
+    drag = null;
   };
-  handle.addEventListener("pointerdown", onDown);
-  handle.addEventListener("pointermove", onMove);
-  handle.addEventListener("pointerup", onUp);
-  handle.addEventListener("pointercancel", onUp);
+  const draggable = [handle, ...joints.slice(1)];
+  const unhold = draggable.map(holdTouch);
+  for (const h of draggable) {
+    h.addEventListener("pointerdown", onDown);
+    h.addEventListener("pointermove", onMove);
+    h.addEventListener("pointerup", onUp);
+    h.addEventListener("pointercancel", onUp);
+  }
+  // Play: sweep one joint, PLAY_STEP a frame, up to LIMIT, then from -LIMIT again
+  let timer = null;
+  function tick() {
+    const th = readTheta();
+    const i = Number(sweepSel.value);
+    th[i] = th[i] + PLAY_STEP > LIMIT + 1e-9 ? -LIMIT : Math.round((th[i] + PLAY_STEP) / STEP) * STEP; // on the slider's grid
+    setTheta(th);
+  }
+  function stop() {
+    if (timer !== null) clearInterval(timer);
+    timer = null;
+    play.textContent = "▶ Play";
+    play.setAttribute("aria-pressed", "false");
+  }
+  const onPlay = () => {
+    if (timer !== null) return stop();
+    timer = setInterval(tick, PLAY_MS);
+    play.textContent = "❚❚ Pause";
+    play.setAttribute("aria-pressed", "true");
+    return undefined;
+  };
+  play.addEventListener("click", onPlay);
   sliders.forEach((s) => s.addEventListener("input", onInput));
   select.addEventListener("change", onFrame);
   model.on("change:theta", draw);
   model.on("change:frame", draw);
   draw();
+  suppressShortcuts(el);
   el.jacLive = state;
   return () => {
+    stop();
     model.off("change:theta", draw);
     model.off("change:frame", draw);
     sliders.forEach((s) => s.removeEventListener("input", onInput));
-    handle.removeEventListener("pointerdown", onDown);
-    handle.removeEventListener("pointermove", onMove);
-    handle.removeEventListener("pointerup", onUp);
-    handle.removeEventListener("pointercancel", onUp);
+    for (const h of draggable) {
+      h.removeEventListener("pointerdown", onDown);
+      h.removeEventListener("pointermove", onMove);
+      h.removeEventListener("pointerup", onUp);
+      h.removeEventListener("pointercancel", onUp);
+    }
+    unhold.forEach((f) => f());
+    play.removeEventListener("click", onPlay);
     select.removeEventListener("change", onFrame);
     el.textContent = "";
   };

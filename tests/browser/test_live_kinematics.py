@@ -58,6 +58,7 @@ BATCH_JS = """({S, M, Q, thetas, phis, twists, vels, lambdas, planar}) => {
       const Jv = [e.Jg[3], e.Jg[4]];
       r.vel = K.velocityEllipsoid(Jv);
       r.force = K.forceEllipsoid(Jv);
+      r.planarA = K.planarAnalyticJacobian(chain, th);
       r.dlsv = lambdas.map((l) => K.dlsRates(Jv, vels[k], l));
       r.pinvv = K.pinvRates(Jv, vels[k]);
     }
@@ -83,6 +84,8 @@ BAD_INPUT = [
     ("K.forceEllipsoid([[1, 2], [3]])", "Expected A with shape m×n"),
     ("K.resolvedRate(chain, [0, 1], [[1, 1]], 0.1)", "Expected targetPath with shape N×2 or N×3, N >= 2"),
     ("K.resolvedRateStep(chain, [0, 1], [1, 1], [0, 0], 0.1, 'newton')", 'Expected method "pinv" or "dls"'),
+    ("K.planarAnalyticJacobian(K.makeChain(S.map((row, r) => r === 0 ? row.map(() => 1) : r === 2 ? row.map(() => 0)"
+     " : row), M), [0, 0])", "Expected a planar arm"),
 ]
 
 
@@ -192,6 +195,7 @@ def test_module_matches_library(kin_page, name):
             for i, lam in enumerate(LAMBDAS):
                 note(f"dls J_v λ={lam}", _err(r["dlsv"][i], jac.velocity.dls_rates(Jv, vels[k], lam)))
             note("pinv J_v", _err(r["pinvv"], jac.velocity.pinv_rates(Jv, vels[k])))
+            note("Ja planar (x, y, φ)", _err(r["planarA"], Ja["zyx"][k][[3, 4, 0]]))
     # The analytic Jacobian must have been compared, not only flagged: ZYX is
     # never singular for these random draws; ZYZ is singular everywhere for a
     # planar arm (φ₂ = 0), and the flag was checked at each configuration.
@@ -353,3 +357,73 @@ def test_no_console_error_and_no_foreign_request(kin_page):
     assert not foreign, f"requests to another host: {foreign}"
     assert any(u.endswith("_theme/live/kinematics.js") for u in seen["requests"])
     assert not seen["console"], f"console errors: {seen['console']}"
+
+
+# The resolved-rate view's own functions (_theme/live/resolved_rate.js): the preset paths, the start
+# configuration and the whole run of a preset, against jacobians.widgets.path_following and velocity.
+RR_JS = """({S, M, reach, cases, targets}) => {
+  const K = window.K, RR = window.RR, chain = K.makeChain(S, M);
+  return {
+    paths: RR.PATHS.map((p) => RR.planarPath(p, reach, 160)),
+    starts: targets.map((x) => RR.startConfiguration(chain, x)),
+    runs: cases.map(([path, method, lam]) => RR.simulate(chain, { path, drawn: null, method, damping: lam,
+      nSteps: 160, duration: 4, gain: 2, reach })),
+    resampled: RR.resample([[0, 0], [1, 0], [1, 1], [0.4, 1.3]], 17),
+  };
+}"""
+
+
+@pytest.mark.parametrize("name", list(PLANAR))
+def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
+    from jacobians.widgets.live import ResolvedRate, resample
+    from jacobians.widgets.path_following import ResolvedRateExplorer, _planar_path
+
+    page = kin_page[0]
+    arm = ARMS[name]()
+    reach = float(jac.plotting.arm_reach(arm))
+    rng = np.random.default_rng(7)
+    # reachable targets: the tool at random configurations
+    targets = [arm.fk(th)[:2, 3] for th in rng.uniform(-np.pi, np.pi, (N_CONFIGS, arm.dof))]
+    cases = [(p, m, lam) for p in ResolvedRateExplorer.PATHS for m, lam in (("pinv", 0.1), ("dls", 0.02), ("dls", 0.3))]
+    got = page.evaluate(RR_JS, {"S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "reach": reach,
+                                "cases": cases, "targets": [t.tolist() for t in targets]})
+    worst: dict[str, float] = {}
+
+    def note(key: str, value: float) -> None:
+        worst[key] = max(worst.get(key, 0.0), value)
+
+    for p, js in zip(ResolvedRateExplorer.PATHS, got["paths"], strict=True):
+        t, x, v = _planar_path(p, reach, 160)
+        note("path t", _err(js["t"], t))
+        note("path x", _err(js["x"], x))
+        note("path v", _err(js["v"], v))
+    fake = type("Start", (), {"chain": arm})()
+    starts = []
+    for x0, js in zip(targets, got["starts"], strict=True):
+        ref = ResolvedRateExplorer._start_configuration(fake, x0)  # type: ignore[arg-type]
+        starts.append(_err(js, ref))
+        # Newton's last steps are below 1e-12 m: where the module and numpy stop one step apart, θ can differ
+        # by such a step over σ_min. Where the tool ends up agrees to 1e-12 at every start:
+        note("start: tool vs library's", float(np.abs(arm.fk(np.array(js))[:2, 3] - arm.fk(ref)[:2, 3]).max()))
+    note("start θ (median of 200)", float(np.median(starts)))
+    for (p, m, lam), js in zip(cases, got["runs"], strict=True):
+        w = ResolvedRate(arm, p, m, lam)
+        ref = w.run
+        th0 = ResolvedRateExplorer._start_configuration(fake, w.target()[1][0])  # type: ignore[arg-type]
+        note("run θ0", _err(js["theta0"], th0))
+        ulp = jac.velocity.resolved_rate(arm, np.nextafter(th0, np.inf), w.target()[1], 4 / 159, method=m, damping=lam,
+                                         gain=2.0, target_velocities=w.target()[2])
+        for key, jkey in (("thetas", "thetas"), ("rates", "rates"), ("positions", "positions"), ("errors", "errors"),
+                          ("sigma_min", "sigmaMin")):
+            e = _err(js["run"][jkey], getattr(ref, key))
+            allowed = max(TOL, 10 * _err(getattr(ulp, key), getattr(ref, key)))
+            assert e <= allowed, f"{name} {p} {m} λ={lam}: {key} differs by {e:.1e}, allowed {allowed:.1e}"
+            if allowed == TOL:
+                note(f"run {key}", e)
+    note("resample", _err(got["resampled"], resample([[0, 0], [1, 0], [1, 1], [0.4, 1.3]], 17)))
+    for key, value in worst.items():
+        MAX_ERR[f"{name} resolved-rate view: {key}"] = value
+    print(f"\n{name}: resolved-rate view, largest difference from the library")
+    for key, value in worst.items():
+        print(f"  {key:26s} {value:.2e}")
+    assert all(v <= TOL for v in worst.values()), worst

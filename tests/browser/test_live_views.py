@@ -32,6 +32,8 @@ READ_JS = """(el) => ({
     (tr) => [...tr.querySelectorAll("td")].map((td) => td.textContent)),
   link: el.querySelector("polyline.jl-link").getAttribute("points"),
   ellipse: ["cx", "cy", "rx", "ry", "transform"].map((k) => el.querySelector("ellipse.jl-ellipse").getAttribute(k)),
+  force: ["cx", "cy", "rx", "ry", "transform"].map((k) => el.querySelector("ellipse.jl-force").getAttribute(k)),
+  clip: el.querySelector("polyline.jl-force-clip").getAttribute("visibility"),
   banner: el.querySelector(".jl-banner").hidden ? null : el.querySelector(".jl-banner").textContent,
   text: el.innerText, markup: el.innerHTML,
 })"""
@@ -65,7 +67,10 @@ def _check_state(el, robot: str) -> dict:
     got = el.evaluate(READ_JS)
     chain = live_views.ROBOTS[robot]()
     theta = np.array(got["theta"])
-    J = jac.jacobian(chain, theta, got["frame"])
+    if got["frame"] == "analytic":  # the planar arm's (x, y, φ): rows ẋ, ẏ and the ZYX yaw rate of the library's
+        J = jac.analytic_jacobian(chain, theta, "zyx")[[3, 4, 0]]
+    else:
+        J = jac.jacobian(chain, theta, got["frame"])
     shown = np.array([[_number(c) for c in row] for row in got["table"]])
     assert shown.shape == J.shape
     assert np.abs(shown - J).max() <= HALF_ULP, f"table {shown} vs library {J}"
@@ -80,6 +85,14 @@ def _check_state(el, robot: str) -> dict:
     assert rx == pytest.approx(0.35 * sigma[0], abs=1e-9) and ry == pytest.approx(max(0.35 * sigma[1], 1e-4 * chain.dof), abs=1e-9)  # reach = n m
     c, s = np.cos(np.radians(angle)), np.sin(np.radians(angle))
     assert abs(c * U[1, 0] - s * U[0, 0]) < 1e-9  # parallel
+    # the force ellipse: semi-axes 1/σ_i × 0.1 reach², clipped at 1.25 reach (a dotted line then), same directions
+    f_axes, _ = jac.analysis.force_ellipsoid(jac.geometric_jacobian(chain, theta)[3:5])
+    reach = float(chain.dof)
+    drawn = np.minimum(f_axes * 0.1 * reach**2, 1.25 * reach)
+    fx, fy, frx, fry = (float(v) for v in got["force"][:4])
+    assert np.allclose([fx, fy], pts[-1], atol=1e-9)
+    assert frx == pytest.approx(max(drawn[0], 1e-4 * reach), abs=1e-9) and fry == pytest.approx(max(drawn[1], 1e-4 * reach), abs=1e-9)
+    assert (got["clip"] == "visible") == bool((f_axes * 0.1 * reach**2 > 1.25 * reach).any())
     assert "NaN" not in got["text"] and "NaN" not in got["markup"] and "Infinity" not in got["markup"]
     return got
 
@@ -93,12 +106,13 @@ def harness(browser_context):
         page.on("pageerror", lambda e: seen["console"].append(str(e)))
         page.on("request", lambda r: seen["requests"].append(r.url))
 
-        def open_view(robot: str, theta: list[float], frame: str, width: int = 1280):
+        def open_view(robot: str, theta: list[float] | None, frame: str | None, width: int = 1280,
+                      view: str = "planar_explorer", model: dict | None = None):
             page.set_viewport_size({"width": width, "height": 900})
             page.goto(server.base + "tests/browser/live_view_harness.html", wait_until="load")
             page.wait_for_selector("body[data-ready='1']", state="attached", timeout=10_000)
             page.evaluate("([v, m]) => window.mountView(v, m)",
-                          ["planar_explorer", live_views.planar_model(robot, theta, frame)])
+                          [view, model if model is not None else live_views.planar_model(robot, theta, frame)])
             return page.wait_for_selector("#host[data-ready='1']", state="attached", timeout=10_000)
 
         yield page, open_view, seen, server.base
@@ -121,10 +135,11 @@ def test_keyboard_moves_the_arm_and_the_table_is_the_library_jacobian(harness, r
     assert np.allclose(after["theta"][1:], theta[1:])
     assert f"{np.degrees(after['theta'][0]):.1f}°" in el.query_selector("label").inner_text()
     assert after["table"] != before["table"] and after["link"] != before["link"]
-    for frame in ("body", "geometric", "space"):
+    for frame in ("body", "geometric", "analytic", "space"):
         el.query_selector("select.jl-frame").select_option(frame)
         got = _check_state(el, robot)
         assert got["frame"] == frame and f"{frame} Jacobian" in got["text"]
+        assert len(got["table"]) == (3 if frame == "analytic" else 6)
 
 
 def test_singularity_banner_and_no_nan(harness):
@@ -139,9 +154,12 @@ def test_singularity_banner_and_no_nan(harness):
     page.evaluate(SET_JS, [el, 1, 0.1])  # σ_min = L1 L2 |sin θ2| / ... ≈ 0.07 m < 0.16 m: near
     got = _check_state(el, "planar_2r")
     assert got["level"] == "warning" and got["banner"].startswith("Near a singularity")
-    for frame in ("space", "geometric"):
+    for frame in ("space", "geometric", "analytic"):
         el.query_selector("select.jl-frame").select_option(frame)
         _check_state(el, "planar_2r")
+    page.evaluate(SET_JS, [el, 1, 0])
+    assert _check_state(el, "planar_2r")["clip"] == "visible"  # infinite force semi-axis: clipped, marked
+    assert "infinite along the dotted line" in el.inner_text()
     page.evaluate(SET_JS, [el, 0, -3.14])  # the joint limit
     _check_state(el, "planar_2r")
 
@@ -202,8 +220,185 @@ def test_no_console_error_and_no_foreign_request(harness):
     assert foreign == []
 
 
+def test_dragging_a_joint_turns_the_joint_before_it(harness):
+    page, open_view, seen, _ = harness
+    el = open_view("planar_3r", [0.5, 1.2, -0.8], "geometric")
+    chain = live_views.ROBOTS["planar_3r"]()
+    th0 = np.array([0.5, 1.2, -0.8])
+    pts = chain.joint_positions(th0)[:, :2]
+    # joint 3 (index 2) turns about joint 2 to point at the pointer: θ2 changes alone
+    knob = el.query_selector_all("circle.jl-joint-handle")[1]
+    box = knob.bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    page.mouse.down()
+    angle = np.arctan2(*(pts[2] - pts[1])[::-1]) + 0.6
+    target = pts[1] + 1.0 * np.array([np.cos(angle), np.sin(angle)])
+    page.mouse.move(*page.evaluate(SCREEN_JS, [el, *target]))
+    page.mouse.up()
+    got = _check_state(el, "planar_3r")
+    assert got["theta"][0] == pytest.approx(0.5) and got["theta"][2] == pytest.approx(-0.8)
+    assert got["theta"][1] == pytest.approx(1.2 + 0.6, abs=0.02)  # within a pixel's angle at this distance
+    assert seen["console"] == []
+
+
+def test_play_sweeps_the_chosen_joint_through_the_singularity(harness):
+    page, open_view, seen, _ = harness
+    el = open_view("planar_3r", [0.5, -0.3, 0.0], "geometric")
+    el.query_selector("select.jl-sweep").select_option("1")
+    el.query_selector("button.jl-play").focus()
+    page.keyboard.press("Enter")  # a button: Enter and Space work
+    page.wait_for_function("(el) => JSON.parse(el.dataset.theta)[1] > 0.05", arg=el, timeout=10_000)
+    page.keyboard.press("Space")
+    assert el.query_selector("button.jl-play").get_attribute("aria-pressed") == "false"
+    got = _check_state(el, "planar_3r")
+    assert got["theta"][0] == 0.5 and got["theta"][2] == 0.0 and got["theta"][1] > 0.05
+    # the sweep is on the sliders' 0.01 grid and passed θ2 = 0 exactly, where the arm is singular
+    assert abs(got["theta"][1] * 100 - round(got["theta"][1] * 100)) < 1e-6
+    page.evaluate(SET_JS, [el, 1, -0.02])
+    el.query_selector("button.jl-play").click()
+    page.wait_for_function("(el) => el.dataset.level === 'singular'", arg=el, timeout=10_000, polling=1)
+    el.query_selector("button.jl-play").click()
+    assert seen["console"] == []
+
+
+RR_READ = """(el) => ({
+  step: Number(el.dataset.step), theta: JSON.parse(el.dataset.theta), level: el.dataset.level,
+  link: el.querySelector("polyline.jl-link").getAttribute("points"),
+  desired: el.querySelector("polyline.jr-desired").getAttribute("points"),
+  actual: el.querySelector("polyline.jr-actual").getAttribute("points"),
+  rates: [...el.querySelectorAll("polyline.jr-rate")].map((p) => p.getAttribute("points")),
+  text: el.innerText, markup: el.innerHTML,
+})"""
+
+
+def _rr_check(el, model: dict) -> dict:
+    """The resolved-rate view shows the library's run (ResolvedRate.run) at its step."""
+    from jacobians.widgets.live import ResolvedRate
+
+    got = el.evaluate(RR_READ)
+    chain = live_views.ROBOTS["planar_2r"]()
+    w = ResolvedRate(chain, "circle" if model["path"] == "drawn" else model["path"], model["method"], model["damping"])
+    w.drawn, w.path = model.get("drawn"), model["path"]
+    run = w.run
+    k = got["step"]
+    assert np.allclose(got["theta"], run.thetas[k], atol=1e-9), (got["theta"], run.thetas[k])
+    pts = np.array([[float(v) for v in p.split(",")] for p in got["link"].split()])
+    assert np.allclose(pts, chain.joint_positions(run.thetas[k])[:, :2], atol=1e-9)
+    des = np.array([[float(v) for v in p.split(",")] for p in got["desired"].split()])
+    assert np.allclose(des, w.target()[1], atol=1e-9)
+    act = np.array([[float(v) for v in p.split(",")] for p in got["actual"].split()])
+    assert np.allclose(act, run.positions[: k + 1], atol=1e-9)
+    assert all(len(r.split()) == k + 1 for r in got["rates"])  # the rates are plotted as the run goes
+    smin = float(run.sigma_min[k])
+    assert f"(Jv) = {smin:.3f} m" in got["text"]
+    assert "NaN" not in got["markup"] and "Infinity" not in got["markup"]
+    return got
+
+
+def _rr_model(**kw) -> dict:
+    return live_views.resolved_rate_model("planar_2r", **kw)
+
+
+def test_resolved_rate_keys_step_and_play_and_the_run_is_the_librarys(harness):
+    page, open_view, seen, _ = harness
+    model = _rr_model(path="close past the base", method="pinv")
+    el = open_view(None, None, None, view="resolved_rate", model=model)
+    assert _rr_check(el, model)["step"] == 0
+    el.query_selector("button.jr-fwd").focus()
+    for key in (".", "ArrowRight", "ArrowRight"):
+        page.keyboard.press(key)
+    assert _rr_check(el, model)["step"] == 3
+    page.keyboard.press(",")
+    assert _rr_check(el, model)["step"] == 2
+    el.query_selector("input.jr-step").focus()
+    page.keyboard.press("End")  # a slider: Home/End/arrows
+    got = _rr_check(el, model)
+    assert got["step"] == 159
+    page.keyboard.press("p")  # play from the start again
+    page.wait_for_function("(el) => Number(el.dataset.step) > 3 && Number(el.dataset.step) < 159", arg=el,
+                           timeout=10_000)
+    page.keyboard.press("p")
+    _rr_check(el, model)
+    # the run near the base: the pseudo-inverse's peak rate leaves the plot; step to the closest pass
+    page.evaluate("(el) => { const s = el.querySelector('input.jr-step'); s.value = '80';"
+                  " s.dispatchEvent(new Event('input', {bubbles: true})); }", el)
+    got = _rr_check(el, model)
+    assert got["level"] in ("warning", "singular")
+    assert "Near a singularity" in got["text"] or "At a singularity" in got["text"]
+    # to full reach with the pseudo-inverse: the arm ends stretched (singular), no NaN, no throw
+    el.query_selector("select.jr-path").select_option("to full reach")
+    model["path"] = "to full reach"
+    el.query_selector("input.jr-step").focus()
+    page.keyboard.press("End")
+    got = _rr_check(el, model)
+    assert got["step"] == 159 and got["level"] in ("warning", "singular")  # near the stretched arm
+    assert seen["console"] == []
+
+
+def test_resolved_rate_method_damping_and_path_change_the_run(harness):
+    page, open_view, seen, _ = harness
+    model = _rr_model(path="close past the base", method="pinv")
+    el = open_view(None, None, None, view="resolved_rate", model=model)
+    el.query_selector("select.jr-method").select_option("dls")
+    model["method"] = "dls"
+    assert el.query_selector("input.jr-damping").is_enabled()
+    _rr_check(el, model)
+    el.query_selector("input.jr-damping").focus()
+    page.keyboard.press("ArrowLeft")  # log10 λ: -1 -> -1.1
+    model["damping"] = round(10 ** -1.1, 4)
+    assert f"{model['damping']:.3f} m" in el.inner_text()
+    page.evaluate("(el) => { const s = el.querySelector('input.jr-step'); s.value = '100';"
+                  " s.dispatchEvent(new Event('input', {bubbles: true})); }", el)
+    _rr_check(el, model)
+    for path in ("circle", "to full reach"):
+        el.query_selector("select.jr-path").select_option(path)
+        model["path"] = path
+        assert _rr_check(el, model)["step"] == 0
+    assert seen["console"] == []
+
+
+def test_resolved_rate_follows_a_drawn_path(harness):
+    page, open_view, seen, _ = harness
+    model = _rr_model(path="circle", method="dls", damping=0.05)
+    el = open_view(None, None, None, view="resolved_rate", model=model)
+    el.query_selector("button.jr-draw").click()
+    stroke = [(0.5 + 0.6 * np.cos(a), 0.8 + 0.4 * np.sin(a)) for a in np.linspace(0, 3, 25)]
+    page.mouse.move(*page.evaluate(SCREEN_JS, [el, *stroke[0]]))
+    page.mouse.down()
+    for p in stroke[1:]:
+        page.mouse.move(*page.evaluate(SCREEN_JS, [el, *p]))
+    page.mouse.up()
+    drawn = page.evaluate("(el) => el.jacLive && el.jacLive.sim && el.jacLive.sim.xd.length", el)
+    assert drawn == 160
+    model["path"] = "drawn"
+    assert el.query_selector("select.jr-path").input_value() == "drawn"
+    # the view resampled what it recorded; the library, given the same points, runs the same motion
+    page.evaluate("(el) => { const s = el.querySelector('input.jr-step'); s.value = '120';"
+                  " s.dispatchEvent(new Event('input', {bubbles: true})); }", el)
+    got = el.evaluate(RR_READ)
+    recorded = page.evaluate("(el) => el.jacLive.drawn", el)
+    model["drawn"] = recorded
+    _rr_check(el, model)
+    assert got["step"] == 120
+    start = np.array(recorded[0])
+    assert np.linalg.norm(start - np.array(stroke[0])) < 0.02  # a pixel is about 0.005 m here
+    assert seen["console"] == []
+
+
+def test_resolved_rate_fits_a_phone(harness):
+    page, open_view, seen, _ = harness
+    el = open_view(None, None, None, view="resolved_rate", model=_rr_model(), width=390)
+    fit = el.evaluate(FIT_JS)
+    assert fit["overflow"] == [] and fit["scroll"] <= 0 and fit["page"] <= 0, fit
+    assert fit["small"] == [], fit
+    small_svg = el.evaluate("""(el) => [...el.querySelectorAll("svg text")].filter(
+        (t) => t.getBoundingClientRect().height && parseFloat(getComputedStyle(t).fontSize)
+               * el.querySelector("svg.jr-rates").getScreenCTM().a < 13.5).length""")
+    assert small_svg == 0
+
+
 def check_built_page(context, root: Path, path: str) -> dict:
-    """The live view on a built page (``path`` under ``root``): renders, keyboard, frame, phone width, offline."""
+    """Every live view on a built page (``path`` under ``root``): renders, keyboard, library numbers, phone, offline."""
     with bookcheck.BookServer(root) as server:
         page = context.new_page()
         errors: list[str] = []
@@ -214,30 +409,71 @@ def check_built_page(context, root: Path, path: str) -> dict:
         try:
             page.set_viewport_size(bookcheck.DESKTOP)
             page.goto(server.base + path, wait_until="load")
-            el = page.wait_for_selector(".jac-live[data-ready='1']", state="attached", timeout=15_000)
-            model = json.loads(el.get_attribute("data-model"))
-            theta0 = list(model["theta"])
-            _check_state(el, "planar_2r")
-            el.query_selector("input.jl-theta").focus()
-            page.keyboard.press("ArrowRight")
-            got = _check_state(el, "planar_2r")
-            assert got["theta"][0] == pytest.approx(theta0[0] + STEP, abs=1e-9)
-            el.query_selector("select.jl-frame").select_option("body")
-            assert _check_state(el, "planar_2r")["frame"] == "body"
+            page.wait_for_selector(".jac-live[data-ready='1']", state="attached", timeout=15_000)
+            views = page.query_selector_all(".jac-live[data-ready='1']")
+            assert views, f"{path}: no live view rendered"
+            for el in views:
+                model = json.loads(el.get_attribute("data-model"))
+                robot = {2: "planar_2r", 3: "planar_3r"}[len(model["S"][0])]
+                if el.get_attribute("data-view") == "planar_explorer":
+                    theta0 = list(model["theta"])
+                    _check_state(el, robot)
+                    el.query_selector("input.jl-theta").focus()
+                    page.keyboard.press("ArrowRight")
+                    got = _check_state(el, robot)
+                    assert got["theta"][0] == pytest.approx(theta0[0] + STEP, abs=1e-9)
+                    el.query_selector("select.jl-frame").select_option("body")
+                    assert _check_state(el, robot)["frame"] == "body"
+                else:
+                    _rr_check(el, model)
+                    el.query_selector("button.jr-fwd").focus()
+                    page.keyboard.press("ArrowRight")
+                    assert _rr_check(el, model)["step"] == 1
             page.set_viewport_size(bookcheck.PHONE)
-            fit = el.evaluate(FIT_JS)
-            assert fit["overflow"] == [] and fit["scroll"] <= 0 and fit["small"] == [], fit
+            for el in views:
+                fit = el.evaluate(FIT_JS)
+                assert fit["overflow"] == [] and fit["scroll"] <= 0 and fit["small"] == [], fit
             assert errors == []
             host = urlsplit(server.base).netloc
             assert [u for u in requests if not u.startswith("data:") and urlsplit(u).netloc != host] == []
-            return {"fit": fit, "requests": len(requests)}
+            return {"views": len(views), "requests": len(requests)}
         finally:
             page.close()
 
 
-def test_on_the_built_chapter_page(browser_context, book_html):
+@pytest.mark.parametrize("chapter,view", [("02_space_jacobian", "planar_explorer"),
+                                          ("05_geometric_jacobian", "planar_explorer"),
+                                          ("09_using_the_jacobian", "resolved_rate")])
+def test_on_the_built_chapter_page(browser_context, book_html, chapter, view):
     """The built book (``make book`` runs before the browser tests; BOOK_HTML may point elsewhere)."""
-    built = book_html / "chapters" / "02_space_jacobian.html"
-    assert 'class="jac-live"' in built.read_text(encoding="utf-8"), (
-        f"{built} has no live view, but chapters/02_space_jacobian.md mounts one: rebuild the book")
-    check_built_page(browser_context, book_html, "chapters/02_space_jacobian.html")
+    built = book_html / "chapters" / f"{chapter}.html"
+    assert f'data-view="{view}"' in built.read_text(encoding="utf-8"), (
+        f"{built} has no {view} live view, but chapters/{chapter}.md mounts one: rebuild the book")
+    assert check_built_page(browser_context, book_html, f"chapters/{chapter}.html")["views"] >= 1
+
+
+def test_touch_drag_moves_the_tool(harness):
+    """A finger on the dashed ring (real touch events through the DevTools protocol): the tool follows it."""
+    page, open_view, seen, _ = harness
+    el = open_view("planar_2r", [0.3, 1.2], "space")
+    cdp = page.context.new_cdp_session(page)
+    try:
+        cdp.send("Emulation.setTouchEmulationEnabled", {"enabled": True, "maxTouchPoints": 1})
+        box = el.query_selector("circle.jl-handle").bounding_box()
+        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+        chain = live_views.ROBOTS["planar_2r"]()
+        start = chain.fk(np.array([0.3, 1.2]))[:2, 3]
+        target = np.array([0.9, 1.1])
+        cdp.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
+        for k in range(1, 6):
+            px, py = page.evaluate(SCREEN_JS, [el, *(start + (target - start) * k / 5)])
+            cdp.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": px, "y": py}]})
+            page.evaluate("() => new Promise((r) => requestAnimationFrame(() => r()))")  # moves are sent per frame
+        cdp.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+        got = _check_state(el, "planar_2r")
+        assert np.linalg.norm(chain.fk(np.array(got["theta"]))[:2, 3] - target) < 0.015, got["theta"]
+        assert el.evaluate("(el) => getComputedStyle(el.querySelector('circle.jl-handle')).touchAction") == "none"
+    finally:
+        cdp.send("Emulation.setTouchEmulationEnabled", {"enabled": False})
+        cdp.detach()
+    assert seen["console"] == []

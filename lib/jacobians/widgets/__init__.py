@@ -11,6 +11,14 @@ Two widgets, each a function returning an ``ipywidgets.VBox`` subclass:
   the pseudo-inverse or damped least squares; joint rates plotted; what happens
   near a singularity.
 
+Live versions (issue #13): :mod:`jacobians.widgets.live` wraps the book's ES
+modules ``_theme/live/<view>.js`` as anywidgets, the same code the static
+book runs without a kernel: :class:`~jacobians.widgets.live.PlanarExplorer`
+(``w.theta`` settable, ``w.J`` from the library) and
+:class:`~jacobians.widgets.live.ResolvedRate` replace the two matplotlib
+classes below in chapters 2, 5 and 9; :class:`~jacobians.widgets.live.LiveView`
+hosts any view module by name.
+
 How they draw. The figure is a plain :class:`matplotlib.figure.Figure` on an
 Agg canvas (no pyplot, no ipympl). Its fixed parts (axes, ticks, labels,
 legend) are drawn once and kept as a bitmap; a change of a control updates the
@@ -40,6 +48,7 @@ resolved-rate runs from :func:`jacobians.velocity.resolved_rate`.
 
 from ..plotting import PALETTE
 from .base import ROW_LABELS, ROW_LABELS_TEX
+from .live import LiveView, PlanarExplorer, ResolvedRate
 from .path_following import ResolvedRateExplorer, resolved_rate_animation, resolved_rate_explorer
 from .planar import (
     FORCE_LABELS,
@@ -52,6 +61,9 @@ from .planar import (
 )
 
 __all__ = [
+    "LiveView",
+    "PlanarExplorer",
+    "ResolvedRate",
     "PlanarArmExplorer",
     "planar_arm_explorer",
     "planar_arm_explorer_animation",

@@ -1,0 +1,357 @@
+// Resolved-rate motion of a planar arm, live (issue #13): the tool follows a
+// path the reader picks (the presets of jacobians.widgets.path_following) or
+// draws with the pointer, by θ̇ = J_v^# (ṗ_d + K (p_d − p)) with the
+// pseudo-inverse or damped least squares (λ on a slider); the joint rates are
+// plotted as the run goes. Play, pause and step from the buttons or the keys
+// (P or K: play/pause, → or . : one step on, ← or , : one step back, when the
+// focus is in the view). The run is velocity.resolved_rate, in kinematics.js.
+//
+// anywidget-compatible: render({model, el}) reads model.get(key) for S, M, Q,
+// reach, name, path ("circle" | "to full reach" | "close past the base" |
+// "drawn"), drawn (N×2 points of a drawn path, m), method ("pinv" | "dls"),
+// damping (λ, m), step (shown step k), n_steps, duration (s), gain (1/s),
+// rate_limit (rad/s, the plot's range); writes path, drawn, method, damping
+// and step back and redraws on their "change:" events.
+
+import { dlsRates, evaluate, makeChain, resolvedRate } from "./kinematics.js";
+import {
+  PALETTE, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub, suppressShortcuts, svg,
+  toWorld,
+} from "./ui.js";
+
+export const PATHS = ["circle", "to full reach", "close past the base"];
+const METHODS = { pinv: "pseudo-inverse", dls: "damped least squares" };
+const KEYS_ON = new Set(["ArrowRight", "."]);
+const KEYS_BACK = new Set(["ArrowLeft", ","]);
+
+/** The preset paths of path_following._planar_path: {t, x, v} (N times, N×2 positions and velocities). */
+export function planarPath(kind, reach, nSteps, duration = 4.0) {
+  const T = duration;
+  const t = Array.from({ length: nSteps }, (_, k) => (nSteps > 1 ? (T * k) / (nSteps - 1) : 0));
+  if (kind === "circle") {
+    const c = [0.45 * reach, 0.2 * reach], r = 0.3 * reach, w = (2 * Math.PI) / T;
+    return { t, x: t.map((s) => [c[0] + r * Math.cos(w * s), c[1] + r * Math.sin(w * s)]),
+      v: t.map((s) => [-r * w * Math.sin(w * s), r * w * Math.cos(w * s)]) };
+  }
+  const ends = { "to full reach": [[0.3 * reach, 0.5 * reach], [reach, 0]],
+    "close past the base": [[0.6 * reach, 0.03 * reach], [-0.6 * reach, 0.03 * reach]] }[kind];
+  if (!ends) throw new Error(`Expected path ${PATHS.map((p) => `"${p}"`).join(", ")}, got ${JSON.stringify(kind)}`);
+  const [a, b] = ends;
+  const d = [b[0] - a[0], b[1] - a[1]];
+  return { t, x: t.map((s) => [a[0] + (s / T) * d[0], a[1] + (s / T) * d[1]]), v: t.map(() => [d[0] / T, d[1] / T]) };
+}
+
+/** A drawn polyline resampled to N points evenly spaced along its length (null if it has no length). */
+export function resample(points, nSteps) {
+  const P = points.filter((p) => Number.isFinite(p[0]) && Number.isFinite(p[1]));
+  const s = [0];
+  for (let i = 1; i < P.length; i++) s.push(s[i - 1] + Math.hypot(P[i][0] - P[i - 1][0], P[i][1] - P[i - 1][1]));
+  const total = s[s.length - 1];
+  if (!(P.length >= 2 && total > 0)) return null;
+  const out = [];
+  let j = 0;
+  for (let k = 0; k < nSteps; k++) {
+    const u = (total * k) / (nSteps - 1);
+    while (j < P.length - 2 && s[j + 1] < u) j++;
+    const f = s[j + 1] > s[j] ? Math.min(1, Math.max(0, (u - s[j]) / (s[j + 1] - s[j]))) : 0;
+    out.push([P[j][0] + f * (P[j + 1][0] - P[j][0]), P[j][1] + f * (P[j + 1][1] - P[j][1])]);
+  }
+  return out;
+}
+
+/** The run's start, as ResolvedRateExplorer._start_configuration: 200 DLS (λ = 1 mm) Newton steps to x0. */
+export function startConfiguration(chain, x0) {
+  const n = chain.n;
+  const th = [0.3, 0.9, 0.9, 0.9, 0.9, 0.9, 0.9].slice(0, n);
+  for (let k = 0; k < 200; k++) {
+    const e = evaluate(chain, th);
+    const err = [x0[0] - e.T[0][3], x0[1] - e.T[1][3]];
+    if (Math.hypot(err[0], err[1]) < 1e-12) break;
+    const d = dlsRates([e.Jg[3], e.Jg[4]], err, 1e-3);
+    for (let i = 0; i < n; i++) th[i] += d[i];
+  }
+  return th;
+}
+
+/** The whole run: {t, xd, theta0, run (velocity.resolved_rate's fields)}; presets use their exact velocity. */
+export function simulate(chain, { path, drawn, method, damping, nSteps, duration, gain, reach }, starts = null) {
+  let t, x, v;
+  if (path === "drawn" && drawn) {
+    x = resample(drawn, nSteps);
+    t = Array.from({ length: nSteps }, (_, k) => (duration * k) / (nSteps - 1));
+    v = null; // forward differences, as the library's default
+  }
+  if (!x) ({ t, x, v } = planarPath(path === "drawn" ? "circle" : path, reach, nSteps, duration));
+  // the start depends on the path only: a change of method or λ reuses it
+  const key = `${x[0][0]},${x[0][1]}`;
+  const theta0 = (starts && starts.get(key)) || startConfiguration(chain, x[0]);
+  if (starts) starts.set(key, theta0);
+  const run = resolvedRate(chain, theta0, x, t[1] - t[0], method, damping, gain, v);
+  return { t, xd: x, theta0, run };
+}
+
+function render({ model, el }) {
+  const doc = el.ownerDocument;
+  injectStyle(doc);
+  el.classList.add("jac-live");
+  const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
+  const n = chain.n;
+  const reach = Number(model.get("reach")) || 1;
+  const nSteps = Math.max(2, Math.round(Number(model.get("n_steps")) || 160));
+  const duration = Number(model.get("duration")) || 4;
+  const gain = Number.isFinite(Number(model.get("gain"))) ? Number(model.get("gain")) : 2;
+  const rateLimit = Number(model.get("rate_limit")) || 8;
+  const name = model.get("name") || `planar ${n}R arm`;
+  const uid = `jr${Math.random().toString(36).slice(2, 9)}`;
+  el.tabIndex = -1;
+
+  const wrap = html("div", { class: "jl-wrap" }, el);
+  const plot = html("div", { class: "jl-plot" }, wrap);
+  const right = html("div", { class: "jl-plot" }, wrap);
+  const side = html("div", { class: "jl-side" }, el);
+  const R = 1.15 * reach;
+  const { root, world } = planarCanvas(plot, R, reach, `${name} following the path; the desired path dashed`);
+  const ns = { fill: "none", "vector-effect": "non-scaling-stroke" };
+  const desLine = svg("polyline", { ...ns, stroke: PALETTE.path, "stroke-width": 3, "stroke-dasharray": "8 5",
+    class: "jr-desired" }, world);
+  const actLine = svg("polyline", { ...ns, stroke: PALETTE.velocity, "stroke-width": 2, class: "jr-actual" }, world);
+  const link = svg("polyline", { ...ns, stroke: PALETTE.link, "stroke-width": 6, "stroke-linejoin": "round",
+    "stroke-linecap": "round", class: "jl-link" }, world);
+  const joints = Array.from({ length: n }, () => svg("circle", { r: 0.045 * reach, fill: "white", stroke: PALETTE.joint,
+    "stroke-width": 2.2, "vector-effect": "non-scaling-stroke" }, world));
+  const target = svg("path", { ...ns, stroke: PALETTE.path, "stroke-width": 3, class: "jr-target" }, world);
+  const ink = svg("polyline", { ...ns, stroke: PALETTE.joint, "stroke-width": 2, class: "jr-ink" }, world);
+  const pad = svg("rect", { x: -R, y: -R, width: 2 * R, height: 2 * R, fill: "transparent", class: "jl-draw",
+    visibility: "hidden" }, world);
+
+  // the joint-rate plot: t on [0, duration], rates on [-rateLimit, rateLimit], in a 400 × 300 box
+  const W = 400, H = 300, X0 = 52, X1 = 392, Y0 = 12, Y1 = 262;
+  const px = (t) => X0 + ((X1 - X0) * t) / duration;
+  const py = (r) => Y0 + ((Y1 - Y0) * (rateLimit - Math.max(-rateLimit, Math.min(rateLimit, r)))) / (2 * rateLimit);
+  const rp = svg("svg", { viewBox: `0 0 ${W} ${H}`, role: "img", class: "jr-rates",
+    "aria-label": "joint rates against time, as the run goes" }, right);
+  const axes = svg("g", { stroke: "#888888", "stroke-width": 1, "font-size": 16, fill: "#000000" }, rp);
+  for (const r of [-rateLimit, -rateLimit / 2, 0, rateLimit / 2, rateLimit]) {
+    svg("line", { x1: X0, x2: X1, y1: py(r), y2: py(r), stroke: r === 0 ? "#888888" : "#e2e2e2" }, axes);
+    svg("text", { x: X0 - 6, y: py(r) + 5, "text-anchor": "end", stroke: "none" }, axes).textContent = fixed(r, 0);
+  }
+  for (let s = 0; s <= duration + 1e-9; s += 1) {
+    svg("text", { x: px(s), y: Y1 + 20, "text-anchor": "middle", stroke: "none" }, axes).textContent = fixed(s, 0);
+  }
+  svg("text", { x: X1, y: H - 2, "text-anchor": "end", stroke: "none" }, axes).textContent = "t (s)";
+  svg("text", { x: X0 + 4, y: Y0 + 14, stroke: "none" }, axes).textContent = "θ̇ (rad/s)";
+  const rateLines = Array.from({ length: n }, (_, i) => svg("polyline", { fill: "none", stroke: columnColor(i),
+    "stroke-width": 2.5, class: `jr-rate jr-rate-${i + 1}` }, rp));
+  const cursor = svg("line", { y1: Y0, y2: Y1, stroke: "#4d4d4d", "stroke-width": 1.5 }, rp);
+  const key = html("ul", { class: "jl-legend" }, right);
+  for (let i = 0; i < n; i++) {
+    const li = html("li", { style: "display:inline-block;margin-right:12px" }, key);
+    html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, li);
+    li.append(`θ̇${String.fromCharCode(0x2081 + i)}`);
+  }
+
+  // ---- controls
+  const row1 = html("div", { class: "jl-row" }, side);
+  const pathLabel = html("label", { for: `${uid}-path` }, row1, "Path:");
+  const pathSel = html("select", { id: `${uid}-path`, class: "jr-path" }, pathLabel);
+  for (const p of [...PATHS, "drawn"]) html("option", { value: p }, pathSel, p === "drawn" ? "drawn by you" : p);
+  const drawBtn = html("button", { type: "button", class: "jr-draw", "aria-pressed": "false" }, row1, "✎ Draw a path");
+  const methodLabel = html("label", { for: `${uid}-method` }, row1, "Method:");
+  const methodSel = html("select", { id: `${uid}-method`, class: "jr-method" }, methodLabel);
+  for (const [k, v] of Object.entries(METHODS)) html("option", { value: k }, methodSel, v);
+  const lamLabel = html("label", { for: `${uid}-lam` }, side, "damping λ = ");
+  const lamOut = html("output", { for: `${uid}-lam` }, lamLabel);
+  const lam = html("input", { type: "range", id: `${uid}-lam`, class: "jr-damping", min: -3, max: 0, step: 0.1 }, side);
+  const stepLabel = html("label", { for: `${uid}-step` }, side, "step ");
+  const stepOut = html("output", { for: `${uid}-step` }, stepLabel);
+  const stepIn = html("input", { type: "range", id: `${uid}-step`, class: "jr-step", min: 0, max: nSteps - 1, step: 1 },
+    side);
+  const row2 = html("div", { class: "jl-row" }, side);
+  const back = html("button", { type: "button", class: "jr-back", "aria-label": "one step back" }, row2, "◀ step");
+  const play = html("button", { type: "button", class: "jl-play", "aria-pressed": "false" }, row2, "▶ Play");
+  const fwd = html("button", { type: "button", class: "jr-fwd", "aria-label": "one step on" }, row2, "step ▶");
+  const help = html("p", { class: "jl-status" }, side,
+    "Keys in the view: P play/pause, → or . one step on, ← or , one step back.");
+  const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
+  const statusT = doc.createTextNode("");
+  status.append(statusT);
+  sub(status, ["σ", "min"]);
+  sub(status, ["(J", "v"]);
+  const statusS = doc.createTextNode("");
+  status.append(statusS);
+  const banner = html("p", { class: "jl-banner", role: "status" }, side);
+  void help;
+
+  // ---- state
+  const get = (k, d) => (model.get(k) === undefined || model.get(k) === null ? d : model.get(k));
+  const options = () => {
+    const m = get("method", "pinv");
+    const path = get("path", "close past the base");
+    const l = Number(get("damping", 0.1));
+    return { path: [...PATHS, "drawn"].includes(path) ? path : "circle", drawn: get("drawn", null),
+      method: m in METHODS ? m : "pinv", damping: Number.isFinite(l) && l >= 0 ? l : 0.1, nSteps, duration, gain,
+      reach };
+  };
+  let sim = null;
+  let simKey = null;
+  const starts = new Map();
+  const state = { step: 0, sim: null, level: null };
+  function ensure() {
+    const o = options();
+    const k = JSON.stringify([o.path, o.path === "drawn" ? o.drawn : null, o.method, o.method === "dls" ? o.damping : 0]);
+    if (k === simKey) return false;
+    sim = simulate(chain, o, starts);
+    simKey = k;
+    desLine.setAttribute("points", sim.xd.map((p) => `${p[0]},${p[1]}`).join(" "));
+    return true;
+  }
+  function draw() {
+    ensure();
+    const o = options();
+    const k = Math.max(0, Math.min(nSteps - 1, Math.round(Number(get("step", 0))) || 0));
+    const { run, t, xd } = sim;
+    const th = run.thetas[k];
+    const pts = evaluate(chain, th).points;
+    link.setAttribute("points", pts.map((p) => `${p[0]},${p[1]}`).join(" "));
+    for (let i = 0; i < n; i++) {
+      joints[i].setAttribute("cx", pts[i][0]);
+      joints[i].setAttribute("cy", pts[i][1]);
+    }
+    actLine.setAttribute("points", run.positions.slice(0, k + 1).map((p) => `${p[0]},${p[1]}`).join(" "));
+    const c = xd[k], a = 0.05 * reach;
+    target.setAttribute("d", `M${c[0] - a},${c[1] - a}L${c[0] + a},${c[1] + a}M${c[0] - a},${c[1] + a}L${c[0] + a},${c[1] - a}`);
+    for (let i = 0; i < n; i++) {
+      rateLines[i].setAttribute("points", run.rates.slice(0, k + 1).map((r, j) => `${px(t[j])},${py(r[i])}`).join(" "));
+    }
+    cursor.setAttribute("x1", px(t[k]));
+    cursor.setAttribute("x2", px(t[k]));
+    const s = run.sigmaMin[k];
+    const now = Math.hypot(...run.rates[k]);
+    let peak = 0;
+    for (let j = 0; j <= k; j++) for (const r of run.rates[j]) peak = Math.max(peak, Math.abs(r));
+    const level = s < 0.02 * reach ? "singular" : s < 0.1 * reach ? "warning" : "ok";
+    statusT.textContent = `t = ${fixed(t[k], 2)} s, `;
+    statusS.textContent = `) = ${fixed(s, 3)} m; ‖θ̇‖ = ${fixed(now, 2)} rad/s, `
+      + `peak |θ̇ᵢ| so far ${fixed(peak, 1)} rad/s; tracking error ${fixed(1000 * run.errors[k], 1)} mm`;
+    if (level !== state.level) {
+      banner.hidden = level === "ok";
+      banner.textContent = level === "ok" ? "" : level === "singular"
+        ? "At a singularity: the tool has almost lost a direction; pseudo-inverse rates blow up, DLS gives up accuracy"
+        : "Near a singularity: the joint rates grow";
+      banner.style.borderColor = PALETTE[level];
+    }
+    link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
+    lamOut.textContent = `${fixed(o.damping, 3)} m`;
+    lam.disabled = o.method !== "dls";
+    if (doc.activeElement !== lam) lam.value = String(Math.log10(Math.max(o.damping, 1e-3)));
+    stepOut.textContent = `${k} of ${nSteps - 1}`;
+    if (doc.activeElement !== stepIn || Number(stepIn.value) !== k) stepIn.value = String(k);
+    if (pathSel.value !== o.path) pathSel.value = o.path;
+    if (methodSel.value !== o.method) methodSel.value = o.method;
+    Object.assign(state, { step: k, sim, level, sigmaMin: s, theta: th, drawn: o.drawn });
+    el.dataset.step = String(k);
+    el.dataset.theta = JSON.stringify(th);
+    el.dataset.level = level;
+  }
+
+  // ---- input -> state
+  const put = (key, value) => {
+    model.set(key, value);
+    model.save_changes();
+  };
+  const setStep = (k) => put("step", Math.max(0, Math.min(nSteps - 1, k)));
+  let timer = null;
+  function stop() {
+    if (timer !== null) clearInterval(timer);
+    timer = null;
+    play.textContent = "▶ Play";
+    play.setAttribute("aria-pressed", "false");
+  }
+  function toggle() {
+    if (timer !== null) return stop();
+    if (state.step >= nSteps - 1) setStep(0);
+    timer = setInterval(() => {
+      if (state.step >= nSteps - 1) return stop();
+      return setStep(state.step + 1);
+    }, 40);
+    play.textContent = "❚❚ Pause";
+    play.setAttribute("aria-pressed", "true");
+    return undefined;
+  }
+  const restart = () => {
+    stop();
+    put("step", 0);
+  };
+  const on = [
+    [pathSel, "change", () => { put("path", pathSel.value); restart(); }],
+    [methodSel, "change", () => { put("method", methodSel.value); restart(); }],
+    [lam, "input", () => { put("damping", Math.round(10 ** Number(lam.value) * 1e4) / 1e4); }],
+    [stepIn, "input", () => { stop(); setStep(Number(stepIn.value)); }],
+    [play, "click", toggle],
+    [back, "click", () => { stop(); setStep(state.step - 1); }],
+    [fwd, "click", () => { stop(); setStep(state.step + 1); }],
+    [el, "keydown", (ev) => {
+      const tag = ev.target.tagName;
+      if (ev.key === "p" || ev.key === "P" || ev.key === "k" || ev.key === "K") toggle();
+      else if (tag !== "INPUT" && tag !== "SELECT" && KEYS_ON.has(ev.key)) { stop(); setStep(state.step + 1); }
+      else if (tag !== "INPUT" && tag !== "SELECT" && KEYS_BACK.has(ev.key)) { stop(); setStep(state.step - 1); }
+      else return;
+      ev.preventDefault();
+    }],
+  ];
+  // drawing a path: press "Draw a path", then drag over the arm's picture
+  let drawing = false;
+  let stroke = null;
+  const setDrawing = (d) => {
+    drawing = d;
+    pad.setAttribute("visibility", d ? "visible" : "hidden");
+    drawBtn.setAttribute("aria-pressed", String(d));
+    drawBtn.textContent = d ? "✎ Drag on the picture…" : "✎ Draw a path";
+  };
+  on.push([drawBtn, "click", () => { stop(); setDrawing(!drawing); }]);
+  on.push([pad, "pointerdown", (ev) => {
+    const p = toWorld(root, ev);
+    if (!p) return;
+    capture(pad, ev);
+    stroke = [p];
+    ink.setAttribute("points", `${p[0]},${p[1]}`);
+    ev.preventDefault();
+  }]);
+  on.push([pad, "pointermove", (ev) => {
+    const p = stroke && toWorld(root, ev);
+    if (!p) return;
+    stroke.push(p);
+    ink.setAttribute("points", stroke.map((q) => `${q[0]},${q[1]}`).join(" "));
+  }]);
+  const finish = (ev) => {
+    if (!stroke) return;
+    const last = ev.type === "pointerup" && toWorld(root, ev);
+    if (last) stroke.push(last); // a touch's last move can come only with the lift
+    const pts = stroke;
+    stroke = null;
+    ink.setAttribute("points", "");
+    setDrawing(false);
+    if (!resample(pts, 2)) return;
+    model.set("drawn", pts.map((p) => [Math.round(p[0] * 1e4) / 1e4, Math.round(p[1] * 1e4) / 1e4]));
+    put("path", "drawn");
+    restart();
+  };
+  on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
+  for (const [t, e, f] of on) t.addEventListener(e, f);
+  const unhold = holdTouch(pad); // the pad is there only while drawing
+  const keys = ["path", "drawn", "method", "damping", "step"].map((k) => `change:${k}`).join(" ");
+  model.on(keys, draw);
+  draw();
+  suppressShortcuts(el);
+  el.jacLive = state;
+  return () => {
+    stop();
+    model.off(keys, draw);
+    for (const [t, e, f] of on) t.removeEventListener(e, f);
+    unhold();
+    el.textContent = "";
+  };
+}
+
+export { render };
+export default { render };

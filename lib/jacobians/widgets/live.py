@@ -1,0 +1,294 @@
+r"""Live views in JupyterLab: anywidget wrappers of the book's ES modules (issue #13).
+
+One front-end module per view lives in ``_theme/live/<view>.js``. The static
+book mounts it with the ``{live-view}`` directive (``_ext/live_views.py``) from
+a model computed here; in JupyterLab (``make lab``) the same module is the
+``_esm`` of an :class:`anywidget.AnyWidget`, so notebook code reads and sets
+its state (``w.theta = ...``) and the library computes what the view shows
+(``w.J``).
+
+The contract every view module follows: ``export default { render }`` where
+``render({model, el})`` draws into ``el`` and returns a cleanup function, and
+uses only ``model.get(key)``, ``model.set(key, value)``, ``model.save_changes()``
+and ``model.on/off("change:<key>", f)``. The model keys (plain JSON) of a
+chain view:
+
+* ``S``: the 6×n screw axes (columns (ω, v)), ``M``: the 4×4 home pose,
+  ``Q``: n×3 points on the joint axes at home (where joints are drawn),
+  ``name``: the arm's name, ``reach``: its reach in m;
+* ``theta``: the n joint values (rad), written back by the view;
+* anything else the view documents in its header comment: for
+  ``planar_explorer``: ``frame`` (``"space"``, ``"body"``, ``"geometric"``,
+  ``"analytic"``), ``sing_tol``, ``vel_scale``, ``force_scale``,
+  ``force_clip``, ``sweep``; for ``resolved_rate``: ``path``, ``drawn``,
+  ``method``, ``damping``, ``step``, ``n_steps``, ``duration``, ``gain``,
+  ``rate_limit``.
+
+:class:`LiveView` hosts ANY ``_theme/live/<view>.js`` by name: every model key
+becomes a synced traitlet. anywidget loads ``_esm`` from a blob: URL, where a
+relative import such as ``./kinematics.js`` cannot resolve, so
+:func:`module_source` inlines a module's relative imports, recursively, as
+``data:`` URL imports.
+
+>>> w = PlanarExplorer(theta=[0.3, 1.2])
+>>> w.frame, [round(float(t), 2) for t in w.theta], w.J.shape
+('space', [0.3, 1.2], (6, 2))
+"""
+
+from __future__ import annotations
+
+import base64
+import math
+import os
+import re
+from collections.abc import Callable, Sequence
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .. import robots
+from .. import velocity as _velocity
+from ..chain import SerialChain
+from ..frames import check_frame
+from ..jacobian import analytic_jacobian, jacobian
+from ..plotting import arm_reach, check_planar
+
+__all__ = ["LiveView", "PlanarExplorer", "ResolvedRate", "module_source", "live_dir", "planar_model",
+           "resolved_rate_model", "resample", "MODELS", "ROBOTS"]
+
+ROBOTS: dict[str, Callable[[], SerialChain]] = {"planar_2r": robots.planar_2r, "planar_3r": robots.planar_3r}
+PLANAR_FRAMES = ("space", "body", "geometric", "analytic")
+PATHS = ("circle", "to full reach", "close past the base")
+SING_TOL = 0.08  # x reach: PlanarArmExplorer.sing_tol
+VEL_SCALE = 0.35  # drawn metres per m/s
+LIMIT = 3.14  # the views' slider range, rad
+_IMPORT = re.compile(r"""(\bfrom\s*|\bimport\s*)(["'])\./([A-Za-z0-9_]+\.js)\2""")
+
+
+def live_dir() -> Path:
+    """The folder of the view modules: ``$JACOBIANS_LIVE_DIR``, else ``_theme/live`` of this checkout."""
+    env = os.environ.get("JACOBIANS_LIVE_DIR")
+    d = Path(env) if env else Path(__file__).resolve().parents[3] / "_theme" / "live"
+    if not (d / "kinematics.js").is_file():
+        raise FileNotFoundError(f"Expected the live view modules (kinematics.js) in {d}: run from the course's "
+                                "checkout (pip install -e .) or set JACOBIANS_LIVE_DIR")
+    return d
+
+
+@cache
+def _inlined(path: Path, mtime: float) -> str:
+    text = path.read_text(encoding="utf-8")
+
+    def sub(m: re.Match[str]) -> str:
+        dep = path.parent / m.group(3)
+        if not dep.is_file():
+            raise FileNotFoundError(f"{path.name} imports ./{m.group(3)}, which is not in {path.parent}")
+        code = _inlined(dep, dep.stat().st_mtime)
+        url = "data:text/javascript;base64," + base64.b64encode(code.encode("utf-8")).decode("ascii")
+        return f"{m.group(1)}{m.group(2)}{url}{m.group(2)}"
+
+    return _IMPORT.sub(sub, text)
+
+
+def module_source(view: str) -> str:
+    """The ES module ``_theme/live/<view>.js`` as one self-contained text (relative imports as data: URLs)."""
+    if not isinstance(view, str) or not re.fullmatch(r"[a-z0-9_]+", view):
+        raise ValueError(f"Expected a view name such as 'planar_explorer' (letters, digits, _), got {view!r}")
+    path = live_dir() / f"{view}.js"
+    if not path.is_file():
+        views = sorted(p.stem for p in live_dir().glob("*.js"))
+        raise ValueError(f"Expected a view module in {live_dir()}, one of {views}, got {view!r}")
+    return _inlined(path, path.stat().st_mtime)
+
+
+def _chain(robot: str | SerialChain) -> tuple[str, SerialChain]:
+    if isinstance(robot, SerialChain):
+        return robot.name or "the arm", check_planar(robot, "a planar live view")
+    if robot not in ROBOTS:
+        raise ValueError(f"Expected robot one of {', '.join(ROBOTS)} or a planar SerialChain, got {robot!r}")
+    return robot, ROBOTS[robot]()
+
+
+def _chain_model(chain: SerialChain) -> dict[str, Any]:
+    return {"name": chain.name, "S": chain.screw_axes.tolist(), "M": chain.home.tolist(),
+            "Q": chain.axis_points().tolist(), "reach": arm_reach(chain)}
+
+
+def _theta(theta: Sequence[float] | NDArray[np.float64] | None, n: int, robot: str) -> list[float]:
+    if theta is None:
+        return [0.5, 1.2, -0.8, 0.4, 0.3][:n]  # the matplotlib explorer's default
+    th = [float(t) for t in np.asarray(theta, dtype=float).ravel()]
+    if len(th) != n:
+        raise ValueError(f"Expected theta with {n} angles (rad) for {robot}, got {len(th)}: {list(th)!r}")
+    bad = [t for t in th if not math.isfinite(t) or abs(t) > LIMIT]
+    if bad:
+        raise ValueError(f"Expected theta as finite angles within ±{LIMIT} rad, got {bad!r}")
+    return th
+
+
+def planar_model(robot: str | SerialChain = "planar_2r", theta: Sequence[float] | None = None,
+                 frame: str = "space", sweep: int | None = None) -> dict[str, Any]:
+    """The model of ``planar_explorer`` for ``robot`` at ``theta`` (rad).
+
+    >>> m = planar_model("planar_2r", [0.3, 1.2], "body")
+    >>> len(m["S"]), len(m["S"][0]), m["theta"], m["frame"], round(m["sing_tol"], 3), m["sweep"]
+    (6, 2, [0.3, 1.2], 'body', 0.16, 1)
+    """
+    name, chain = _chain(robot)
+    if frame not in PLANAR_FRAMES:
+        raise ValueError(f"Expected frame one of {', '.join(PLANAR_FRAMES)}, got {frame!r}")
+    n = chain.dof
+    sw = n - 1 if sweep is None else sweep
+    if not isinstance(sw, int) or not 0 <= sw < n:
+        raise ValueError(f"Expected sweep as a joint index 0..{n - 1} (the joint Play turns), got {sweep!r}")
+    reach = arm_reach(chain)
+    return {**_chain_model(chain), "theta": _theta(theta, n, name), "frame": frame, "sing_tol": SING_TOL * reach,
+            "vel_scale": VEL_SCALE, "force_scale": 0.1 * reach ** 2, "force_clip": 1.25 * reach, "sweep": sw}
+
+
+def resolved_rate_model(robot: str | SerialChain = "planar_2r", path: str = "close past the base",
+                        method: str = "pinv", damping: float = 0.1, step: int = 0) -> dict[str, Any]:
+    """The model of ``resolved_rate``: the run of ``ResolvedRateExplorer`` (160 steps over 4 s, K = 2/s).
+
+    >>> m = resolved_rate_model("planar_2r", "circle", "dls", 0.05)
+    >>> m["path"], m["method"], m["damping"], m["n_steps"], m["duration"], m["gain"]
+    ('circle', 'dls', 0.05, 160, 4.0, 2.0)
+    """
+    _, chain = _chain(robot)
+    if path not in PATHS:
+        raise ValueError(f"Expected path one of {', '.join(PATHS)}, got {path!r}")
+    if method not in ("pinv", "dls"):
+        raise ValueError(f"Expected method 'pinv' or 'dls', got {method!r}")
+    lam = float(damping)
+    if not (math.isfinite(lam) and 1e-3 <= lam <= 1.0):
+        raise ValueError(f"Expected damping λ in [0.001, 1] m, got {damping!r}")
+    return {**_chain_model(chain), "path": path, "drawn": None, "method": method, "damping": lam,
+            "step": int(step), "n_steps": 160, "duration": 4.0, "gain": 2.0, "rate_limit": 8.0}
+
+
+def resample(points: Sequence[Sequence[float]], n: int) -> NDArray[np.float64] | None:
+    """A drawn polyline resampled to ``n`` points evenly along its length, as resolved_rate.js (None: no length).
+
+    >>> resample([[0, 0], [1, 0], [1, 1]], 5).tolist()
+    [[0.0, 0.0], [0.5, 0.0], [1.0, 0.0], [1.0, 0.5], [1.0, 1.0]]
+    """
+    P = np.asarray(points, dtype=float).reshape(-1, 2)
+    P = P[np.isfinite(P).all(axis=1)]
+    if len(P) < 2:
+        return None
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(P, axis=0).T))])
+    if not s[-1] > 0:
+        return None
+    out = np.empty((n, 2))
+    j = 0
+    for k in range(n):
+        u = s[-1] * k / (n - 1)
+        while j < len(P) - 2 and s[j + 1] < u:
+            j += 1
+        f = min(1.0, max(0.0, (u - s[j]) / (s[j + 1] - s[j]))) if s[j + 1] > s[j] else 0.0
+        out[k] = P[j] + f * (P[j + 1] - P[j])
+    return out
+
+
+#: View name -> function of keyword options returning the view's model (the directive and LiveView use it).
+MODELS: dict[str, Callable[..., dict[str, Any]]] = {
+    "planar_explorer": planar_model,
+    "resolved_rate": resolved_rate_model,
+}
+
+
+def _anywidget() -> Any:
+    try:
+        import anywidget
+    except ImportError as exc:  # pragma: no cover - anywidget is pinned in requirements.txt
+        raise ImportError("Expected anywidget (pip install anywidget==0.11.0) for the live views in Jupyter") from exc
+    return anywidget
+
+
+def _base() -> type:
+    return _anywidget().AnyWidget  # type: ignore[no-any-return]
+
+
+class LiveView(_base()):  # type: ignore[misc]
+    """Any ``_theme/live/<view>.js`` as a Jupyter widget: ``LiveView("planar_explorer", **model)``.
+
+    Every key of ``model`` (or, with no model, of ``MODELS[view](**options)``)
+    becomes a synced traitlet, read and set as an attribute; the view's
+    changes come back to Python. Subclasses add what the library computes.
+    """
+
+    def __init__(self, view: str, model: dict[str, Any] | None = None, **options: Any) -> None:
+        import traitlets
+
+        if model is None:
+            if view not in MODELS:
+                raise ValueError(f"Expected a model for view {view!r} (no builder in MODELS: {sorted(MODELS)})")
+            model = MODELS[view](**options)
+        elif options:
+            raise TypeError(f"Expected either a model or options for {view!r}, got both ({sorted(options)})")
+        if not isinstance(model, dict) or not all(isinstance(k, str) and k.isidentifier() for k in model):
+            raise TypeError(f"Expected the model as a dict with identifier keys, got {type(model).__name__}")
+        clash = [k for k in model if hasattr(_base(), k)]
+        if clash:
+            raise ValueError(f"Expected model keys that are not widget attributes, got {clash}")
+        self.add_traits(**{k: traitlets.Any().tag(sync=True) for k in model})
+        super().__init__(_esm=module_source(view), **model)
+        self.view = view
+
+
+class PlanarExplorer(LiveView):
+    """The live planar arm explorer; ``theta`` and ``frame`` settable, ``J`` from the library.
+
+    ``PlanarExplorer(robot="planar_3r", theta=[...], frame="geometric")``, with
+    ``robot`` a name in ``ROBOTS`` or a planar :class:`SerialChain`.
+    """
+
+    def __init__(self, robot: str | SerialChain = "planar_2r", theta: Sequence[float] | None = None,
+                 frame: str = "space", sweep: int | None = None) -> None:
+        _, self.chain = _chain(robot)
+        super().__init__("planar_explorer", planar_model(self.chain, theta, frame, sweep))
+
+    @property
+    def J(self) -> NDArray[np.float64]:
+        """The shown Jacobian at the current ``theta``: 6×n, or for ``"analytic"`` 3×n in (x, y, φ)."""
+        th = np.asarray(self.theta, dtype=float)
+        if self.frame == "analytic":
+            return analytic_jacobian(self.chain, th, "zyx")[[3, 4, 0]]
+        return jacobian(self.chain, th, check_frame(self.frame))
+
+
+class ResolvedRate(LiveView):
+    """The live resolved-rate view; ``run`` is the library's run of what it shows (preset paths)."""
+
+    def __init__(self, robot: str | SerialChain = "planar_2r", path: str = "close past the base",
+                 method: str = "pinv", damping: float = 0.1) -> None:
+        _, self.chain = _chain(robot)
+        super().__init__("resolved_rate", resolved_rate_model(self.chain, path, method, damping))
+
+    def target(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None]:
+        """The times t (N), desired positions (N×2) and velocities (N×2, None for a drawn path) of the run."""
+        from .path_following import _planar_path
+
+        n = int(self.n_steps)
+        drawn = resample(self.drawn, n) if self.path == "drawn" and self.drawn else None
+        if drawn is not None:  # as the view: evenly along the drawn line over the run, forward differences
+            return np.linspace(0.0, float(self.duration), n), drawn, None
+        return _planar_path(self.path if self.path in PATHS else "circle", arm_reach(self.chain), n)
+
+    @property
+    def run(self) -> _velocity.ResolvedRateResult:
+        """``velocity.resolved_rate`` of the current path, method and λ from the view's start (as the view)."""
+        from .path_following import ResolvedRateExplorer
+
+        t, x, v = self.target()
+        th0 = ResolvedRateExplorer._start_configuration(self, x[0])  # uses self.chain only
+        return _velocity.resolved_rate(self.chain, th0, x, t[1] - t[0], method=self.method, damping=self.damping,
+                                       gain=self.gain, target_velocities=v)
+
+    @property
+    def theta(self) -> NDArray[np.float64]:
+        """The joint angles at the shown ``step``."""
+        return np.asarray(self.run.thetas[int(self.step)])

@@ -1,0 +1,209 @@
+"""The live views as anywidgets in a real JupyterLab, headless: Python and the view agree both ways.
+
+Starts ``jupyter lab`` (this venv, a fresh temporary notebook folder and
+Jupyter config/runtime folders, a random token, ``expose_app_in_browser`` so
+the test can run cells), opens a notebook in Chromium and runs its cells one
+by one:
+
+1. ``w = PlanarExplorer("planar_2r", theta=[0.3, 1.2])``, then ``w``: the view
+   (the same ``_theme/live/planar_explorer.js``, its ``./kinematics.js``
+   imports inlined as data: URLs) renders in the output, and shows the
+   library's Jacobian at θ;
+2. a key press on the view's θ₁ slider (view -> Python): a traitlet observer in
+   the kernel writes ``w.theta`` and ``w.J`` (the library's) to a file, which
+   must hold θ₁ + 0.01 and the Jacobian the view shows;
+3. ``w.theta = [-0.7, 0.4]; w.frame = "body"`` (Python -> view): the view redraws
+   at those angles with the library's body Jacobian;
+4. the resolved-rate view: ``ResolvedRate(...)``, a step key in the view, and
+   ``r.step`` in Python agree, and the arm drawn is the library run's.
+
+No request leaves 127.0.0.1, no console error from the views.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import secrets
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+from pathlib import Path
+from urllib.parse import urlsplit
+
+import numpy as np
+import pytest
+
+import jacobians as jac
+
+ROOT = Path(__file__).resolve().parents[2]
+HALF_ULP = 0.005 + 1e-9
+
+CELLS = [
+    # 0: set-up, and an observer that writes the Python side's state to a file on every change
+    "import json, numpy as np\n"
+    "from jacobians.widgets.live import PlanarExplorer, ResolvedRate\n"
+    "w = PlanarExplorer('planar_2r', theta=[0.3, 1.2])\n"
+    "def dump(change=None):\n"
+    "    with open('py_state.json', 'w') as f:\n"
+    "        json.dump({'theta': list(map(float, w.theta)), 'frame': w.frame, 'J': w.J.tolist()}, f)\n"
+    "w.observe(dump, names=['theta', 'frame'])\n"
+    "dump()\n"
+    "w",
+    # 1: Python -> view
+    "w.theta = [-0.7, 0.4]\nw.frame = 'body'",
+    # 2: the resolved-rate view
+    "r = ResolvedRate('planar_2r', path='circle', method='dls', damping=0.05)\n"
+    "def dump_r(change=None):\n"
+    "    with open('py_rr.json', 'w') as f:\n"
+    "        json.dump({'step': int(r.step), 'theta': r.theta.tolist()}, f)\n"
+    "r.observe(dump_r, names=['step'])\n"
+    "r",
+    # 3: Python -> resolved-rate view
+    "r.step = 40",
+]
+
+READ_PLANAR = """(el) => ({
+  theta: JSON.parse(el.dataset.theta), frame: el.dataset.frame,
+  table: [...el.querySelectorAll("table.jl-matrix tbody tr")].map(
+    (tr) => [...tr.querySelectorAll("td")].map((td) => Number(td.textContent.replace("\\u2212", "-")))),
+})"""
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def _notebook(cells: list[str]) -> dict:
+    return {"cells": [{"cell_type": "code", "execution_count": None, "id": f"c{i}", "metadata": {}, "outputs": [],
+                       "source": src} for i, src in enumerate(cells)],
+            "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python", "name": "python3"}},
+            "nbformat": 4, "nbformat_minor": 5}
+
+
+@pytest.fixture(scope="module")
+def lab():
+    work = Path(tempfile.mkdtemp(prefix="live-lab-"))
+    (work / "nb").mkdir()
+    (work / "nb" / "live.ipynb").write_text(json.dumps(_notebook(CELLS)), encoding="utf-8")
+    port, token = _free_port(), secrets.token_hex(16)
+    env = dict(os.environ, JUPYTER_CONFIG_DIR=str(work / "config"), JUPYTER_RUNTIME_DIR=str(work / "runtime"),
+               IPYTHONDIR=str(work / "ipython"), PYTHONPATH=f"{ROOT / 'lib'}{os.pathsep}{ROOT}")
+    cmd = [sys.executable, "-m", "jupyterlab", "--no-browser", f"--port={port}", "--ip=127.0.0.1",
+           f"--IdentityProvider.token={token}", "--LabApp.expose_app_in_browser=True",
+           "--ServerApp.disable_check_xsrf=False", f"--notebook-dir={work / 'nb'}", "--LabApp.news_url=",
+           "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate", "--ServerApp.open_browser=False"]
+    if os.geteuid() == 0:
+        cmd.append("--allow-root")
+    log = open(work / "lab.log", "wb")
+    proc = subprocess.Popen(cmd, cwd=work / "nb", env=env, stdout=log, stderr=subprocess.STDOUT)
+    base = f"http://127.0.0.1:{port}"
+    try:
+        deadline = time.time() + 90
+        while True:
+            try:
+                urllib.request.urlopen(f"{base}/api/status?token={token}", timeout=2).read()
+                break
+            except OSError:
+                if proc.poll() is not None or time.time() > deadline:
+                    raise RuntimeError("jupyter lab did not start:\n"
+                                       + (work / "lab.log").read_text(errors="replace")[-3000:]) from None
+                time.sleep(0.5)
+        yield base, token, work / "nb"
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+        log.close()
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def _run_cell(page, index: int) -> None:
+    page.evaluate("""async (i) => {
+      const app = window.jupyterapp;
+      const panel = app.shell.currentWidget;
+      await panel.sessionContext.ready;
+      panel.content.activeCellIndex = i;
+      await app.commands.execute("notebook:run-cell");
+    }""", index)
+
+
+def _wait_file(path: Path, check, timeout: float = 30.0) -> dict:
+    deadline = time.time() + timeout
+    last = None
+    while time.time() < deadline:
+        try:
+            last = json.loads(path.read_text(encoding="utf-8"))
+            if check(last):
+                return last
+        except (OSError, ValueError):
+            pass
+        time.sleep(0.2)
+    raise AssertionError(f"{path.name} never satisfied the check; last {last}")
+
+
+def test_python_and_the_view_agree_both_ways(lab, browser_context):
+    base, token, nb = lab
+    page = browser_context.new_page()
+    errors: list[str] = []
+    requests: list[str] = []
+    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+    page.on("request", lambda r: requests.append(r.url))
+    try:
+        page.set_viewport_size({"width": 1280, "height": 900})
+        page.goto(f"{base}/lab/tree/live.ipynb?token={token}", wait_until="load")
+        page.wait_for_function("() => window.jupyterapp && window.jupyterapp.shell.currentWidget"
+                               " && window.jupyterapp.shell.currentWidget.sessionContext", timeout=90_000)
+        page.wait_for_function("() => window.jupyterapp.shell.currentWidget.sessionContext.session?.kernel",
+                               timeout=90_000)
+        chain = jac.robots.planar_2r()
+        # 1. the widget renders from Python's state
+        _run_cell(page, 0)
+        el = page.wait_for_selector(".jp-OutputArea .jac-live[data-theta]", state="attached", timeout=90_000)
+        got = el.evaluate(READ_PLANAR)
+        assert np.allclose(got["theta"], [0.3, 1.2]) and got["frame"] == "space"
+        assert np.abs(np.array(got["table"]) - jac.space_jacobian(chain, [0.3, 1.2])).max() <= HALF_ULP
+        _wait_file(nb / "py_state.json", lambda s: np.allclose(s["theta"], [0.3, 1.2]))
+        # 2. view -> Python: a key on the slider of θ1
+        slider = el.query_selector("input.jl-theta")
+        slider.focus()
+        page.keyboard.press("ArrowRight")  # the view sets data-lm-suppress-shortcuts: the key reaches the slider
+        page.wait_for_function("(el) => JSON.parse(el.dataset.theta)[0] > 0.305", arg=el, timeout=10_000)
+        state = _wait_file(nb / "py_state.json", lambda s: abs(s["theta"][0] - 0.31) < 1e-9)
+        assert state["theta"][1] == pytest.approx(1.2)
+        shown = np.array(el.evaluate(READ_PLANAR)["table"])
+        assert np.abs(shown - np.array(state["J"])).max() <= HALF_ULP           # the library's w.J is what is shown
+        assert np.allclose(state["J"], jac.space_jacobian(chain, [0.31, 1.2]), atol=1e-12)
+        # 3. Python -> view
+        _run_cell(page, 1)
+        page.wait_for_function("(el) => el.dataset.frame === 'body' && JSON.parse(el.dataset.theta)[0] === -0.7",
+                               arg=el, timeout=30_000)
+        got = el.evaluate(READ_PLANAR)
+        assert np.allclose(got["theta"], [-0.7, 0.4])
+        assert np.abs(np.array(got["table"]) - jac.body_jacobian(chain, [-0.7, 0.4])).max() <= HALF_ULP
+        state = _wait_file(nb / "py_state.json", lambda s: s["frame"] == "body")
+        assert np.allclose(state["J"], jac.body_jacobian(chain, [-0.7, 0.4]), atol=1e-12)
+        # 4. the resolved-rate view: a key in the view moves Python's step; Python's step moves the view
+        _run_cell(page, 2)
+        rr = page.wait_for_selector(".jp-OutputArea .jac-live[data-step]", state="attached", timeout=60_000)
+        rr.query_selector("button.jr-fwd").focus()
+        page.keyboard.press(".")
+        rstate = _wait_file(nb / "py_rr.json", lambda s: s["step"] == 1)
+        assert np.allclose(json.loads(rr.get_attribute("data-theta")), rstate["theta"], atol=1e-9)
+        _run_cell(page, 3)
+        page.wait_for_function("(el) => el.dataset.step === '40'", arg=rr, timeout=30_000)
+        rstate = _wait_file(nb / "py_rr.json", lambda s: s["step"] == 40)
+        assert np.allclose(json.loads(rr.get_attribute("data-theta")), rstate["theta"], atol=1e-9)
+        host = urlsplit(base).netloc
+        assert [u for u in requests if not u.startswith(("data:", "blob:")) and urlsplit(u).netloc != host] == []
+        assert [e for e in errors if "jac" in e.lower() or "live" in e.lower() or "kinematics" in e.lower()] == []
+    finally:
+        page.close()
