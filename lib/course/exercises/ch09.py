@@ -116,7 +116,9 @@ def _dls_case(rng: Generator, damping: str) -> Case:
     if rng.random() < 0.5 and m > 1:
         J[-1] = J[0] * 0.999            # close to singular: where damping matters
     V = rng.normal(size=m)
-    lam = float(rng.choice([0.05, 0.1, 0.3]))
+    # Given as mu = lam^2, the damping is drawn larger, so that the mistake of squaring it again
+    # (mu^2) cannot pass for no damping at all: the checker can tell the two apart.
+    lam = float(rng.choice([0.05, 0.1, 0.3] if damping == "lambda" else [0.3, 0.5, 0.7]))
     ref = ref_dls_rates(J, V, lam)
     mistakes = [
         Mistake("no_damping", np.linalg.pinv(J) @ V, "Your function returns the pseudoinverse solution: the "
