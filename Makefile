@@ -77,7 +77,7 @@ lint: setup
 	$(BIN)/mypy _ext
 
 test-lib: setup
-	MPLBACKEND=Agg $(BIN)/pytest --ignore=tests/browser --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
