@@ -17,7 +17,8 @@ the initial state), plus one ``<script type="module">`` that imports
 copied there by ``html_static_path``) relative to the page and renders the
 view. Nothing loads from another host. A new view registers its model
 builder in ``MODELS`` and its options in ``OPTIONS``; the 3-D views
-(``columns_explorer``, ``gimbal_lock``) build theirs in ``live_views_spatial``.
+(``columns_explorer``, ``gimbal_lock``) take theirs from ``jacobians.widgets.live_spatial``
+(``SPATIAL_MODELS``) through ``live_views_spatial``, which reads their option texts.
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from typing import Any
 
 from docutils import nodes
 from docutils.parsers.rst import directives
-from live_views_spatial import SPATIAL_VIEWS, spatial_model  # the 3-D views (chapters 4, 6)
+from live_views_spatial import SPATIAL_VIEWS, spatial_model  # the 3-D views (chapters 4, 6), models from the library
 from sphinx.application import Sphinx
 from sphinx.util.docutils import SphinxDirective
 
