@@ -16,6 +16,7 @@
 // Never throws on a reachable input, never shows NaN.
 
 import { evaluate, makeChain } from "./kinematics.js";
+import { suppressShortcuts } from "./ui.js";
 import { CSS as CSS3D, createView3D, fixed, frameItems, groundGrid, html, injectStyle, put, sub, text } from "./view3d.js";
 
 const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
@@ -280,6 +281,7 @@ function render({ model, el }) {
   model.on("change:theta", draw);
   model.on("change:column", draw);
   draw();
+  suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
   el.jacLive = state;
   el.jacView = view;
   return () => {

@@ -19,6 +19,7 @@
 import {
   analyticJacobian, coordinatesFromRotation, evaluate, makeChain, rateToAngularVelocity, singularValues,
 } from "./kinematics.js";
+import { suppressShortcuts } from "./ui.js";
 import { CSS as CSS3D, FONT, createView3D, fixed, frameItems, html, injectStyle, put, sub, svg, text } from "./view3d.js";
 
 const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
@@ -393,6 +394,7 @@ function render({ model, el }) {
   repSelect.addEventListener("change", onRep);
   for (const k of ["theta", "wrist", "rep"]) model.on(`change:${k}`, draw);
   draw();
+  suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
   el.jacLive = state;
   el.jacView = view;
   return () => {
