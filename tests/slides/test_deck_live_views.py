@@ -1,0 +1,198 @@
+"""The live views on the deck slides (issue #13), in headless Chromium at 1280x720.
+
+On every deck slide that holds a live view (``.jac-live``, mounted by the
+``{live-view}`` directive): an input event on one of its sliders changes the
+displayed numbers to the library's values (the JupyterLab widget classes of
+``jacobians.widgets.live`` and ``jacobians.widgets.live_spatial`` compute them
+at the same state), a key pressed in a focused slider moves the slider and not
+the deck, the slide still holds everything after the change, and, once the
+focus has left the view, ArrowRight moves to the next slide (ArrowLeft to the
+previous one from a deck's last slide). The decks of
+chapters 4, 6 and 9 must have their live view on a slide. Screenshots go to
+``_build/test-artifacts/slides/live-*.png`` (not committed).
+"""
+
+from __future__ import annotations
+
+import functools
+import http.server
+import json
+import math
+import threading
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from tools import build_slides
+
+import jacobians as jac
+
+ROOT = Path(__file__).resolve().parents[2]
+SITE = ROOT / "_build" / "html"
+ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
+HALF_ULP = 0.005 + 1e-9
+SOURCES = [s for s in build_slides.deck_sources() if "{live-view}" in s.read_text(encoding="utf-8")]
+#: decks whose live view must be on a slide (issue #13: all four views in the decks)
+MUST = {"04_space_vs_body": "columns_explorer", "06_analytic_jacobian": "gimbal_lock",
+        "09_using_the_jacobian": "resolved_rate"}
+
+READ = """(el) => {
+  const rows = (sel) => [...el.querySelectorAll(sel + " tbody tr")].map((tr) => [...tr.querySelectorAll("td")]
+    .map((c) => c.textContent));
+  return { view: el.dataset.view, model: JSON.parse(el.dataset.model), theta: JSON.parse(el.dataset.theta),
+    frame: el.dataset.frame || null, level: el.dataset.level || null, wrist: el.dataset.wrist || null, rep: el.dataset.rep || null,
+    step: el.dataset.step === undefined ? null : Number(el.dataset.step),
+    planar: rows("table.jl-matrix:not(.jl-space):not(.jl-body):not(.jl-B):not(.jl-J):not(.jl-Ja)"),
+    Js: rows("table.jl-space"), Jb: rows("table.jl-body"), B: rows("table.jl-B"), J: rows("table.jl-J"),
+    Ja: rows("table.jl-Ja"), text: el.innerText, markup: el.innerHTML };
+}"""
+
+SET = """([el, sel, v]) => {
+  const s = el.querySelector(sel);
+  s.value = String(v);
+  s.dispatchEvent(new Event("input", { bubbles: true }));
+  return s.value;
+}"""
+
+OUTSIDE = """() => {
+  const slide = Reveal.getCurrentSlide(), box = slide.getBoundingClientRect();
+  const visible = (e) => { const r = e.getBoundingClientRect();
+    return r.width > 0 && r.height > 0 && getComputedStyle(e).visibility !== "hidden" && !e.closest("aside.notes"); };
+  return [...slide.querySelectorAll("*")].filter((e) => visible(e) && !e.closest("mjx-assistive-mml")).filter((e) => {
+    const r = e.getBoundingClientRect();
+    return r.left < box.left - 2 || r.right > box.right + 2 || r.top < box.top - 2 || r.bottom > box.bottom + 2;
+  }).map((e) => e.tagName + "." + (e.getAttribute("class") || "")).slice(0, 5);
+}"""
+
+
+class _Quiet(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, *args: Any) -> None:
+        pass
+
+
+@pytest.fixture(scope="module")
+def server():
+    if not (SITE / "slides" / "decks.json").is_file():
+        assert build_slides.main([]) == 0, "tools/build_slides.py failed"
+    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(_Quiet, directory=str(SITE)))
+    threading.Thread(target=httpd.serve_forever, daemon=True).start()
+    yield f"http://127.0.0.1:{httpd.server_address[1]}/"
+    httpd.shutdown()
+
+
+def _numbers(rows: list[list[str]]) -> np.ndarray:
+    return np.array([[float(c.replace("\u2212", "-")) for c in row] for row in rows])
+
+
+def _close(rows: list[list[str]], ref) -> bool:
+    shown, ref = _numbers(rows), np.asarray(ref, dtype=float)
+    return shown.shape == ref.shape and float(np.abs(shown - ref).max()) <= HALF_ULP
+
+
+def _planar(got: dict) -> None:
+    from jacobians.widgets.live import PlanarExplorer
+
+    n = len(got["theta"])
+    robot = {2: "planar_2r", 3: "planar_3r"}[n]
+    assert np.array_equal(got["model"]["S"], getattr(jac.robots, robot)().screw_axes)
+    w = PlanarExplorer(robot, theta=got["theta"], frame=got["frame"])
+    assert _close(got["planar"], w.J), (got["planar"], w.J)
+
+
+def _columns(got: dict) -> None:
+    from jacobians.widgets.live_spatial import ColumnsExplorer
+
+    w = ColumnsExplorer("spatial_5r", theta=got["theta"], column=got["model"]["column"])
+    assert np.array_equal(got["model"]["S"], w.chain.screw_axes)
+    assert _close(got["Js"], w.Js) and _close(got["Jb"], w.Jb)
+
+
+def _gimbal(got: dict) -> None:
+    from jacobians.widgets.live_spatial import GimbalLock
+
+    w = GimbalLock(got["wrist"], theta=got["theta"], rep=got["rep"])
+    assert _close(got["J"], w.J) and _close(got["B"], w.B)
+    if np.isnan(w.Ja).any():
+        assert all(c == "\u2014" for row in got["Ja"] for c in row)
+    else:
+        assert _close(got["Ja"], w.Ja), (got["Ja"], w.Ja)
+
+
+def _resolved_rate(got: dict) -> None:
+    from jacobians.widgets.live import ResolvedRate
+
+    m = got["model"]
+    robot = {2: "planar_2r", 3: "planar_3r"}[len(m["S"][0])]
+    w = ResolvedRate(robot, path=m["path"], method=m["method"], damping=m["damping"])
+    run, k = w.run, got["step"]
+    assert np.allclose(got["theta"], run.thetas[k], atol=1e-9)   # the arm drawn
+    t = np.linspace(0.0, w.duration, w.n_steps)[k]
+    assert f"t = {t:.2f} s" in got["text"] and f"(Jv) = {float(run.sigma_min[k]):.3f} m" in got["text"]
+
+
+#: view -> (the slider moved, its value before the key press, the check of the numbers shown)
+VIEWS = {
+    "planar_explorer": ("input.jl-theta", 0.35, _planar),
+    "columns_explorer": ("input.jl-theta:nth-of-type(2)", -0.85, _columns),
+    "gimbal_lock": ("input.jl-theta:nth-of-type(2)", 89, _gimbal),
+    "resolved_rate": ("input.jr-step", 80, _resolved_rate),
+}
+
+
+@pytest.mark.parametrize("source", SOURCES, ids=[s.stem for s in SOURCES])
+def test_live_view_slides_show_the_librarys_numbers_and_arrows_still_move_on(deck_browser, server, source):
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    page = deck_browser.new_page(viewport={"width": 1280, "height": 720})
+    problems: list[str] = []
+    page.on("console", lambda m: problems.append(m.text) if m.type == "error" else None)
+    page.on("pageerror", lambda e: problems.append(str(e)))
+    try:
+        page.goto(server + "slides/" + build_slides.deck_path(source), wait_until="load")
+        page.wait_for_selector("html[data-math-done]", state="attached", timeout=60_000)
+        total = page.evaluate("Reveal.getTotalSlides()")
+        with_view = page.evaluate("""() => Reveal.getSlides().map((s, i) => s.querySelector(".jac-live") ? i : -1)
+          .filter((i) => i >= 0)""")
+        if source.stem in MUST:
+            assert with_view, f"{source.stem}: no slide holds the live view {MUST[source.stem]}"
+        for i in with_view:
+            page.evaluate(f"Reveal.slide({i})")
+            el = page.wait_for_selector("section.present .jac-live[data-ready='1']", state="attached")
+            view = el.get_attribute("data-view")
+            sel, value, check = VIEWS[view]
+            check(el.evaluate(READ))                                   # as mounted
+            before = el.evaluate(READ)["markup"]
+            assert page.evaluate(SET, [el, sel, value]) == str(value)      # an input event
+            got = el.evaluate(READ)
+            assert got["markup"] != before, f"slide {i}: the input changed nothing"
+            check(got)
+            if view == "gimbal_lock":  # 1 degree from the ZYX lock: |det B| = cos 89 deg < 0.1, a warning
+                assert math.isclose(got["theta"][1], math.radians(89), abs_tol=1e-12) and got["level"] == "warning"
+            assert "NaN" not in got["text"] and "Infinity" not in got["text"]
+            assert page.evaluate(OUTSIDE) == [], f"slide {i}: outside the slide after the change"
+            # a key in the focused slider moves the slider, not the deck
+            el.query_selector(sel).focus()
+            page.keyboard.press("ArrowRight")
+            assert page.evaluate("Reveal.getIndices().h") == i
+            after = el.evaluate(READ)
+            assert after["markup"] != got["markup"], f"slide {i}: ArrowRight in the slider changed nothing"
+            check(after)
+            page.screenshot(path=str(ARTIFACTS / f"live-{source.stem}-{i:02d}.png"))
+            # focus out of the view (a click on the heading), then ArrowRight moves on (ArrowLeft back on the last)
+            page.locator("section.present h2, section.present h1").first.click()
+            assert page.evaluate("document.activeElement.closest('.jac-live')") is None
+            key, to = ("ArrowRight", i + 1) if i + 1 < total else ("ArrowLeft", i - 1)
+            page.keyboard.press(key)
+            page.wait_for_function(f"Reveal.getIndices().h === {to}", timeout=5_000)
+        assert problems == [], problems
+    finally:
+        page.close()
+
+
+def test_the_live_views_data_model_is_plain_json():
+    """What the slide's view reads is the model the library builds (no NaN), for each view here."""
+    from jacobians.widgets.live import planar_model, resolved_rate_model
+    from jacobians.widgets.live_spatial import columns_model, gimbal_model
+
+    for model in (planar_model("planar_2r"), resolved_rate_model(), columns_model(), gimbal_model()):
+        json.dumps(model, allow_nan=False)
