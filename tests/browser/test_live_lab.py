@@ -197,9 +197,11 @@ def _wait_file(path: Path, check, timeout: float = 30.0) -> dict:
 
 def _open(page, base: str, token: str, name: str) -> None:
     page.set_viewport_size({"width": 1280, "height": 900})
-    page.goto(f"{base}/lab/tree/{name}?token={token}", wait_until="load")
-    page.wait_for_function("() => window.jupyterapp && window.jupyterapp.shell.currentWidget"
-                           " && window.jupyterapp.shell.currentWidget.sessionContext", timeout=90_000)
+    # a workspace of its own: the default one would also restore the notebook another test opened
+    page.goto(f"{base}/lab/workspaces/{name.split('.')[0]}/tree/{name}?token={token}", wait_until="load")
+    page.wait_for_function("(name) => window.jupyterapp && window.jupyterapp.shell.currentWidget"
+                           " && window.jupyterapp.shell.currentWidget.sessionContext"
+                           " && window.jupyterapp.shell.currentWidget.context.path === name", arg=name, timeout=90_000)
     page.wait_for_function("() => window.jupyterapp.shell.currentWidget.sessionContext.session?.kernel",
                            timeout=90_000)
 
