@@ -31,7 +31,9 @@ Which joints change which column of :math:`J_s` and :math:`J_b` (chapter 4)
 and the gimbal lock of a wrist's coordinates (chapter 6) are live views in the
 browser, no kernel: ``_theme/live/columns_explorer.js`` and
 ``_theme/live/gimbal_lock.js``, mounted by the ``{live-view}`` directive
-(models from the library in ``_ext/live_views_spatial.py``).
+(models from :mod:`jacobians.widgets.live_spatial`), and in JupyterLab the
+anywidgets :class:`~jacobians.widgets.live_spatial.ColumnsExplorer` and
+:class:`~jacobians.widgets.live_spatial.GimbalLock` run the same modules.
 
 Static book: each widget has a ``*_animation`` function returning a
 :class:`jacobians.plotting.FrameSource` of the same view (its ``explorer`` is
