@@ -66,3 +66,47 @@ def test_host_html_loads_the_view_module(view):
     assert f'from "../_static/live/{view}.js"' in out and "http" not in out
     data = re.search(r'data-model="([^"]*)"', out)
     assert data is not None and json.loads(html.unescape(data.group(1))) == model
+
+
+def test_the_directive_takes_the_models_from_the_library():
+    from jacobians.widgets import live_spatial
+
+    assert spatial.columns_model is live_spatial.columns_model and spatial.gimbal_model is live_spatial.gimbal_model
+    assert spatial.SPATIAL_MODELS is live_spatial.SPATIAL_MODELS and set(spatial.SPATIAL_VIEWS) == set(live_spatial.SPATIAL_MODELS)
+    assert spatial.spatial_model("columns_explorer", {"theta": "0.1 0.2 0.3 0.4 0.5", "column": "2"}) == \
+        live_spatial.columns_model("spatial_5r", [0.1, 0.2, 0.3, 0.4, 0.5], 2)
+
+
+def test_columns_widget_state_and_library_values():
+    from jacobians.widgets.live import module_source
+    from jacobians.widgets.live_spatial import ColumnsExplorer
+
+    chain = jac.robots.spatial_5r()
+    w = ColumnsExplorer(theta=[0.1, 0.2, 0.3, 0.4, 0.5], column=2)
+    assert w.view == "columns_explorer" and w._esm == module_source("columns_explorer")
+    assert w.column == 2 and w.S == chain.screw_axes.tolist()
+    w.theta = [-0.3, 1.0, 0.2, -0.7, 2.0]  # as the view writes it back
+    assert np.allclose(w.Js, jac.space_jacobian(chain, w.theta), atol=1e-15)
+    assert np.allclose(w.Jb, jac.body_jacobian(chain, w.theta), atol=1e-15)
+    assert np.array_equal(w.J, w.Js)
+    with pytest.raises(ValueError, match=re.escape("Expected column as an integer from 1 to 5, got 0")):
+        ColumnsExplorer(column=0)
+    with pytest.raises(TypeError, match="Expected theta as 5 numbers"):
+        ColumnsExplorer(theta=["a", "b", "c", "d", "e"])
+
+
+def test_gimbal_widget_state_and_library_values():
+    from jacobians import representations as reps
+    from jacobians.widgets.live_spatial import GimbalLock
+
+    g = GimbalLock("zyz_wrist", theta=[0.2, 1.2, -0.4], rep="zyz")
+    chain = jac.robots.zyz_wrist(spatial.WRIST_TOOL)
+    assert np.allclose(g.J, jac.geometric_jacobian(chain, [0.2, 1.2, -0.4]), atol=1e-15)
+    assert np.allclose(g.phi, [0.2, 1.2, -0.4], atol=1e-12)  # ZYZ angles of the ZYZ wrist are its joint angles
+    assert np.allclose(g.B, reps.rate_to_angular_velocity(g.phi, "zyz"))
+    assert g.det_B == pytest.approx(-math.sin(1.2))
+    assert np.allclose(g.Ja, jac.analytic_jacobian(chain, [0.2, 1.2, -0.4], "zyz"))
+    g.wrist, g.rep, g.theta = "zyx_wrist", "zyx", [0.3, math.pi / 2, 0.0]  # the ZYX wrist at its lock
+    assert g.chain.name == jac.robots.zyx_wrist(spatial.WRIST_TOOL).name
+    assert np.isnan(g.Ja).all() and abs(g.det_B) < 1e-12
+    assert np.allclose(g.J, jac.geometric_jacobian(jac.robots.zyx_wrist(spatial.WRIST_TOOL), g.theta))
