@@ -112,16 +112,19 @@ def _ch10_ex2(rng: Generator) -> Exercise:
     th_deg = angles_deg(rng, 2, step=15, low=-150, high=150)
     while abs(np.sin(th_deg[1] * DEG)) < 0.4:
         th_deg = angles_deg(rng, 2, step=15, low=-150, high=150)
-    offset = angles_deg(rng, 2, step=10, low=-30, high=30, nonzero=False)
-    if not np.any(offset):
-        offset[1] = 20.0
     arm = robots.planar([float(v) for v in ls])
     th = th_deg * DEG
-    p_d = np.round(_tool_point(arm, th + offset * DEG), 2)
-    e = p_d - _tool_point(arm, th)
-    J_v = _position_jacobian(arm, th)
-    step = np.linalg.solve(J_v, e)
-    ref = th + step
+    while True:  # a target near enough that the step brings the tool closer (Newton's method at work)
+        offset = angles_deg(rng, 2, step=5, low=-20, high=20, nonzero=False)
+        if not np.any(offset):
+            continue
+        p_d = np.round(_tool_point(arm, th + offset * DEG), 2)
+        e = p_d - _tool_point(arm, th)
+        J_v = _position_jacobian(arm, th)
+        step = np.linalg.solve(J_v, e)
+        ref = th + step
+        if np.linalg.norm(p_d - _tool_point(arm, ref)) < 0.5 * np.linalg.norm(e):
+            break
     mistakes = [
         ik_mistake("wrong_sign", th - step),
         ik_mistake("step_only", step),
