@@ -50,7 +50,7 @@ def test_newton_step_solves_the_linearised_position_error(seed):
     ex = exercises.load("ch10_ex2", seed=seed)
     arm = jac.robots.planar(ex.given["lengths"])
     th = np.radians(ex.given["theta_deg"])
-    p = lambda t: arm.fk(t)[:2, 3]  # noqa: E731
+    p = lambda t: arm.fk(t)[:2, 3]
     J_fd = jac.numerical_jacobian(p, th)                                       # ∂p/∂θ by central differences
     step = ex.solution() - th
     np.testing.assert_allclose(J_fd @ step, ex.given["p_d"] - p(th), atol=1e-7)
