@@ -60,10 +60,12 @@ def test_the_seeds_reach_every_kind_of_variant():
     seen: dict[str, set[object]] = {}
     keys = {"ch01_ex4": "inverse", "ch02_ex4": "layout", "ch03_ex4": "layout", "ch04_ex3": "direction",
             "ch04_ex4": "asked", "ch05_ex4": "layout", "ch07_ex4": "pinocchio_frame", "ch08_ex4": "layout",
-            "ch09_ex4": "damping", "ch02_ex3": "joints", "ch06_ex4": "representation"}
+            "ch09_ex4": "damping", "ch02_ex3": "joints", "ch06_ex4": "representation",
+            "ch10_ex1": "asked", "ch10_ex4": "frame"}
     for eid, key in keys.items():
         seen[eid] = {repr(exercises.load(eid, seed=s).given[key]) for s in SEEDS}
-    for eid in ("ch01_ex4", "ch02_ex4", "ch03_ex4", "ch04_ex3", "ch05_ex4", "ch07_ex4", "ch08_ex4", "ch09_ex4"):
+    for eid in ("ch01_ex4", "ch02_ex4", "ch03_ex4", "ch04_ex3", "ch05_ex4", "ch07_ex4", "ch08_ex4", "ch09_ex4",
+                "ch10_ex1", "ch10_ex4"):
         assert len(seen[eid]) == 2, (eid, seen[eid])
     assert len(seen["ch04_ex4"]) == 3
     assert any("P" in j for j in seen["ch02_ex3"]) and len(seen["ch02_ex3"]) >= 5

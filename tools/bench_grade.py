@@ -8,7 +8,7 @@ notebook that calls the variant's reference function; ``wrong``: off by one or a
 zeros; ``half``: the first half right, the rest untouched; ``blank``: nothing).
 
 ``python -m tools.bench_grade [N]`` grades N (default 200) such notebooks, all
-nine chapters and all four ways, and prints notebooks per second and per core.
+every chapter and all four ways, and prints notebooks per second and per core.
 """
 
 from __future__ import annotations

@@ -58,4 +58,13 @@ HINTS: dict[str, str] = {
                 "says.",
     "ch09_ex5": "The semi-axes are the singular values of J_v (square roots of the eigenvalues of J_v J_vᵀ), "
                 "longest first; check J_v at this pose.",
+    "ch10_ex1": "V_b = log(T_sb⁻¹ T_sd) with T_sb⁻¹ = [[Rᵀ, -Rᵀp], [0, 1]]; V_s = [Ad_T_sb] V_b. Check ω first "
+                "(rows 1-3: the axis times the angle of the relative rotation), then v (rows 4-6).",
+    "ch10_ex2": "Compute p(θ_k) and J_v(θ_k) (columns ∂p/∂θ1, ∂p/∂θ2, angles in radians), solve J_v Δθ = p_d - p(θ_k), "
+                "then add Δθ to θ_k in radians. Check the wrong entry's joint.",
+    "ch10_ex3": "Build J_v at θ_k (angles in radians), e = p_d - p(θ_k), then solve (J_vᵀJ_v + λ²I) Δθ = J_vᵀe. Check "
+                "the wrong entry's joint.",
+    "ch10_ex4": "Per iterate: T = FK(θ); V from the logarithm of the transform in the order of your form; stop when "
+                "‖ω‖ ≤ eps_omega and ‖v‖ ≤ eps_v; else θ += pinv(J) V with the Jacobian of the same frame; at most "
+                "20 steps.",
 }
