@@ -7,7 +7,6 @@ that decides who is right, so that it fails on the old page or a wrong value.
 
 from __future__ import annotations
 
-import ast
 import re
 from pathlib import Path
 

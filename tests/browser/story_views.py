@@ -90,7 +90,7 @@ def check_view(el: Any, model: dict[str, Any]) -> dict[str, Any]:
     assert got["time"] == f"t = {s['t']:.2f} s".replace("-", "\u2212")
     assert largest_difference(model, chain, s) <= TOL
     want = library_state(model, chain, s["t"])
-    tip = lambda a: np.asarray(a["tip"]) - np.asarray(a["from"])  # noqa: E731 - the drawn vector
+    tip = lambda a: np.asarray(a["tip"]) - np.asarray(a["from"])
     if model["story"] != "fixed_axis":
         assert np.allclose(got["link"], want["points"], atol=1e-12, rtol=0)  # the drawn arm
     if model["story"] == "body_columns":

@@ -346,13 +346,14 @@ def story_model(story: str = "three_velocities") -> dict[str, Any]:
 def story_times(model: dict[str, Any]) -> NDArray[np.float64]:
     """The instants t_k (s) of the story's frames, as story.js: ``frames`` of them."""
     n, t_end = int(model["frames"]), float(model["t_end"])
-    return np.arange(n) * (t_end / n if model["closed"] else t_end / (n - 1))
+    return np.arange(n, dtype=float) * (t_end / n if model["closed"] else t_end / (n - 1))
 
 
 def story_theta(model: dict[str, Any], t: float | NDArray[np.float64]) -> NDArray[np.float64]:
     """θ(t) of the story's motion (rad): shape (n,) for a number t, (len(t), n) for an array."""
     tt = np.asarray(t, dtype=float)
-    out = np.asarray(model["offset"], dtype=float) + np.multiply.outer(tt, np.asarray(model["rate"], dtype=float))
+    out: NDArray[np.float64] = (np.asarray(model["offset"], dtype=float)
+                                + np.multiply.outer(tt, np.asarray(model["rate"], dtype=float)))
     for i, waves in enumerate(model["waves"]):
         for amp, freq, phase in waves:
             out[..., i] += amp * np.sin(freq * tt + phase)
