@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 
 import jacobians as jac
-from jacobians.widgets.live import (MODELS, STORIES, StoryView, story_model, story_theta, story_theta_dot,
-                                    story_times)
+from jacobians.widgets.live import MODELS, STORIES, StoryView, story_model, story_theta, story_theta_dot, story_times
 
 
 @pytest.mark.parametrize("story", STORIES)
