@@ -234,6 +234,10 @@ function render({ model, el }) {
     const by = line(P.world, C.black, 1.5, { "stroke-dasharray": "4 3" });
     const xbl = P.text(0, 0, "x", "", "b");
     const ybl = P.text(0, 0, "y", "", "b");
+    for (const t of [xbl, ybl]) {
+      t.setAttribute("text-anchor", "middle");
+      t.setAttribute("dominant-baseline", "middle");
+    }
     const arm = (s) => {
       link.setAttribute("points", pts(s.points));
       for (let i = 0; i < n; i++) {
@@ -247,10 +251,11 @@ function render({ model, el }) {
       const a = m.axis_len;
       setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
       by.setAttribute("points", `${s.p[0]},${s.p[1]} ${s.p[0] + a * s.yb[0]},${s.p[1] + a * s.yb[1]}`);
-      xbl.setAttribute("x", s.p[0] + a * s.xb[0] + 0.03);
-      xbl.setAttribute("y", -(s.p[1] + a * s.xb[1] + 0.03));
-      ybl.setAttribute("x", s.p[0] + a * s.yb[0] + 0.03);
-      ybl.setAttribute("y", -(s.p[1] + a * s.yb[1] + 0.03));
+      const r = a + 0.9 * P.font; // the labels just beyond the axes' tips, centred on their line
+      xbl.setAttribute("x", s.p[0] + r * s.xb[0]);
+      xbl.setAttribute("y", -(s.p[1] + r * s.xb[1]));
+      ybl.setAttribute("x", s.p[0] + r * s.yb[0]);
+      ybl.setAttribute("y", -(s.p[1] + r * s.yb[1]));
     };
     if (m.story === "body_columns") {
       const right = html("div", { class: "js-panel" }, plot);
