@@ -21,7 +21,7 @@
 // course_decks.js presses Play when the slide is shown and Pause when it is left.
 
 import { evaluate, makeChain } from "./kinematics.js";
-import { PALETTE, columnColor, fixed, html, injectStyle, makeArrow, setArrow, sub, suppressShortcuts, svg } from "./ui.js";
+import { columnColor, fixed, html, injectStyle, makeArrow, setArrow, sub, suppressShortcuts, svg } from "./ui.js";
 
 export const STORIES = ["fixed_axis", "body_columns", "three_velocities"];
 const C = { orange: "#E69F00", blue: "#0072B2", vermillion: "#D55E00", green: "#009E73", sky: "#56B4E9", black: "#000000" };
