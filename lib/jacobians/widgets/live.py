@@ -339,7 +339,7 @@ def story_model(story: str = "three_velocities") -> dict[str, Any]:
     # ch07: constant joint rates; ṗ at the tool, v_s at the origin of {s}, and the numbers
     theta_dot = [0.5, -0.4, 0.9]
     return {**_chain_model(chain), "story": story, "theta_dot": theta_dot, "vel_scale": 1.0, "axis_len": 0.4,
-            "box": [-2.6, 2.6, -2.6, 2.6],
+            "box": [-1.6, 2.4, -1.2, 2.6],
             **_story_motion([0.2, 0.9, -0.6], theta_dot, [[], [], []], 2 * np.pi / 0.9, 70, False, 1.0)}
 
 
