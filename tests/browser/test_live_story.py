@@ -160,3 +160,39 @@ def test_the_directive_embeds_the_model():
         assert json.loads(html.split('data-model="')[1].split('"')[0].replace("&quot;", '"'))["story"] == story
     with pytest.raises(ValueError, match="Expected story one of"):
         live_views.model_for("story", {"story": "spin"})
+
+
+ESM_JS = """async ([src, state]) => {
+  const url = URL.createObjectURL(new Blob([src], {type: "text/javascript"}));
+  const mod = await import(url);
+  const handlers = new Map();
+  const sets = [];
+  const model = {get: (k) => state[k], off() {}, save_changes() {},
+    set: (k, v) => { state[k] = v; sets.push([k, v]); (handlers.get("change:" + k) || []).forEach((f) => f()); },
+    on: (n, f) => handlers.set(n, [...(handlers.get(n) || []), f])};
+  const el = document.createElement("div");
+  document.body.append(el);
+  mod.default.render({model, el});
+  const s = el.querySelector("input.js-time");
+  s.value = "10";
+  s.dispatchEvent(new Event("input"));
+  const out = {sets, frame: +el.dataset.frame, theta: el.jacLive.theta};
+  el.remove();
+  return out;
+}"""
+
+
+@pytest.mark.parametrize("story", STORIES)
+def test_the_jupyter_widgets_module_renders_and_its_frame_is_pythons(harness, story):
+    """StoryView's _esm (relative imports inlined as data: URLs, as anywidget loads it) with a model
+    stand-in: the slider writes ``frame``, and StoryView.theta at that frame is the θ the view drew."""
+    from jacobians.widgets.live import StoryView
+
+    page, open_story, seen, _ = harness
+    open_story(story)
+    w = StoryView(story)
+    got = page.evaluate(ESM_JS, [w._esm, story_model(story)])
+    assert got["sets"] == [["frame", 10]] and got["frame"] == 10
+    w.frame = got["sets"][-1][1]
+    assert np.allclose(w.theta, got["theta"], atol=1e-12, rtol=0)
+    assert seen["console"] == []
