@@ -64,7 +64,8 @@ def _float(text: str) -> float:
 
 #: Directive option -> how its text becomes the model builder's keyword argument.
 OPTIONS: dict[str, Any] = {"robot": str, "theta": _angles, "frame": str, "sweep": _int, "path": str,
-                           "method": str, "damping": _float, "column": str, "rep": str}
+                           "method": str, "damping": _float, "column": str, "rep": str,
+                           "story": str}
 
 
 def host_html(view: str, model: dict[str, Any], depth: int, uid: str) -> str:

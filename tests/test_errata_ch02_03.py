@@ -7,7 +7,6 @@ that decides who is right, so that it fails on the old page or a wrong value.
 
 from __future__ import annotations
 
-import ast
 import re
 from pathlib import Path
 
@@ -263,15 +262,17 @@ def test_every_animation_has_a_numbered_caption_and_a_readable_size(name):
         assert float(size) >= 11
 
 
-def test_ch03_animation_title_not_clipped_and_arrows_inside():
-    """The old figure (9.6 in, dpi 72, tight_layout before the animation) clipped its left title and
-    drew the column of joint 1 outside the right panel (x down to -1.70 with xlim -1.6)."""
+def test_ch03_animation_arrows_inside():
+    """The old figure drew the column of joint 1 outside the right panel (x down to -1.70 with xlim -1.6).
+    The live view (story ``body_columns``) that replaced it has a right panel that holds every arrow."""
     anim = section(CH03, "ch03-animation")
-    assert 'layout="constrained"' in anim and "tight_layout" not in anim
-    limits = ast.literal_eval(re.search(r"XL, YL, XR, YR = (.*)", anim).group(1))
-    xr0 = limits[2][0]
-    tt = np.linspace(0, 2 * np.pi, 32, endpoint=False)
-    traj = np.stack([0.5 + 0.6 * np.sin(tt), 0.9 + 0.5 * np.sin(2 * tt + 0.4), -1.0 + 0.8 * np.cos(tt)], axis=1)
+    assert "{live-view} story" in anim and ":story: body_columns" in anim
+    from jacobians.widgets.live import story_model, story_theta, story_times
+
+    model = story_model("body_columns")
+    xr0 = model["box_right"][0]
+    tt = story_times(model)
+    traj = story_theta(model, tt)
     vb = jac.body_jacobian(jac.robots.planar_3r(1.0, 0.8, 0.5), traj)[:, 3:5, :]
     assert vb[:, 0, :].min() < -1.6                                # outside the old panel ...
     assert vb[:, 0, :].min() > xr0                                 # ... inside the new one

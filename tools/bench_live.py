@@ -16,7 +16,8 @@ the directive's models, one update at a time, each followed by a forced layout
 (``getBoundingClientRect`` of the view): the planar explorer (2R and 3R) on a
 slider input and on a tool drag (``pointermove``: up to 60 DLS iterations),
 the resolved-rate view on a step (a Play frame) and on a damping change (the
-whole 160-step run again).
+whole 160-step run again), the story views of chapters 1, 3 and 7 on a time
+slider input (one frame of the replay).
 
 Also prints the size of every module under ``_theme/live/`` and the modules
 each view's page loads (its import graph). Budgets (issue #13): one update,
@@ -118,6 +119,10 @@ VIEW_JS = """({view, model, n, kind, seed}) => {
     } else if (kind === "drag") {
       handle.dispatchEvent(new PointerEvent("pointermove", {bubbles: true, pointerId: 1,
         clientX: box.left + box.width * (0.1 + 0.8 * rand()), clientY: box.top + box.height * (0.1 + 0.8 * rand())}));
+    } else if (kind === "story") {
+      const st = el.querySelector("input.js-time");
+      st.value = String(Math.floor(rand() * (+st.max + 1)));
+      st.dispatchEvent(new Event("input", {bubbles: true}));
     } else if (kind === "step") {
       const st = el.querySelector("input.jr-step");
       st.value = String(k % 160);
@@ -205,6 +210,9 @@ def run(n: int) -> dict[str, Any]:
                      ("resolved_rate: step", "resolved_rate", resolved_rate_model(), "step"),
                      ("resolved_rate: damping (new run)", "resolved_rate",
                       resolved_rate_model(method="dls"), "damping")]
+            from jacobians.widgets.live import STORIES, story_model
+
+            cases += [(f"story {s}: time slider", "story", story_model(s), "story") for s in STORIES]
             for label, view, model, kind in cases:
                 m = max(50, n // 10) if kind in ("drag", "damping") else n
                 page.evaluate(VIEW_JS, {"view": view, "model": model, "n": 50, "kind": kind, "seed": 1})  # warm up
@@ -239,7 +247,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  {label:34s} n {len(t):5d}  median {statistics.median(t):.3f} ms   "
               f"p99 {sorted(t)[int(0.99 * len(t))]:.3f} ms   worst {max(t):.3f} ms   "
               f"over 16 ms: {sum(x > 16 for x in t)}   {'within' if ok else 'OVER'} budget")
-    for view in ("planar_explorer", "resolved_rate"):
+    for view in ("planar_explorer", "resolved_rate", "story"):
         mods = page_modules(view)
         print(f"  a page with {view} loads {', '.join(f'{k} {v / 1024:.1f} KB' for k, v in mods.items())}: "
               f"{sum(mods.values()) / 1024:.1f} KB (budget 150 KB)")

@@ -5,12 +5,18 @@
   function buttons(slide, what) {
     return slide ? slide.querySelectorAll('.animation button[onclick*="' + what + '"]') : [];
   }
+  function stories(slide, pressed) {
+    // the story live views (_theme/live/story.js): their Play button, when (not) playing
+    return slide ? slide.querySelectorAll('.jac-live[data-story] button.jl-play[aria-pressed="' + pressed + '"]') : [];
+  }
   function play(slide) {
-    // an animation starts when its slide is shown
+    // an animation starts when its slide is shown; the focus stays off it, so the arrow keys still change slides
     buttons(slide, "play_animation()").forEach(function (b) { b.click(); b.blur(); });
+    stories(slide, "false").forEach(function (b) { b.click(); b.blur(); });
   }
   function pause(slide) {
     buttons(slide, "pause_animation()").forEach(function (b) { b.click(); b.blur(); });
+    stories(slide, "true").forEach(function (b) { b.click(); b.blur(); });
   }
   function ready() {
     if (!window.Reveal) { return; }

@@ -19,6 +19,7 @@ import bookcheck
 import live_views
 import numpy as np
 import pytest
+import story_views
 
 import jacobians as jac
 
@@ -414,6 +415,12 @@ def check_built_page(context, root: Path, path: str) -> dict:
             assert views, f"{path}: no live view rendered"
             for el in views:
                 model = json.loads(el.get_attribute("data-model"))
+                if el.get_attribute("data-view") == "story":  # chapters 1, 3, 7: the replay (story_views.py)
+                    story_views.check_view(el, model)
+                    el.query_selector("input.js-time").focus()
+                    page.keyboard.press("ArrowRight")
+                    assert story_views.check_view(el, model)["frame"] == 1
+                    continue
                 robot = {2: "planar_2r", 3: "planar_3r"}[len(model["S"][0])]
                 if el.get_attribute("data-view") == "planar_explorer":
                     theta0 = list(model["theta"])
@@ -443,7 +450,9 @@ def check_built_page(context, root: Path, path: str) -> dict:
 
 @pytest.mark.parametrize("chapter,view", [("02_space_jacobian", "planar_explorer"),
                                           ("05_geometric_jacobian", "planar_explorer"),
-                                          ("09_using_the_jacobian", "resolved_rate")])
+                                          ("09_using_the_jacobian", "resolved_rate"),
+                                          ("01_twists", "story"), ("03_body_jacobian", "story"),
+                                          ("07_conversions", "story")])
 def test_on_the_built_chapter_page(browser_context, book_html, chapter, view):
     """The built book (``make book`` runs before the browser tests; BOOK_HTML may point elsewhere)."""
     built = book_html / "chapters" / f"{chapter}.html"

@@ -71,7 +71,7 @@ MEASURE = """(i) => {
           notes: notes ? notes.textContent.trim() : "",
           title: slide.classList.contains("title-slide") || i === 0,
           text: clone.textContent.replace(/\\s+/g, " ").trim(),
-          animations: slide.querySelectorAll(".animation").length};
+          animations: slide.querySelectorAll(".animation, .jac-live[data-story]").length};
 }"""
 
 
@@ -134,7 +134,8 @@ def walk(browser: Any, server: str, source: Path) -> dict[str, Any]:
             page.keyboard.press("ArrowRight")
             page.wait_for_timeout(60)
         if slides[i]["animations"]:
-            src = "() => [...Reveal.getCurrentSlide().querySelectorAll('.animation img')].map(im => im.src.length + ':' + im.src.slice(-40))"
+            src = ("() => [...Reveal.getCurrentSlide().querySelectorAll('.animation img')].map(im => im.src.length + ':' + im.src.slice(-40))"
+                   ".concat([...Reveal.getCurrentSlide().querySelectorAll('.jac-live[data-story]')].map(el => el.dataset.frame))")
             before = page.evaluate(src)
             page.wait_for_timeout(900)
             anims.append((i, before != page.evaluate(src)))

@@ -1,0 +1,389 @@
+// Story animations as a live view (issue #13): a motion replayed with a Play /
+// Pause button and a time slider (a labelled <input>, one frame per arrow
+// key), drawn in SVG from the chain and the motion embedded at build time by
+// the {live-view} directive (jacobians.widgets.live.story_model). The view
+// computes in the browser only what it draws, with kinematics.js, at each
+// frame; tests/browser/test_live_story.py compares those numbers with the
+// library. Three stories:
+//
+//   fixed_axis        (chapter 1) a body turning about a fixed vertical axis through q:
+//                     v_s at the origin of {s} stays put, ṗ turns with the body.
+//   body_columns      (chapter 3) the planar 3R arm along a closed path: left, the linear
+//                     parts of J_b's columns turned into {s}, at the tool (the tool velocity per
+//                     joint); right, the same vectors in {b}-coordinates.
+//   three_velocities  (chapter 7) the planar 3R arm at constant joint rates: ṗ at the tool, v_s
+//                     at the origin of {s}, and ω_s, ω_b, ṗ, v_s, v_b in numbers.
+//
+// anywidget-compatible: `export default { render }`. Model keys: S, M, Q, name, reach, story,
+// offset, rate, waves (θ_i(t) = offset_i + rate_i t + Σ amp sin(freq t + phase)), t_end,
+// frames, closed, speed (story seconds per second), frame (shown, written back), box
+// ([x0, x1, y0, y1] m), box_right, scale, theta_dot, vel_scale, axis_len, q. In a deck,
+// course_decks.js presses Play when the slide is shown and Pause when it is left.
+
+import { evaluate, makeChain } from "./kinematics.js";
+import { columnColor, fixed, html, injectStyle, makeArrow, setArrow, sub, suppressShortcuts, svg } from "./ui.js";
+
+export const STORIES = ["fixed_axis", "body_columns", "three_velocities"];
+const C = { orange: "#E69F00", blue: "#0072B2", vermillion: "#D55E00", green: "#009E73", sky: "#56B4E9", black: "#000000" };
+
+const CSS = `
+.jac-live .js-plot{flex:1 1 300px;max-width:460px;min-width:0;display:flex;flex-wrap:wrap;gap:8px}
+.jac-live .js-plot.js-two{flex:1 1 100%;max-width:760px}
+.jac-live .js-plot svg{flex:1 1 260px;min-width:0;width:100%;height:auto;display:block}
+.jac-live .js-panel-title{font-size:15px;margin:0 0 2px;text-align:center}
+.jac-live .js-panel{flex:1 1 260px;min-width:0}
+`;
+
+/** The time of frame k (s): closed motions do not repeat t_end (= t_0). */
+export function frameTime(m, k) {
+  const n = m.frames;
+  return k * (m.closed ? m.t_end / n : m.t_end / (n - 1));
+}
+
+/** θ(t) of the motion (rad). */
+export function storyTheta(m, t) {
+  return m.offset.map((o, i) => {
+    let x = o + m.rate[i] * t;
+    for (const [amp, freq, phase] of m.waves[i] || []) x += amp * Math.sin(freq * t + phase);
+    return x;
+  });
+}
+
+/** dθ/dt of the motion at t (rad/s). */
+export function storyThetaDot(m, t) {
+  return m.rate.map((r, i) => {
+    let x = r;
+    for (const [amp, freq, phase] of m.waves[i] || []) x += amp * freq * Math.cos(freq * t + phase);
+    return x;
+  });
+}
+
+const mulJ = (J, rows, qd) => rows.map((r) => J[r].reduce((s, x, i) => s + x * qd[i], 0));
+
+/** Everything a story draws at time t, from the library's formulas (kinematics.js). */
+export function storyState(chain, m, t) {
+  const theta = storyTheta(m, t);
+  const e = evaluate(chain, theta);
+  const T = e.T;
+  const p = [T[0][3], T[1][3]];
+  const R2 = [[T[0][0], T[0][1]], [T[1][0], T[1][1]]];
+  const out = { t, theta, p, xb: [R2[0][0], R2[1][0]], yb: [R2[0][1], R2[1][1]], points: e.points.map((q) => [q[0], q[1]]) };
+  if (m.story === "body_columns") {
+    out.vb = [0, 1, 2].map((i) => [e.Jb[3][i], e.Jb[4][i]]); // right: linear parts of J_b's columns, in {b}
+    out.vs = out.vb.map((v) => [R2[0][0] * v[0] + R2[0][1] * v[1], R2[1][0] * v[0] + R2[1][1] * v[1]]); // left, in {s}
+  } else {
+    const qd = m.story === "fixed_axis" ? storyThetaDot(m, t) : m.theta_dot;
+    const Vs = mulJ(e.Js, [0, 1, 2, 3, 4, 5], qd);
+    const Vb = mulJ(e.Jb, [0, 1, 2, 3, 4, 5], qd);
+    out.thetaDot = qd;
+    out.omegaS = Vs.slice(0, 3);
+    out.vS = Vs.slice(3);
+    out.omegaB = Vb.slice(0, 3);
+    out.vB = Vb.slice(3);
+    out.pDot = mulJ(e.Jg, [3, 4, 5], qd);
+  }
+  return out;
+}
+
+/** An SVG drawing of box [x0, x1, y0, y1] (m, y up): {root, world (y flipped), label(x, y, text)}. */
+function panel(parent, box, label) {
+  const [x0, x1, y0, y1] = box;
+  const root = svg("svg", { viewBox: `${x0} ${-y1} ${x1 - x0} ${y1 - y0}`, role: "img", "aria-label": label }, parent);
+  svg("rect", { x: x0, y: -y1, width: x1 - x0, height: y1 - y0, fill: "white", stroke: "#bbbbbb",
+    "vector-effect": "non-scaling-stroke" }, root);
+  const world = svg("g", { transform: "scale(1,-1)" }, root);
+  const grid = svg("g", { stroke: "#dddddd", "stroke-width": 1 }, world);
+  for (let k = Math.ceil(x0); k <= x1; k++) svg("line", { x1: k, y1: y0, x2: k, y2: y1, "vector-effect": "non-scaling-stroke" }, grid);
+  for (let k = Math.ceil(y0); k <= y1; k++) svg("line", { x1: x0, y1: k, x2: x1, y2: k, "vector-effect": "non-scaling-stroke" }, grid);
+  const font = 0.045 * (x1 - x0); // ≥ 14 px when the drawing is ≥ 312 px wide
+  const text = (x, y, s, cls = "", index = "") => {
+    const t = svg("text", { x, y: -y, "font-size": font, class: cls }, root);
+    t.textContent = s;
+    if (index) svg("tspan", { "baseline-shift": "sub", "font-size": 0.85 * font }, t).textContent = index;
+    return t;
+  };
+  return { root, world, text, font, box };
+}
+
+function line(parent, color, width, extra = {}) {
+  return svg("polyline", { fill: "none", stroke: color, "stroke-width": width, "stroke-linejoin": "round",
+    "stroke-linecap": "round", "vector-effect": "non-scaling-stroke", ...extra }, parent);
+}
+
+const pts = (P) => P.map((q) => `${q[0]},${q[1]}`).join(" ");
+
+function legendItem(ul, color, parts, dashed = false) {
+  const li = html("li", {}, ul);
+  const style = dashed ? `border-top:3px dashed ${color};height:0` : `background:${color}`;
+  html("span", { class: "jl-key", style }, li);
+  for (const p of parts) (Array.isArray(p) ? sub(li, p) : li.append(p));
+  return li;
+}
+
+function setText(node, text) {
+  if (node.textContent !== text) node.textContent = text;
+}
+
+const vec = (v, d = 2) => `(${v.map((x) => fixed(x, d)).join(", ")})`;
+
+function render({ model, el }) {
+  const doc = el.ownerDocument;
+  injectStyle(doc);
+  if (!doc.getElementById("jac-story-style")) {
+    const s = html("style", { id: "jac-story-style" }, doc.head);
+    s.textContent = CSS;
+  }
+  el.classList.add("jac-live");
+  const get = (k) => model.get(k);
+  const m = {};
+  for (const k of ["story", "offset", "rate", "waves", "t_end", "frames", "closed", "speed", "box", "box_right",
+    "scale", "theta_dot", "vel_scale", "axis_len", "q"]) m[k] = get(k);
+  if (!STORIES.includes(m.story)) throw new Error(`Expected story one of ${STORIES.join(", ")}, got ${JSON.stringify(m.story)}`);
+  const chain = makeChain(get("S"), get("M"), get("Q") || null);
+  const n = chain.n;
+  const reach = Number(get("reach")) || 1;
+  const uid = `js${Math.random().toString(36).slice(2, 9)}`;
+  el.dataset.story = m.story;
+
+  const wrap = html("div", { class: "jl-wrap" }, el);
+  const plot = html("div", { class: `js-plot${m.story === "body_columns" ? " js-two" : ""}` }, wrap);
+  const side = html("div", { class: "jl-side" }, wrap);
+  const head = 0.06 * reach;
+  const tiny = 1e-9;
+  const legend = html("ul", { class: "jl-legend" });
+  const draw = []; // per-frame drawing functions of the story
+  const table = html("table", { class: "js-numbers" });
+  const caption = html("caption", {}, table);
+  const tbody = html("tbody", {}, table);
+  const rows = {};
+  function tableRows(labels, cols, colColors = null) {
+    const hr = html("tr", {}, html("thead", {}, table));
+    table.insertBefore(hr.parentNode, tbody);
+    html("th", { scope: "col" }, hr, "");
+    cols.forEach((c, i) => html("th", { scope: "col", style: colColors ? `color:${colColors[i]}` : "" }, hr, c));
+    for (const [key, lab] of labels) {
+      const tr = html("tr", {}, tbody);
+      sub(html("th", { scope: "row" }, tr), lab);
+      rows[key] = cols.map(() => html("td", {}, tr, ""));
+    }
+  }
+  const setRow = (key, v, d = 2) => v.forEach((x, i) => setText(rows[key][i], fixed(x, d)));
+  const arrowsOf = (a, cls) => a.g.setAttribute("class", cls);
+
+  if (m.story === "fixed_axis") {
+    const P = panel(plot, m.box, "A body frame {b} turning about a vertical axis through q: v_s at the origin of {s}, ṗ at the origin of {b}");
+    const L = 0.4;
+    setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [L, 0], 0.08, tiny);
+    setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [0, L], 0.08, tiny);
+    P.text(-0.55, 0.08, "{s}");
+    const q = m.q;
+    const d = 0.07;
+    line(P.world, C.black, 2.5, { points: `${q[0] - d},${q[1] - d} ${q[0] + d},${q[1] + d}` });
+    line(P.world, C.black, 2.5, { points: `${q[0] - d},${q[1] + d} ${q[0] + d},${q[1] - d}` });
+    P.text(q[0] + 0.1, q[1] + 0.1, "q");
+    const circle = [];
+    for (let k = 0; k <= 96; k++) circle.push(storyState(chain, m, (2 * Math.PI * k) / 96).p); // where {b}'s origin goes
+    line(P.world, C.sky, 2, { points: pts(circle), "stroke-dasharray": "2 4", class: "js-path" });
+    const bx = makeArrow(P.world, C.vermillion, 2.5);
+    const by = makeArrow(P.world, C.green, 2.5);
+    arrowsOf(bx, "js-xb");
+    arrowsOf(by, "js-yb");
+    const blabel = P.text(0, 0, "{b}");
+    const vs = makeArrow(P.world, C.orange, 4);
+    const pd = makeArrow(P.world, C.blue, 4);
+    arrowsOf(vs, "js-vs");
+    arrowsOf(pd, "js-pdot");
+    legendItem(legend, C.orange, ["v", ["", "s"], ": the body point passing through the origin of {s}"]);
+    legendItem(legend, C.blue, ["ṗ: the origin of {b}"]);
+    legendItem(legend, C.vermillion, ["x", ["", "b"], " and ", "y", ["", "b"], " (green): the axes of {b}"]);
+    legendItem(legend, C.sky, ["where the origin of {b} goes; ✕ the axis through q (ω̂ = ẑ); grid 1 m"], true);
+    caption.textContent = "velocities (m/s)";
+    tableRows([["vs", ["v", "s"]], ["pd", ["ṗ", ""]]], ["x", "y", "‖·‖"]);
+    draw.push((s) => {
+      const a = m.axis_len;
+      setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
+      setArrow(by, s.p, [a * s.yb[0], a * s.yb[1]], 0.07, tiny);
+      blabel.setAttribute("x", s.p[0] + 0.05);
+      blabel.setAttribute("y", -(s.p[1] - 0.25));
+      setArrow(vs, [0, 0], [s.vS[0], s.vS[1]], 0.12, tiny);
+      setArrow(pd, s.p, [s.pDot[0], s.pDot[1]], 0.12, tiny);
+      setRow("vs", [s.vS[0], s.vS[1], Math.hypot(...s.vS)]);
+      setRow("pd", [s.pDot[0], s.pDot[1], Math.hypot(...s.pDot)]);
+      return { vs: [[0, 0], [s.vS[0], s.vS[1]]], pdot: [s.p, [s.pDot[0], s.pDot[1]]] };
+    });
+  } else {
+    // the planar 3R arm: links, joints, {s} and the tool axes
+    const left = html("div", { class: "js-panel" }, plot);
+    if (m.story === "body_columns") html("p", { class: "js-panel-title" }, left, "the arm in {s}; tool velocity per joint (×0.6)");
+    const P = panel(left, m.box, m.story === "body_columns"
+      ? "The planar 3R arm in {s}, with the velocity of the tool point when each joint alone turns at 1 rad/s"
+      : "The planar 3R arm at constant joint rates: ṗ at the tool, v_s at the origin of {s}");
+    const L = 0.5;
+    setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [L, 0], 0.08, tiny);
+    setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [0, L], 0.08, tiny);
+    P.text(L + 0.02, -P.font * 1.1, "x");
+    P.text(-P.font * 0.9, L + 0.02, "y");
+    const link = line(P.world, "#999999", 7, { class: "jl-link" });
+    const joints = [];
+    const jl = [];
+    for (let i = 0; i < n; i++) {
+      joints.push(svg("circle", { r: 0.05, fill: "white", stroke: C.black, "stroke-width": 2, "vector-effect": "non-scaling-stroke" }, P.world));
+      if (m.story === "body_columns") jl.push(P.text(0, 0, `J${i + 1}`));
+    }
+    const bx = makeArrow(P.world, C.black, 1.5);
+    const by = line(P.world, C.black, 1.5, { "stroke-dasharray": "4 3" });
+    const xbl = P.text(0, 0, "x", "", "b");
+    const ybl = P.text(0, 0, "y", "", "b");
+    for (const t of [xbl, ybl]) {
+      t.setAttribute("text-anchor", "middle");
+      t.setAttribute("dominant-baseline", "middle");
+    }
+    const arm = (s) => {
+      link.setAttribute("points", pts(s.points));
+      for (let i = 0; i < n; i++) {
+        joints[i].setAttribute("cx", s.points[i][0]);
+        joints[i].setAttribute("cy", s.points[i][1]);
+        if (jl[i]) {
+          jl[i].setAttribute("x", s.points[i][0] + 0.08);
+          jl[i].setAttribute("y", -(s.points[i][1] - 0.28));
+        }
+      }
+      const a = m.axis_len;
+      setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
+      by.setAttribute("points", `${s.p[0]},${s.p[1]} ${s.p[0] + a * s.yb[0]},${s.p[1] + a * s.yb[1]}`);
+      const r = a + 0.9 * P.font; // the labels just beyond the axes' tips, centred on their line
+      xbl.setAttribute("x", s.p[0] + r * s.xb[0]);
+      xbl.setAttribute("y", -(s.p[1] + r * s.xb[1]));
+      ybl.setAttribute("x", s.p[0] + r * s.yb[0]);
+      ybl.setAttribute("y", -(s.p[1] + r * s.yb[1]));
+    };
+    if (m.story === "body_columns") {
+      const right = html("div", { class: "js-panel" }, plot);
+      html("p", { class: "js-panel-title" }, right, "the same vectors in {b} (to scale)");
+      const Rp = panel(right, m.box_right, "The linear parts of the columns of J_b, in {b}-coordinates");
+      line(Rp.world, "#999999", 1, { points: `${m.box_right[0]},0 ${m.box_right[1]},0` });
+      line(Rp.world, "#999999", 1, { points: `0,${m.box_right[2]} 0,${m.box_right[3]}` });
+      Rp.text(m.box_right[1] - 1.6 * Rp.font, -1.2 * Rp.font, "x", "", "b");
+      Rp.text(0.08, m.box_right[3] - 1.1 * Rp.font, "y", "", "b");
+      const colsL = [];
+      const colsR = [];
+      for (let i = 0; i < 3; i++) {
+        colsL.push(makeArrow(P.world, columnColor(i), 3.5));
+        colsR.push(makeArrow(Rp.world, columnColor(i), 3.5));
+        arrowsOf(colsL[i], `js-left js-col-${i + 1}`);
+        arrowsOf(colsR[i], `js-right js-col-${i + 1}`);
+      }
+      for (let i = 0; i < 3; i++) legendItem(legend, columnColor(i), ["J", ["", `b${i + 1}`], ` (joint ${i + 1})`]);
+      legendItem(legend, C.black, ["x", ["", "b"], " solid, ", "y", ["", "b"], " dashed: the tool axes; grid 1 m (right: 1 m/rad)"]);
+      caption.append("linear parts of the columns of J");
+      sub(caption, ["", "b"]);
+      caption.append(", in {b} (m/rad)");
+      tableRows([["x", ["x", "b"]], ["y", ["y", "b"]]], ["col 1", "col 2", "col 3"], [0, 1, 2].map(columnColor));
+      draw.push((s) => {
+        arm(s);
+        const k = m.scale;
+        for (let i = 0; i < 3; i++) {
+          setArrow(colsL[i], s.p, [k * s.vs[i][0], k * s.vs[i][1]], head, tiny);
+          setArrow(colsR[i], [0, 0], s.vb[i], 0.09, tiny);
+        }
+        setRow("x", s.vb.map((v) => v[0]));
+        setRow("y", s.vb.map((v) => v[1]));
+        return { left: s.vs.map((v) => [s.p, [k * v[0], k * v[1]]]), right: s.vb.map((v) => [[0, 0], v]) };
+      });
+    } else {
+      const pd = makeArrow(P.world, C.green, 4);
+      const vs = makeArrow(P.world, C.orange, 4);
+      arrowsOf(pd, "js-pdot");
+      arrowsOf(vs, "js-vs");
+      legendItem(legend, C.green, ["ṗ (geometric J): the tool point's velocity"]);
+      legendItem(legend, C.orange, ["v", ["", "s"], " (space J", ["", "s"], "): at the origin of {s}"]);
+      legendItem(legend, C.black, ["x", ["", "b"], " solid, ", "y", ["", "b"], " dashed: the tool axes; grid 1 m"]);
+      caption.textContent = `θ̇ = ${vec(m.theta_dot, 1)} rad/s`;
+      tableRows([["ws", ["ω", "s"]], ["wb", ["ω", "b"]], ["pd", ["ṗ", ""]], ["vs", ["v", "s"]], ["vb", ["v", "b"]]],
+        ["x", "y", "z", "‖·‖"]);
+      const vsc = m.vel_scale;
+      draw.push((s) => {
+        arm(s);
+        setArrow(pd, s.p, [vsc * s.pDot[0], vsc * s.pDot[1]], head, tiny);
+        setArrow(vs, [0, 0], [vsc * s.vS[0], vsc * s.vS[1]], head, tiny);
+        const nrm = (v) => Math.hypot(...v);
+        setRow("ws", [...s.omegaS, nrm(s.omegaS)]);
+        setRow("wb", [...s.omegaB, nrm(s.omegaB)]);
+        setRow("pd", [...s.pDot, nrm(s.pDot)]);
+        setRow("vs", [...s.vS, nrm(s.vS)]);
+        setRow("vb", [...s.vB, nrm(s.vB)]);
+        return { pdot: [s.p, [vsc * s.pDot[0], vsc * s.pDot[1]]], vs: [[0, 0], [vsc * s.vS[0], vsc * s.vS[1]]] };
+      });
+    }
+  }
+
+  // ---- controls: Play / Pause and the time slider
+  const id = `${uid}-time`;
+  const label = html("label", { for: id }, side);
+  label.append("time ");
+  const out = html("output", { for: id, class: "js-time-value" }, label);
+  const slider = html("input", { type: "range", id, min: 0, max: m.frames - 1, step: 1, class: "js-time" }, side);
+  const row = html("div", { class: "jl-row" }, side);
+  const play = html("button", { type: "button", class: "jl-play", "aria-pressed": "false" }, row, "▶ Play");
+  const thetaLine = html("p", { class: "jl-status js-theta" }, side);
+  side.append(table, legend);
+
+  const state = { frame: null, drawn: null };
+  const readFrame = () => {
+    const k = Math.round(Number(model.get("frame")));
+    return Number.isFinite(k) ? ((k % m.frames) + m.frames) % m.frames : 0;
+  };
+  function redraw() {
+    const k = readFrame();
+    const s = storyState(chain, m, frameTime(m, k));
+    const arrows = draw[0](s);
+    setText(out, `t = ${fixed(s.t, 2)} s`);
+    setText(thetaLine, `θ = (${s.theta.map((x) => `${fixed((x * 180) / Math.PI, 0)}°`).join(", ")})`);
+    if (Number(slider.value) !== k) slider.value = String(k);
+    slider.setAttribute("aria-valuetext", `t = ${fixed(s.t, 2)} s, frame ${k + 1} of ${m.frames}`);
+    Object.assign(state, { frame: k, ...s, arrows });
+    el.dataset.frame = String(k);
+  }
+  const setFrame = (k) => {
+    model.set("frame", k);
+    model.save_changes();
+  };
+  const onInput = () => {
+    stop();
+    setFrame(Number(slider.value));
+  };
+  let timer = null;
+  const frameMs = (1000 * m.t_end) / (m.closed ? m.frames : m.frames - 1) / (m.speed || 1);
+  function stop() {
+    if (timer !== null) clearInterval(timer);
+    timer = null;
+    play.textContent = "▶ Play";
+    play.setAttribute("aria-pressed", "false");
+    el.dataset.playing = "0";
+  }
+  function start() {
+    if (timer !== null) return;
+    timer = setInterval(() => setFrame((readFrame() + 1) % m.frames), frameMs);
+    play.textContent = "❚❚ Pause";
+    play.setAttribute("aria-pressed", "true");
+    el.dataset.playing = "1";
+  }
+  const onPlay = () => (timer !== null ? stop() : start());
+  play.addEventListener("click", onPlay);
+  slider.addEventListener("input", onInput);
+  model.on("change:frame", redraw);
+  redraw();
+  el.dataset.playing = "0";
+  suppressShortcuts(el);
+  el.jacLive = state;
+  return () => {
+    stop();
+    model.off("change:frame", redraw);
+    slider.removeEventListener("input", onInput);
+    play.removeEventListener("click", onPlay);
+    el.textContent = "";
+  };
+}
+
+export { render };
+export default { render };
