@@ -306,9 +306,9 @@ def test_place_labels_keeps_each_number_on_its_own_axis(k, elev, azim):
     # the two views of the UR5 figure of chapter 1 (ch01-fig-ur5), as the chapter draws them
     ur5 = jac.robots.ur5()
     fig = plt.figure(figsize=(8.4, 4.6), dpi=80)
-    ax = fig.add_axes([0.5 * k, 0.0, 0.5, 0.9], projection="3d")
+    ax = fig.add_axes([0.53 * k, 0.0, 0.47, 0.9], projection="3d")
     ax.set(xlim=(-0.2, 1.0), ylim=(-0.3, 0.4), zlim=(-0.25, 0.35))
-    ax.set_box_aspect((1.2, 0.7, 0.6), zoom=(1.45, 1.3)[k])
+    ax.set_box_aspect((1.2, 0.7, 0.6), zoom=(0.95, 1.0)[k])
     ax.view_init(elev=elev, azim=azim)
     art = P.draw_spatial_chain(ax, ur5, np.zeros(6), fontsize=13, label_box=True, axis_length=0.12,
                                frame_length=0.16, place_labels=True)
