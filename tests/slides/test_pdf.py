@@ -33,3 +33,18 @@ def test_one_page_per_slide_none_blank(pdfs, source):
         text = (page.extract_text() or "").strip()
         xobjects = page["/Resources"].get("/XObject") or {}
         assert len(text) > 3 or len(xobjects) > 0, f"page {i + 1} is blank"
+
+
+@pytest.mark.parametrize("source", SOURCES, ids=[s.stem for s in SOURCES])
+def test_math_is_printed_in_mathjax_fonts(pdfs, source):
+    """A deck with math prints it in MathJax's own web fonts (MJXTEX...), not in the browser's fallback fonts."""
+    import pypdf
+
+    html = (SITE / "slides" / build_slides.deck_path(source)).read_text(encoding="utf-8")
+    if 'class="math' not in html:
+        pytest.skip("no math in this deck")
+    fonts: set[str] = set()
+    for page in pypdf.PdfReader(pdfs[source.stem]["file"]).pages:
+        for ref in (page["/Resources"].get("/Font") or {}).values():
+            fonts.add(str(ref.get_object().get("/BaseFont", "")))
+    assert any("MJXTEX" in f or "MJXZERO" in f for f in fonts), sorted(fonts)
