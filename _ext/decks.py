@@ -20,7 +20,9 @@ What a slide shows (:func:`to_slides`, run on ``doctree-resolved`` for the
   in the book);
 * words only from ``{slide}`` blocks: slide-only text written beside the book
   text in the chapter source (the book shows nothing of it). Book prose never
-  reaches a slide; it is what the book is for;
+  reaches a slide; it is what the book is for. A statement of more than
+  :data:`STATEMENT_WORDS` words shows as its number, title and display
+  equations, and goes in full into the speaker notes;
 * speaker notes from ``{slide-notes}`` blocks (``:minutes:`` the rough time),
   also invisible in the book, and from cells typed ``notes``;
 * a cell typed ``fragment`` appears on the next key press.
@@ -144,6 +146,56 @@ def _patch_markdown_cells() -> None:
 
 
 DISPLAY_PRF = {"definition_node", "theorem_node", "proposition_node", "corollary_node", "lemma_node"}
+#: one idea a slide, about 40 words: a statement longer than this (words, math not counted) shows on a slide
+#: as its number, title and display equations, and the speaker notes carry it in full
+STATEMENT_WORDS = 20
+
+
+def _words(node: nodes.Node) -> int:
+    """Words of a node's text, math not counted."""
+    count = 0
+    for text in node.findall(nodes.Text):
+        parent = text.parent
+        inside_math = False
+        while parent is not None:
+            if isinstance(parent, nodes.math | nodes.math_block):
+                inside_math = True
+                break
+            parent = parent.parent
+        if not inside_math:
+            count += sum(1 for w in text.astext().split() if any(c.isalnum() for c in w))
+    return count
+
+
+def _statement_in_full(statement: nodes.Element) -> nodes.Element:
+    """A statement's full text for the speaker notes: plain paragraphs and equations (no ids, no numbers)."""
+    kind = str(statement.get("realtype", "statement")).capitalize()
+    box = nodes.container("", nodes.paragraph("", f"{kind}{statement.get('title', '')}, in full:"),
+                          classes=["statement-in-full"])
+    content = next(iter(statement.findall(nodes.section)), None)
+    for child in (content.children if content is not None else []):
+        copy = child.deepcopy()
+        for inner in copy.findall(nodes.Element):
+            inner["ids"] = []
+            if isinstance(inner, nodes.math_block):
+                inner["number"] = None
+                inner["label"] = None
+        box += copy
+    return box
+
+
+def _short_statement(statement: nodes.Element) -> nodes.Element:
+    """A long statement as a slide shows it: its number and title, and its display equations only."""
+    short = statement.deepcopy()
+    for content in list(short.findall(nodes.section)):
+        equations = [m.deepcopy() for m in content.findall(nodes.math_block)]
+        del content[:]
+        if equations:
+            content += equations
+        else:
+            content.parent.remove(content)
+    short["classes"] = [*short.get("classes", []), "statement-short"]
+    return short
 
 
 def _code_kind(node: nodes.Element) -> str:
@@ -309,10 +361,17 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
             continue
         picture = any(_is_picture(s) for s in shown)
         statement = any(type(s).__name__ in DISPLAY_PRF for s in shown)
+        in_full: list[nodes.Node] = []
+        for k, item in enumerate(shown):
+            if type(item).__name__ in DISPLAY_PRF and isinstance(item, nodes.Element) and _words(
+                    next(iter(item.findall(nodes.section)), item)) > STATEMENT_WORDS:
+                shown[k] = _short_statement(item)
+                in_full.append(_statement_in_full(item))
         # one idea a slide: a picture or a statement gets a slide of its own, with the section's heading
         if (picture and current.display) or current.picture or (statement and current.statement):
             current = start(current.title.deepcopy() if current.title is not None else section_title,
                             section_ids)
+        current.notes.extend(in_full)
         if kind == "fragment":
             shown = [nodes.container("", s, classes=["fragment"]) for s in shown]
         current.body.extend(shown)

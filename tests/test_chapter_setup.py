@@ -133,3 +133,30 @@ def test_legend_clear_sees_a_line_under_the_legend():
 def test_every_public_name_is_exported():
     assert set(chapter.__all__) <= set(dir(chapter))
     assert {"start_page", "clean", "show", "trig_shorthand", "is_zero_matrix"} <= set(chapter.__all__)
+
+
+def test_figures_carry_their_smallest_text_size(restore_style):
+    """In a kernel, start_page makes every figure's PNG carry its smallest text (the deck tests read it)."""
+    import base64
+    import io
+
+    from IPython.core.interactiveshell import InteractiveShell
+    from PIL import Image
+
+    ip = InteractiveShell.instance()
+    try:
+        chapter.start_page(font_size=12)           # ticks and legends 11 pt, labels 12 pt
+        fig, ax = plt.subplots(figsize=(3, 2), dpi=80)
+        ax.set_xlabel("x (m)")
+        data, _ = ip.display_formatter.format(fig)
+        png = data["image/png"]
+        im = Image.open(io.BytesIO(base64.b64decode(png) if isinstance(png, str) else png))
+        assert float(im.text[chapter.TEXT_SIZE_KEY]) == pytest.approx(11 * 80 / 72, abs=0.01)
+        ax.tick_params(labelsize=9)                # smaller ticks: the PNG says so
+        data, _ = ip.display_formatter.format(fig)
+        png = data["image/png"]
+        im = Image.open(io.BytesIO(base64.b64decode(png) if isinstance(png, str) else png))
+        assert float(im.text[chapter.TEXT_SIZE_KEY]) == pytest.approx(9 * 80 / 72, abs=0.01)
+        plt.close(fig)
+    finally:
+        InteractiveShell.clear_instance()

@@ -255,6 +255,11 @@ def test_blitting_gives_the_same_frames_as_a_full_redraw():
         assert np.mean(np.abs(blitted.astype(int) - full[k].astype(int))) < 1.0
     html = plotting.animation_html(source).data
     assert html.count("frames[") >= len(thetas) and "http" not in html.split("<script")[0]
+    # the player says how large its smallest text is, in frame pixels (title, labels or ticks, at dpi 50)
+    ticks = matplotlib.rcParams["xtick.labelsize"]
+    ticks_pt = ticks if isinstance(ticks, (int, float)) else matplotlib.font_manager.FontProperties(size=ticks).get_size()
+    smallest = min(float(ticks_pt), fig.axes[0].title.get_fontsize(), fig.axes[0].xaxis.label.get_fontsize())
+    assert f'data-smallest-text-px="{smallest * 50 / 72:.2f}"' in html
     with pytest.raises(ValueError):
         plotting.FrameSource(fig, update, 0, moving=art.artists)
     # a FrameSource rendering whatever state the figure is in (rgba), the background kept across frames
@@ -300,10 +305,10 @@ def test_old_ur5_labels_are_reported_and_place_labels_clears_them():
 def test_place_labels_keeps_each_number_on_its_own_axis(k, elev, azim):
     # the two views of the UR5 figure of chapter 1 (ch01-fig-ur5), as the chapter draws them
     ur5 = jac.robots.ur5()
-    fig = plt.figure(figsize=(5.6, 7.4), dpi=80)
-    ax = fig.add_axes([0.0, 0.53 - 0.53 * k, 1.0, 0.45], projection="3d")
+    fig = plt.figure(figsize=(8.4, 4.6), dpi=80)
+    ax = fig.add_axes([0.53 * k, 0.0, 0.47, 0.9], projection="3d")
     ax.set(xlim=(-0.2, 1.0), ylim=(-0.3, 0.4), zlim=(-0.25, 0.35))
-    ax.set_box_aspect((1.2, 0.7, 0.6), zoom=(1.45, 1.3)[k])
+    ax.set_box_aspect((1.2, 0.7, 0.6), zoom=(0.95, 1.0)[k])
     ax.view_init(elev=elev, azim=azim)
     art = P.draw_spatial_chain(ax, ur5, np.zeros(6), fontsize=13, label_box=True, axis_length=0.12,
                                frame_length=0.16, place_labels=True)

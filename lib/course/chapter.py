@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 import jacobians as jac
 from jacobians import lie
-from jacobians.plotting import COLUMN_COLORS, PALETTE, animation_html, set_style
+from jacobians.plotting import COLUMN_COLORS, PALETTE, animation_html, set_style, smallest_text_px
 from jacobians.symbolic import is_zero, is_zero_matrix
 from jacobians.verified import Verified
 
@@ -97,7 +97,45 @@ def start_page(seed: int | None = None, font_size: float | None = None,
         matplotlib.rcParams.update({"font.size": s, "axes.titlesize": s + 1, "axes.labelsize": s,
                                     "xtick.labelsize": small, "ytick.labelsize": small,
                                     "legend.fontsize": small, "figure.titlesize": s + 1})
+    _png_with_text_size()
     return np.random.default_rng(seed)
+
+
+#: PNG text key under which a chapter's figures carry their smallest text size (px at natural size)
+TEXT_SIZE_KEY = "course:smallest-text-px"
+
+
+def _png_with_text_size() -> None:
+    """In a notebook kernel, draw figures as PNGs that carry their smallest text size (:data:`TEXT_SIZE_KEY`).
+
+    The lecture decks show the book's figures larger than the page does; the
+    deck tests read this size from the PNG and scale it by the width the slide
+    shows it at (labels of 16 px or more). Outside IPython nothing changes.
+    """
+    try:
+        from IPython import get_ipython
+    except ImportError:  # pragma: no cover - IPython is a dependency
+        return
+    ip = get_ipython()
+    if ip is None or not hasattr(ip, "display_formatter"):
+        return
+    import matplotlib.pyplot as plt
+    from IPython.core.pylabtools import print_figure
+    from matplotlib.figure import Figure
+
+    plt.get_backend()
+    if "inline" in str(matplotlib.get_backend()):
+        import matplotlib_inline.backend_inline  # noqa: F401  (sets up its formatters first, once)
+
+    def png(fig: Figure) -> str | None:
+        try:
+            size = f"{smallest_text_px(fig):.2f}"
+        except ValueError:
+            size = "none"
+        data: str | None = print_figure(fig, "png", base64=True, metadata={TEXT_SIZE_KEY: size})
+        return data
+
+    ip.display_formatter.formatters["image/png"].for_type(Figure, png)
 
 
 def clean(A: ArrayLike, digits: int = 4) -> NDArray[np.float64]:

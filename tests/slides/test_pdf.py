@@ -33,3 +33,20 @@ def test_one_page_per_slide_none_blank(pdfs, source):
         text = (page.extract_text() or "").strip()
         xobjects = page["/Resources"].get("/XObject") or {}
         assert len(text) > 3 or len(xobjects) > 0, f"page {i + 1} is blank"
+
+
+@pytest.mark.parametrize("source", SOURCES, ids=[s.stem for s in SOURCES])
+def test_math_is_printed_in_mathjax_fonts(pdfs, source):
+    """A deck with math prints it in MathJax's own web fonts (MathJax_...), not in the browser's fallback fonts."""
+    import pypdf
+
+    html = (SITE / "slides" / build_slides.deck_path(source)).read_text(encoding="utf-8")
+    if 'class="math' not in html:
+        pytest.skip("no math in this deck")
+    fonts: set[str] = set()
+    for page in pypdf.PdfReader(pdfs[source.stem]["file"]).pages:
+        for ref in (page["/Resources"].get("/Font") or {}).values():
+            font = ref.get_object()
+            described = font.get("/FontDescriptor")   # Chromium embeds web fonts as Type 3, named there
+            fonts.add(str(font.get("/BaseFont") or (described.get_object().get("/FontName") if described else "")))
+    assert any("MathJax_" in f for f in fonts), sorted(fonts)

@@ -8,7 +8,7 @@ artists it made and has an ``update(...)`` method that moves them with
 =====================  =======================================================
 module                 job
 =====================  =======================================================
-``style``              :data:`PALETTE` (Okabe–Ito, semantic keys), :func:`set_style`
+``style``              :data:`PALETTE` (Okabe–Ito, semantic keys), :func:`set_style`, :func:`smallest_text_px`
 ``artists``            frames, arrows, ellipses; :func:`check_planar`, :func:`arm_reach`
 ``planar``             the planar arm, its Jacobian columns, :func:`planar_arm_animation`
 ``spatial``            spatial chains on 3-D axes, axis numbers placed clear of each other
@@ -47,12 +47,13 @@ from .artists import (
 from .matrices import MatrixArtist, draw_matrix, matrix_latex
 from .planar import PlanarArmArtist, column_arrows, draw_planar_arm, planar_arm_animation, setup_planar_axes
 from .spatial import SpatialChainArtist, draw_spatial_chain, setup_3d_axes
-from .style import COLUMN_COLORS, PALETTE, set_style
+from .style import COLUMN_COLORS, PALETTE, set_style, smallest_text_px
 
 __all__ = [
     "PALETTE",
     "COLUMN_COLORS",
     "set_style",
+    "smallest_text_px",
     "check_planar",
     "arm_reach",
     "PlanarArmArtist",

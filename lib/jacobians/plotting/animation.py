@@ -40,6 +40,8 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
+from .style import smallest_text_px
+
 __all__ = ["FrameSource", "animation_html", "compact_png"]
 
 
@@ -267,6 +269,12 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
                               "use fewer frames or a lower dpi", stacklevel=2)
                 break
             frames.append(data)
+        # the smallest text of the frames, in frame pixels (the decks' tests scale it by the shown width)
+        try:
+            text_px = f"{smallest_text_px(anim.fig):.2f}"
+        except ValueError:  # no text at all
+            text_px = "none"
     finally:
         plt.close(anim.fig)
-    return HTML(_strip_cdn(_player(frames, anim.interval, default_mode)))
+    player = _strip_cdn(_player(frames, anim.interval, default_mode))
+    return HTML(f'<div class="jac-anim" data-smallest-text-px="{text_px}">{player}</div>')

@@ -11,7 +11,9 @@ True
 
 from __future__ import annotations
 
-__all__ = ["PALETTE", "COLUMN_COLORS", "set_style"]
+from typing import Any
+
+__all__ = ["PALETTE", "COLUMN_COLORS", "set_style", "smallest_text_px"]
 
 _OKABE_ITO = {
     "black": "#000000",
@@ -89,3 +91,50 @@ def set_style(font_size: float = 14.0) -> None:
             "figure.autolayout": False,
         }
     )
+
+
+def smallest_text_px(fig: Any) -> float:
+    """Size in pixels, at the figure's own dpi, of the smallest text a figure draws.
+
+    The figure is drawn once and every text it draws (title, axis labels,
+    the tick labels its locators chose, legend entries, annotations) counts;
+    hidden axes and empty strings do not. Mathtext sub- and superscripts are
+    drawn smaller than their text's size and are not counted. The lecture
+    decks scale this by the width a figure is shown at (``tests/slides``).
+
+    >>> from matplotlib.figure import Figure
+    >>> fig = Figure(figsize=(2, 2), dpi=144)
+    >>> ax = fig.add_subplot()
+    >>> ax.tick_params(labelsize=9)
+    >>> _ = ax.set_xlabel("x", fontsize=20)
+    >>> smallest_text_px(fig)
+    18.0
+    >>> _ = ax.axis("off")
+    >>> smallest_text_px(fig)
+    Traceback (most recent call last):
+    ...
+    ValueError: Expected a figure that draws some text, got none
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from matplotlib.text import Text
+
+    if not isinstance(fig, Figure):
+        raise TypeError(f"Expected a matplotlib Figure, got {type(fig).__name__}")
+    canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+    sizes: list[float] = []
+    original = Text.draw
+
+    def draw(self: Any, renderer: Any) -> Any:
+        if self.get_visible() and self.get_text().strip():
+            sizes.append(float(self.get_fontsize()))
+        return original(self, renderer)
+
+    Text.draw = draw  # type: ignore[method-assign]
+    try:
+        canvas.draw()
+    finally:
+        Text.draw = original  # type: ignore[method-assign]
+    if not sizes:
+        raise ValueError("Expected a figure that draws some text, got none")
+    return min(sizes) * float(fig.dpi) / 72.0
