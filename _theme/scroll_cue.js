@@ -1,9 +1,36 @@
 // A formula or printout wider than the page scrolls inside its own box; this
 // marks such boxes so that course.css can show which side hides more, and
 // makes them reachable from the keyboard (arrow keys scroll a focused box).
+// On a phone, a wide figure (legend beside the drawing, panels side by side)
+// squeezed to the page's width has labels too small to read: it is shown at up
+// to twice the page's width, in a box of its own that scrolls the same way.
 (function () {
   "use strict";
-  const SELECTOR = "div.math, .cell_output div.math, .cell_output pre";
+  const SELECTOR = "div.math, .cell_output div.math, .cell_output pre, .jac-fig-scroll";
+  const PHONE = window.matchMedia("(max-width: 600px)");
+  const WIDE = 1.5;  // width : height from which a figure is "wide"
+
+  function widen(img) {
+    if (!img.naturalWidth || !img.naturalHeight) return;
+    let box = img.parentElement.classList.contains("jac-fig-scroll") ? img.parentElement : null;
+    if (!box) {
+      if (!PHONE.matches || img.naturalWidth < WIDE * img.naturalHeight) return;
+      box = document.createElement("div");
+      box.className = "jac-fig-scroll";
+      img.parentElement.insertBefore(box, img);
+      box.appendChild(img);
+      box.addEventListener("scroll", () => update(box), { passive: true });
+    }
+    const page = box.clientWidth;
+    img.style.width = PHONE.matches ? Math.min(img.naturalWidth, 2 * page) + "px" : "";
+  }
+
+  function figures() {
+    document.querySelectorAll("figure > img, figure > .jac-fig-scroll > img").forEach((img) => {
+      if (img.complete) widen(img);
+      else img.addEventListener("load", () => { widen(img); all(); }, { once: true });
+    });
+  }
 
   function update(el) {
     if (getComputedStyle(el).display === "inline") return;  // inline math never scrolls
@@ -19,6 +46,7 @@
   }
 
   function all() {
+    figures();
     document.querySelectorAll(SELECTOR).forEach(update);
   }
 

@@ -36,7 +36,7 @@ PHONE = {"width": 390, "height": 844}
 MAX_PAGE_BYTES = 3 * 1024 * 1024
 
 ASPECTS = ("load", "console", "offline", "math", "images", "animations", "widgets", "solutions", "links", "errors",
-           "weight", "overflow", "figures", "verdicts", "phone_math", "negative_zero", "check_lines")
+           "weight", "overflow", "figures", "verdicts", "phone_math", "phone_figures", "negative_zero", "check_lines")
 
 # Console messages that are not errors of the book. Each entry: (console type,
 # exact text, why it is harmless). Only types "error" and page errors fail a
@@ -482,6 +482,33 @@ def _check_layout(page, report: PageReport, width: int) -> None:
                    f"{o['window']} px window): {what}")
 
 
+_PHONE_FIGURES_JS = """() => {
+  // _theme/scroll_cue.js: on a phone a wide figure (width >= 1.5 height) is shown at
+  // min(natural width, twice the page's width) in its own box that scrolls sideways
+  const out = [];
+  for (const img of document.querySelectorAll('main figure img')) {
+    if (!img.getClientRects().length || !img.naturalWidth) continue;
+    if (img.naturalWidth < 1.5 * img.naturalHeight) continue;
+    const box = img.parentElement;
+    const name = (img.closest('figure').id || img.getAttribute('src'));
+    if (!box.classList.contains('jac-fig-scroll')) { out.push(name + ': not in a scrolling box'); continue; }
+    const want = Math.min(img.naturalWidth, 2 * box.clientWidth);
+    const shown = img.getBoundingClientRect().width;
+    if (Math.abs(shown - want) > 1) out.push(name + ': shown ' + shown.toFixed(0) + ' px wide, not ' + want.toFixed(0));
+    if (box.scrollWidth > box.clientWidth + 4 && box.getAttribute('tabindex') !== '0')
+      out.push(name + ': scrolls but cannot be reached from the keyboard');
+  }
+  return out;
+}"""
+
+
+def _check_phone_figures(page, report: PageReport, width: int) -> None:
+    page.evaluate("() => window.dispatchEvent(new Event('resize'))")
+    page.wait_for_timeout(100)
+    for x in page.evaluate(_PHONE_FIGURES_JS):
+        report.add("phone_figures", f"at {width} px a wide figure {x}")
+
+
 def _check_phone_math(page, report: PageReport, width: int) -> None:
     for x in page.evaluate(_MATH_FIT_JS):
         kind = "display equation" if x["display"] else "inline formula"
@@ -825,6 +852,7 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         page.wait_for_timeout(250)
         _check_layout(page, report, PHONE["width"])
         _check_phone_math(page, report, PHONE["width"])
+        _check_phone_figures(page, report, PHONE["width"])
         # phone screenshot (after the checks: solutions shown open, animations paused)
         if shots is not None:
             stem = path.replace("/", "__").removesuffix(".html")

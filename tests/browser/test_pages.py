@@ -112,6 +112,13 @@ def test_formulas_scroll_rather_than_being_cut_off(page_reports, path):
 
 
 @pytest.mark.parametrize("path", PAGES)
+def test_wide_figures_scroll_larger_on_a_phone(page_reports, path):
+    """At 390 px a figure at least 1.5 times as wide as high is shown at up to twice the page's width
+    in a box that scrolls sideways and takes the keyboard, so that its labels stay readable."""
+    _assert_clean(page_reports(path), "phone_figures")
+
+
+@pytest.mark.parametrize("path", PAGES)
 def test_no_negative_zero_is_shown(page_reports, path):
     """No "-0." (or "−0.000", "-0") in the text, the outputs or the formulas a reader sees."""
     _assert_clean(page_reports(path), "negative_zero")
