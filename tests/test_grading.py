@@ -333,6 +333,6 @@ def test_catalogue_refuses_a_bad_or_repeated_id_at_registration():
     assert fb.kind == "invalid" and "Unknown exercise 'ch01_ex3'" in fb.message
 
 
-def test_grading_holds_no_exercise_and_the_course_catalogue_holds_39():
+def test_grading_holds_no_exercise_and_the_course_catalogue_holds_43():
     assert not hasattr(grading, "load") and not hasattr(grading, "check")
-    assert len(exercises.CATALOGUE) == 39 and exercises.exercise_ids() == exercises.CATALOGUE.ids()
+    assert len(exercises.CATALOGUE) == 43 and exercises.exercise_ids() == exercises.CATALOGUE.ids()

@@ -111,3 +111,26 @@ def _ch11_ex3(rng: Generator) -> Exercise:
                             mistakes, what="singular values",
                             hint="Take the last three rows J_v, compute their singular values in metres, then "
                                  "multiply each by the number of new units in a metre.")
+
+
+@register("ch11_ex4")
+def _ch11_ex4(rng: Generator) -> Exercise:
+    ls, th_deg, Jv = _regular_3r(rng)
+    ref = float(np.sqrt(np.linalg.det(Jv @ Jv.T)))
+    Jd = _pos_jac_planar(ls, th_deg)
+    mistakes = [
+        Mistake("no_sqrt", float(np.linalg.det(Jv @ Jv.T)), "You gave det(J Jᵀ); the manipulability is its "
+                "square root."),
+        degrees_mistake(float(np.sqrt(abs(np.linalg.det(Jd @ Jd.T))))),
+        Mistake("two_joints_only", float(abs(np.linalg.det(Jv[:, :2]))), "You kept only the first two columns "
+                "(|det| of a 2×2 block): with three joints, det(J Jᵀ) sums the squares of all three 2×2 minors."),
+        Mistake("transpose_product", float(np.sqrt(abs(np.linalg.det(Jv.T @ Jv)))), "You used JᵀJ (3×3), which "
+                "is singular for a 2×3 J; the manipulability of a task Jacobian uses J Jᵀ (2×2)."),
+    ]
+    st = (f"A planar 3R arm with link lengths $L = {vec(ls, 1)}$ m is at $\\theta = {degs(th_deg)}$, with the tip "
+          "position as its task ($J$ is $2\\times3$). Give its manipulability $w = \\sqrt{\\det(JJ^T)}$, which is "
+          "also the length of the null vector $r_1\\times r_2$.")
+    return numeric_exercise("Manipulability of a redundant arm", st, {"lengths": ls, "theta_deg": th_deg}, ref,
+                            mistakes, what="manipulability",
+                            hint="Build the 2×3 position Jacobian (angles in radians), then det(J Jᵀ) = the sum "
+                                 "of the squares of its three 2×2 minors, and take the square root.")
