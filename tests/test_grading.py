@@ -335,4 +335,4 @@ def test_catalogue_refuses_a_bad_or_repeated_id_at_registration():
 
 def test_grading_holds_no_exercise_and_the_course_catalogue_holds_43():
     assert not hasattr(grading, "load") and not hasattr(grading, "check")
-    assert len(exercises.CATALOGUE) == 47 and exercises.exercise_ids() == exercises.CATALOGUE.ids()
+    assert len(exercises.CATALOGUE) == 51 and exercises.exercise_ids() == exercises.CATALOGUE.ids()

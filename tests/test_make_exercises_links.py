@@ -18,7 +18,7 @@ def _tool():
 def test_every_exercise_page_links_its_student_notebook_and_the_link_is_book_only():
     tool = _tool()
     sources = sorted((ROOT / "exercises").glob("[0-9][0-9]_*.md"))
-    assert len(sources) == 11
+    assert len(sources) == 12
     for path in sources:
         nb = jupytext.read(path)
         link_cells = [c for c in nb.cells if f'href="student/{path.stem}.ipynb"' in c.source]

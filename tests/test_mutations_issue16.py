@@ -272,4 +272,15 @@ def test_chapter_12_fails_on_each_mutant(mutant, monkeypatch):
     apply(mutant, monkeypatch)
     failed = _run_chapter_until_a_check_fails(path)
     assert failed is not None, f"chapter 12 ran to the end with the {mutant} mutant"
+
+
+@pytest.mark.parametrize("mutant", sorted(CAUGHT))
+def test_chapter_11_fails_on_each_mutant(mutant, monkeypatch):
+    """A hidden check of chapter 11 (redundancy) raises AssertionError when the library is corrupted."""
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parent.parent / "chapters" / "11_redundancy.md"
+    apply(mutant, monkeypatch)
+    failed = _run_chapter_until_a_check_fails(path)
+    assert failed is not None, f"chapter 11 ran to the end with the {mutant} mutant"
     assert failed[1], f"the failing cell {failed[0]} is not a hidden check cell"

@@ -1,4 +1,4 @@
-"""The course's exercises: 47 definitions (statements' data, expected answers, named mistakes).
+"""The course's exercises: 51 definitions (statements' data, expected answers, named mistakes).
 
 Each builder takes a seeded ``numpy.random.Generator`` and returns a
 :class:`jacobians.grading.Exercise`; the grading machinery (reading, comparing,
@@ -16,7 +16,7 @@ every machine, and every exercise draws from its own random stream.
 
 >>> from course import exercises
 >>> len(exercises.exercise_ids())
-47
+51
 >>> ex = exercises.load("ch01_ex1", seed="a1234567")
 >>> sorted(ex.given)
 ['omega', 'q']
@@ -43,7 +43,7 @@ from typing import Any
 
 from jacobians.grading import Exercise, Feedback
 
-from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09, ch10, ch12  # noqa: F401  (importing them registers the exercises)
+from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09, ch10, ch11, ch12  # noqa: F401  (importing them registers the exercises)
 from ._progress import Progress, record
 from ._progress import summary as _summary
 from ._registry import CATALOGUE
