@@ -96,13 +96,35 @@ function panel(parent, box, label) {
   for (let k = Math.ceil(x0); k <= x1; k++) svg("line", { x1: k, y1: y0, x2: k, y2: y1, "vector-effect": "non-scaling-stroke" }, grid);
   for (let k = Math.ceil(y0); k <= y1; k++) svg("line", { x1: x0, y1: k, x2: x1, y2: k, "vector-effect": "non-scaling-stroke" }, grid);
   const font = 0.045 * (x1 - x0); // ≥ 14 px when the drawing is ≥ 312 px wide
-  const text = (x, y, s, cls = "", index = "") => {
-    const t = svg("text", { x, y: -y, "font-size": font, class: cls }, root);
+  const P = { root, world, font, base: font, box, texts: [] };
+  P.text = (x, y, s, cls = "", index = "") => {
+    const t = svg("text", { x, y: -y, "font-size": P.font, class: cls }, root);
     t.textContent = s;
-    if (index) svg("tspan", { "baseline-shift": "sub", "font-size": 0.85 * font }, t).textContent = index;
+    if (index) svg("tspan", { "baseline-shift": "sub", "font-size": 0.85 * P.font }, t).textContent = index;
+    P.texts.push(t);
     return t;
   };
-  return { root, world, text, font, box };
+  root.jsPanel = P;
+  return P;
+}
+
+/**
+ * Labels at least `--js-label-px` CSS px as shown (a deck sets 24: text on a slide), whatever the
+ * drawing's width: the font size in metres follows the drawn scale. True when a size changed.
+ */
+function fitLabels(P) {
+  const want = parseFloat(getComputedStyle(P.root).getPropertyValue("--js-label-px"));
+  const shown = P.root.getBoundingClientRect().width;
+  if (!(want > 0) || !(shown > 0)) return false;
+  const f = Math.max(P.base, (want * (P.box[1] - P.box[0])) / shown);
+  if (Math.abs(f - P.font) <= 1e-9 * f) return false;
+  P.font = f;
+  for (const t of P.texts) {
+    t.setAttribute("font-size", f);
+    const sub = t.querySelector("tspan");
+    if (sub) sub.setAttribute("font-size", 0.85 * f);
+  }
+  return true;
 }
 
 function line(parent, color, width, extra = {}) {
@@ -263,8 +285,9 @@ function render({ model, el }) {
       const Rp = panel(right, m.box_right, "The linear parts of the columns of J_b, in {b}-coordinates");
       line(Rp.world, "#999999", 1, { points: `${m.box_right[0]},0 ${m.box_right[1]},0` });
       line(Rp.world, "#999999", 1, { points: `0,${m.box_right[2]} 0,${m.box_right[3]}` });
-      Rp.text(m.box_right[1] - 1.6 * Rp.font, -1.2 * Rp.font, "x", "", "b");
-      Rp.text(0.08, m.box_right[3] - 1.1 * Rp.font, "y", "", "b");
+      // anchored at the right and top edges, so that a larger font (a slide) grows into the drawing
+      Rp.text(m.box_right[1] - 0.3 * Rp.font, -0.3 * Rp.font, "x", "", "b").setAttribute("text-anchor", "end");
+      Rp.text(0.08, m.box_right[3] - 0.2 * Rp.font, "y", "", "b").setAttribute("dominant-baseline", "hanging");
       const colsL = [];
       const colsR = [];
       for (let i = 0; i < 3; i++) {
@@ -376,7 +399,14 @@ function render({ model, el }) {
   el.dataset.playing = "0";
   suppressShortcuts(el);
   el.jacLive = state;
+  // labels at slide size once the drawing has its width (a deck's slide is laid out when shown)
+  const panels = [...el.querySelectorAll("svg")].map((r) => r.jsPanel).filter(Boolean);
+  const fit = () => { if (panels.map(fitLabels).some(Boolean)) redraw(); };
+  const watch = typeof ResizeObserver === "function" ? new ResizeObserver(fit) : null;
+  if (watch) panels.forEach((P) => watch.observe(P.root));
+  fit();
   return () => {
+    if (watch) watch.disconnect();
     stop();
     model.off("change:frame", redraw);
     slider.removeEventListener("input", onInput);

@@ -8,7 +8,8 @@ at the same state), a key pressed in a focused slider moves the slider and not
 the deck, the slide still holds everything after the change, and, once the
 focus has left the view, ArrowRight moves to the next slide (ArrowLeft to the
 previous one from a deck's last slide). The decks of
-chapters 4, 6 and 9 must have their live view on a slide. Screenshots go to
+chapters 1, 3, 4, 6, 7 and 9 must have their live view on a slide, and every label drawn
+in a view is at least 24 px on the slide. Screenshots go to
 ``_build/test-artifacts/slides/live-*.png`` (not committed).
 """
 
@@ -34,13 +35,15 @@ ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
 HALF_ULP = 0.005 + 1e-9
 SOURCES = [s for s in build_slides.deck_sources() if "{live-view}" in s.read_text(encoding="utf-8")]
 #: decks whose live view must be on a slide (issue #13: all four views in the decks)
-MUST = {"04_space_vs_body": "columns_explorer", "06_analytic_jacobian": "gimbal_lock",
+MUST = {"01_twists": "story", "03_body_jacobian": "story", "07_conversions": "story",
+        "04_space_vs_body": "columns_explorer", "06_analytic_jacobian": "gimbal_lock",
         "09_using_the_jacobian": "resolved_rate"}
 
 READ = """(el) => {
   const rows = (sel) => [...el.querySelectorAll(sel + " tbody tr")].map((tr) => [...tr.querySelectorAll("td")]
     .map((c) => c.textContent));
-  return { view: el.dataset.view, model: JSON.parse(el.dataset.model), theta: JSON.parse(el.dataset.theta),
+  return { view: el.dataset.view, model: JSON.parse(el.dataset.model),
+    theta: el.dataset.theta ? JSON.parse(el.dataset.theta) : null,
     frame: el.dataset.frame || null, level: el.dataset.level || null, wrist: el.dataset.wrist || null, rep: el.dataset.rep || null,
     step: el.dataset.step === undefined ? null : Number(el.dataset.step),
     planar: rows("table.jl-matrix:not(.jl-space):not(.jl-body):not(.jl-B):not(.jl-J):not(.jl-Ja)"),
@@ -90,7 +93,7 @@ def _close(rows: list[list[str]], ref) -> bool:
     return shown.shape == ref.shape and float(np.abs(shown - ref).max()) <= HALF_ULP
 
 
-def _planar(got: dict) -> None:
+def _planar(got: dict, el: Any = None) -> None:
     from jacobians.widgets.live import PlanarExplorer
 
     n = len(got["theta"])
@@ -100,7 +103,7 @@ def _planar(got: dict) -> None:
     assert _close(got["planar"], w.J), (got["planar"], w.J)
 
 
-def _columns(got: dict) -> None:
+def _columns(got: dict, el: Any = None) -> None:
     from jacobians.widgets.live_spatial import ColumnsExplorer
 
     w = ColumnsExplorer("spatial_5r", theta=got["theta"], column=got["model"]["column"])
@@ -108,7 +111,7 @@ def _columns(got: dict) -> None:
     assert _close(got["Js"], w.Js) and _close(got["Jb"], w.Jb)
 
 
-def _gimbal(got: dict) -> None:
+def _gimbal(got: dict, el: Any = None) -> None:
     from jacobians.widgets.live_spatial import GimbalLock
 
     w = GimbalLock(got["wrist"], theta=got["theta"], rep=got["rep"])
@@ -119,7 +122,7 @@ def _gimbal(got: dict) -> None:
         assert _close(got["Ja"], w.Ja), (got["Ja"], w.Ja)
 
 
-def _resolved_rate(got: dict) -> None:
+def _resolved_rate(got: dict, el: Any = None) -> None:
     from jacobians.widgets.live import ResolvedRate
 
     m = got["model"]
@@ -131,12 +134,48 @@ def _resolved_rate(got: dict) -> None:
     assert f"t = {t:.2f} s" in got["text"] and f"(Jv) = {float(run.sigma_min[k]):.3f} m" in got["text"]
 
 
+def _story(got: dict, el: Any = None) -> None:
+    """The story replay (chapters 1, 3, 7): the shown frame's numbers, arrows and table are the library's."""
+    from jacobians.widgets.live import story_model
+
+    model = got["model"]
+    assert model == json.loads(json.dumps(story_model(model["story"])))
+    assert el is not None
+    _story_views().check_view(el, model)
+
+
+@functools.cache
+def _story_views() -> Any:
+    """tests/browser/story_views.py (the story view's checks against the library), loaded by path."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("story_views", ROOT / "tests" / "browser" / "story_views.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+#: the drawn labels of the current slide's live view, in CSS px of the 1280x720 slide (unscaled)
+SVG_LABELS = """() => {
+  const scale = Reveal.getScale(), out = [];
+  for (const t of Reveal.getCurrentSlide().querySelectorAll(".jac-live svg text")) {
+    if (!t.getClientRects().length || !t.textContent.trim()) continue;
+    const m = t.getScreenCTM();
+    out.push([t.textContent.trim(), parseFloat(getComputedStyle(t).fontSize) * Math.hypot(m.a, m.b) / scale]);
+  }
+  return out;
+}"""
+MIN_LABEL_PX = 24 - 0.5   # 24 px on a slide (issue #13), less half a pixel of rounding
+
+
 #: view -> (the slider moved, its value before the key press, the check of the numbers shown)
 VIEWS = {
     "planar_explorer": ("input.jl-theta", 0.35, _planar),
     "columns_explorer": ("input.jl-theta:nth-of-type(2)", -0.85, _columns),
     "gimbal_lock": ("input.jl-theta:nth-of-type(2)", 89, _gimbal),
     "resolved_rate": ("input.jr-step", 80, _resolved_rate),
+    "story": ("input.js-time", 10, _story),
 }
 
 
@@ -160,12 +199,14 @@ def test_live_view_slides_show_the_librarys_numbers_and_arrows_still_move_on(dec
             el = page.wait_for_selector("section.present .jac-live[data-ready='1']", state="attached")
             view = el.get_attribute("data-view")
             sel, value, check = VIEWS[view]
-            check(el.evaluate(READ))                                   # as mounted
+            check(el.evaluate(READ), el)                               # as mounted
             before = el.evaluate(READ)["markup"]
             assert page.evaluate(SET, [el, sel, value]) == str(value)      # an input event
             got = el.evaluate(READ)
             assert got["markup"] != before, f"slide {i}: the input changed nothing"
-            check(got)
+            check(got, el)
+            small = [(t, round(px, 1)) for t, px in page.evaluate(SVG_LABELS) if px < MIN_LABEL_PX]
+            assert not small, f"slide {i}: labels in the drawing below 24 px: {small}"
             if view == "gimbal_lock":  # 1 degree from the ZYX lock: |det B| = cos 89 deg < 0.1, a warning
                 assert math.isclose(got["theta"][1], math.radians(89), abs_tol=1e-12) and got["level"] == "warning"
             assert "NaN" not in got["text"] and "Infinity" not in got["text"]
@@ -176,7 +217,7 @@ def test_live_view_slides_show_the_librarys_numbers_and_arrows_still_move_on(dec
             assert page.evaluate("Reveal.getIndices().h") == i
             after = el.evaluate(READ)
             assert after["markup"] != got["markup"], f"slide {i}: ArrowRight in the slider changed nothing"
-            check(after)
+            check(after, el)
             page.screenshot(path=str(ARTIFACTS / f"live-{source.stem}-{i:02d}.png"))
             # focus out of the view (a click on the heading), then ArrowRight moves on (ArrowLeft back on the last)
             page.locator("section.present h2, section.present h1").first.click()
