@@ -77,12 +77,12 @@ lint: setup
 	$(BIN)/mypy _ext
 
 test-lib: setup
-	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
 	$(PY) -m tools.to_ipynb _build/nbval
-	cd _build/nbval && ../../$(BIN)/pytest --nbval-lax -p no:cacheprovider -q .
+	cd _build/nbval && ../../$(BIN)/pytest --nbval-lax -n 2 --dist loadscope -p no:cacheprovider -q .
 
 test-browser: setup browser
 	$(BIN)/pytest tests/browser -q
