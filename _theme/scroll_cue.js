@@ -26,7 +26,7 @@
   }
 
   function figures() {
-    document.querySelectorAll("figure > img, figure > .jac-fig-scroll > img").forEach((img) => {
+    document.querySelectorAll("figure img").forEach((img) => {
       if (img.complete) widen(img);
       else img.addEventListener("load", () => { widen(img); all(); }, { once: true });
     });
