@@ -85,7 +85,7 @@ test-notebooks: setup
 	cd _build/nbval && ../../$(BIN)/pytest --nbval-lax -n 2 --dist loadscope -p no:cacheprovider -q .
 
 test-browser: setup browser
-	$(BIN)/pytest tests/browser -q
+	$(BIN)/pytest tests/browser -q -n 2 --dist loadfile
 
 test-slides: setup browser
 	$(BIN)/pytest tests/slides -q

@@ -35,6 +35,19 @@ def pytest_report_header(config):
     return [f"browser tests: book {BOOK_HTML}, toc {BOOK_TOC}, screenshots {ARTIFACTS}"]
 
 
+# ---------------------------------------------------------------- on both cores (make test-browser: -n 2)
+# With pytest-xdist's --dist loadfile each test module runs whole in one worker (the pages of
+# test_pages.py are each loaded once; a module's browser page or JupyterLab server is started once).
+# The page summary a worker writes is printed by the controller at the end.
+WORKER = os.environ.get("PYTEST_XDIST_WORKER", "")
+
+
+def pytest_sessionstart(session):
+    if not WORKER:  # the controller (or a run without xdist): no summary left from an earlier run
+        for old in ARTIFACTS.glob("summary-*.txt"):
+            old.unlink()
+
+
 @pytest.fixture(scope="session")
 def book_html() -> Path:
     if not (BOOK_HTML / "index.html").exists():
@@ -92,13 +105,29 @@ def page_reports(book_html, book_url, browser_context, artifacts):
         if notes:
             lines.append("Notes (not failures):")
             lines += [f"  {p}: {n}" for p, n in notes]
-        lines.append(f"Screenshots: {artifacts}")
-        _SUMMARY.extend(lines)
-
-
-_SUMMARY: list[str] = []
+        (artifacts / f"summary-{WORKER or 'main'}.txt").write_text("\n".join(lines) + "\n", encoding="utf-8")
 
 
 def pytest_terminal_summary(terminalreporter):
-    for line in _SUMMARY:
-        terminalreporter.write_line(line)
+    """Page weights and notes, from every worker (sorted by page)."""
+    if WORKER:
+        return
+    pages: list[str] = []
+    notes: list[str] = []
+    for f in sorted(ARTIFACTS.glob("summary-*.txt")):
+        part = "pages"
+        for line in f.read_text(encoding="utf-8").splitlines():
+            if line.startswith("Notes (not failures)"):
+                part = "notes"
+            elif line.startswith("  "):
+                (pages if part == "pages" else notes).append(line)
+    if pages:
+        terminalreporter.write_line("")
+        terminalreporter.write_line("Page weight and what was checked, per page:")
+        for line in sorted(pages):
+            terminalreporter.write_line(line)
+        if notes:
+            terminalreporter.write_line("Notes (not failures):")
+            for line in notes:
+                terminalreporter.write_line(line)
+        terminalreporter.write_line(f"Screenshots: {ARTIFACTS}")
