@@ -13,7 +13,7 @@ and gets a host ``<div class="jac-live" data-view=... data-model='JSON'>``
 holding the model computed here by the library at build time
 (``jacobians.widgets.live.MODELS[view]``: screw axes, home, joint axis points,
 the initial state), plus one ``<script type="module">`` that imports
-``_static/live/host.js`` and ``_static/live/<view>.js`` (``_theme/live/`` is
+``_static/live/host.js`` and ``_static/live/<view>.js`` (``lib/jacobians/widgets/static/live/`` is
 copied there by ``html_static_path``) relative to the page and renders the
 view. Nothing loads from another host. A new view registers its model
 builder in ``MODELS`` and its options in ``OPTIONS``; the 3-D views

@@ -2,7 +2,7 @@
 
 One update of a planar 3R arm: forward kinematics, the geometric Jacobian (with
 the other two in the same sweep) and the velocity and force ellipse axes of its
-x, y rows, by ``_theme/live/kinematics.js``. Timed over 2000 random
+x, y rows, by ``lib/jacobians/widgets/static/live/kinematics.js``. Timed over 2000 random
 configurations (seeded), each one alone with ``performance.now()`` (the page
 is cross-origin isolated, so the clock is fine-grained), in two forms:
 
@@ -19,7 +19,7 @@ the resolved-rate view on a step (a Play frame) and on a damping change (the
 whole 160-step run again), the story views of chapters 1, 3 and 7 on a time
 slider input (one frame of the replay).
 
-Also prints the size of every module under ``_theme/live/`` and the modules
+Also prints the size of every module under ``lib/jacobians/widgets/static/live/`` and the modules
 each view's page loads (its import graph). Budgets (issue #13): one update,
 compute plus redraw with forced layout, median <= 4 ms and worst <= 16 ms;
 live modules <= 150 KB per page.
@@ -44,7 +44,7 @@ from typing import Any
 import jacobians as jac
 
 ROOT = Path(__file__).resolve().parent.parent
-LIVE = ROOT / "_theme" / "live"
+LIVE = ROOT / "lib" / "jacobians" / "widgets" / "static" / "live"
 HARNESS = "tests/browser/live_harness.html"
 VIEW_HARNESS = "tests/browser/live_view_harness.html"
 CHROMIUM = "/usr/bin/chromium"
@@ -169,7 +169,7 @@ class _IsolatedHandler(http.server.SimpleHTTPRequestHandler):
 
 
 def module_sizes() -> dict[str, int]:
-    """Bytes of each ES module under _theme/live/."""
+    """Bytes of each ES module under lib/jacobians/widgets/static/live/."""
     return {p.name: p.stat().st_size for p in sorted(LIVE.glob("*.js"))}
 
 
@@ -253,7 +253,7 @@ def main(argv: list[str] | None = None) -> int:
               f"{sum(mods.values()) / 1024:.1f} KB (budget 150 KB)")
     total = sum(out["sizes"].values())
     sizes = ", ".join(f"{k} {v / 1024:.1f} KB" for k, v in out["sizes"].items())
-    print(f"  modules under _theme/live/: {sizes}; total {total / 1024:.1f} KB")
+    print(f"  modules under lib/jacobians/widgets/static/live/: {sizes}; total {total / 1024:.1f} KB")
     print("  budgets (issue #13): median <= 4 ms, worst <= 16 ms with redraw; <= 150 KB of live modules per page")
     return 0
 

@@ -35,7 +35,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path[:0] = [str(ROOT / "_ext")]
 spatial: Any = importlib.import_module("live_views_spatial")  # the model builders live in _ext (top-level for Sphinx)
 
-LIVE = ROOT / "_theme" / "live"
+LIVE = ROOT / "lib" / "jacobians" / "widgets" / "static" / "live"
 HARNESS = "tests/browser/live_spatial_harness.html"
 CHROMIUM = "/usr/bin/chromium"
 MODULES = {"columns_explorer": ["host.js", "kinematics.js", "view3d.js", "columns_explorer.js"],

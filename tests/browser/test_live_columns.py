@@ -1,4 +1,4 @@
-"""The live columns explorer (``_theme/live/columns_explorer.js``, chapter 4) in Chromium, no kernel.
+"""The live columns explorer (``lib/jacobians/widgets/static/live/columns_explorer.js``, chapter 4) in Chromium, no kernel.
 
 On the harness page (no book build needed) the view is mounted from the model
 ``_ext/live_views_spatial.py`` writes for the book page; on the built chapter 4

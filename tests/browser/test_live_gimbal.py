@@ -1,4 +1,4 @@
-"""The live gimbal-lock view (``_theme/live/gimbal_lock.js``, chapter 6) in Chromium, no kernel.
+"""The live gimbal-lock view (``lib/jacobians/widgets/static/live/gimbal_lock.js``, chapter 6) in Chromium, no kernel.
 
 On the harness page (no book build needed) the view is mounted from the model
 ``_ext/live_views_spatial.py`` writes for the book page; on the built chapter 6

@@ -17,6 +17,8 @@ MAX_BYTES = 25_000_000
 #: folders of _static that come from the themes and Sphinx, not from tools/vendor.py
 THEME_DIRS = {"scripts", "styles", "vendor", "images"}
 COURSE_THEME = Path(__file__).resolve().parents[2] / "_theme"
+# the live views ship inside the package (anywidget layout); the book copies them from there
+COURSE_STATIC = (COURSE_THEME, Path(__file__).resolve().parents[2] / "lib" / "jacobians" / "widgets" / "static")
 #: file names by which a front-end package is recognised wherever it is copied, and a
 #: text its first kilobyte holds (MathJax has a TeX extension also named require.js)
 PACKAGE_FILES = {
@@ -76,11 +78,11 @@ def test_every_vendored_tree_is_loaded_by_a_page_or_deck(book_html):
         assert entry.is_file(), f"{entry} is missing: tools/vendor.py vendors {package.npm}"
         assert _referenced(entry, pages), f"no page or deck loads {entry.relative_to(book_html)}"
     ours = {p.folder for p in vendor.BOOK}
-    # the course's own front-end trees (_theme/<dir>, e.g. the live views): each is loaded by some page
-    course_dirs = {p.name for p in COURSE_THEME.iterdir() if p.is_dir()}
+    # the course's own front-end trees (_theme/<dir>, widgets/static/live): each is loaded by some page
+    course_dirs = {p.name for d in COURSE_STATIC for p in d.iterdir() if p.is_dir()}
     for name in sorted(course_dirs):
         files = sorted((static / name).glob("*.js"))
-        assert files, f"_theme/{name} was not copied into _static"
+        assert files, f"{name}/ of the course was not copied into _static"
         assert any(_referenced(f, pages) for f in files), f"no page loads a script of _static/{name}"
     unknown = sorted(p.name for p in static.iterdir() if p.is_dir() and p.name not in ours | THEME_DIRS | course_dirs)
     assert not unknown, f"trees in _static that tools/vendor.py does not vendor (left by an older build?): {unknown}"

@@ -12,7 +12,7 @@ Two widgets, each a function returning an ``ipywidgets.VBox`` subclass:
   near a singularity.
 
 Live versions (issue #13): :mod:`jacobians.widgets.live` wraps the book's ES
-modules ``_theme/live/<view>.js`` as anywidgets, the same code the static
+modules ``lib/jacobians/widgets/static/live/<view>.js`` as anywidgets, the same code the static
 book runs without a kernel: :class:`~jacobians.widgets.live.PlanarExplorer`
 (``w.theta`` settable, ``w.J`` from the library) and
 :class:`~jacobians.widgets.live.ResolvedRate` replace the two matplotlib
@@ -29,8 +29,8 @@ method and exposes what it drew.
 
 Which joints change which column of :math:`J_s` and :math:`J_b` (chapter 4)
 and the gimbal lock of a wrist's coordinates (chapter 6) are live views in the
-browser, no kernel: ``_theme/live/columns_explorer.js`` and
-``_theme/live/gimbal_lock.js``, mounted by the ``{live-view}`` directive
+browser, no kernel: ``lib/jacobians/widgets/static/live/columns_explorer.js`` and
+``lib/jacobians/widgets/static/live/gimbal_lock.js``, mounted by the ``{live-view}`` directive
 (models from :mod:`jacobians.widgets.live_spatial`), and in JupyterLab the
 anywidgets :class:`~jacobians.widgets.live_spatial.ColumnsExplorer` and
 :class:`~jacobians.widgets.live_spatial.GimbalLock` run the same modules.

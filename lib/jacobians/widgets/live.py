@@ -1,6 +1,6 @@
 r"""Live views in JupyterLab: anywidget wrappers of the book's ES modules (issue #13).
 
-One front-end module per view lives in ``_theme/live/<view>.js``. The static
+One front-end module per view lives in ``lib/jacobians/widgets/static/live/<view>.js``. The static
 book mounts it with the ``{live-view}`` directive (``_ext/live_views.py``) from
 a model computed here; in JupyterLab (``make lab``) the same module is the
 ``_esm`` of an :class:`anywidget.AnyWidget`, so notebook code reads and sets
@@ -24,7 +24,7 @@ chain view:
   ``method``, ``damping``, ``step``, ``n_steps``, ``duration``, ``gain``,
   ``rate_limit``.
 
-:class:`LiveView` hosts ANY ``_theme/live/<view>.js`` by name: every model key
+:class:`LiveView` hosts ANY ``lib/jacobians/widgets/static/live/<view>.js`` by name: every model key
 becomes a synced traitlet. anywidget loads ``_esm`` from a blob: URL, where a
 relative import such as ``./kinematics.js`` cannot resolve, so
 :func:`module_source` inlines a module's relative imports, recursively, as
@@ -69,12 +69,16 @@ _IMPORT = re.compile(r"""(\bfrom\s*|\bimport\s*)(["'])\./([A-Za-z0-9_]+\.js)\2""
 
 
 def live_dir() -> Path:
-    """The folder of the view modules: ``$JACOBIANS_LIVE_DIR``, else ``_theme/live`` of this checkout."""
+    """The folder of the view modules: ``$JACOBIANS_LIVE_DIR``, else ``static/live`` beside this module.
+
+    The modules ship inside the package (package data, anywidget's layout), so an installed wheel has them;
+    the book copies the same folder into ``_static/live``.
+    """
     env = os.environ.get("JACOBIANS_LIVE_DIR")
-    d = Path(env) if env else Path(__file__).resolve().parents[3] / "_theme" / "live"
+    d = Path(env) if env else Path(__file__).resolve().parent / "static" / "live"
     if not (d / "kinematics.js").is_file():
-        raise FileNotFoundError(f"Expected the live view modules (kinematics.js) in {d}: run from the course's "
-                                "checkout (pip install -e .) or set JACOBIANS_LIVE_DIR")
+        raise FileNotFoundError(f"Expected the live view modules (kinematics.js) in {d}: the package was installed "
+                                "without its data files (reinstall it) or JACOBIANS_LIVE_DIR names the wrong folder")
     return d
 
 
@@ -94,7 +98,7 @@ def _inlined(path: Path, mtime: float) -> str:
 
 
 def module_source(view: str) -> str:
-    """The ES module ``_theme/live/<view>.js`` as one self-contained text (relative imports as data: URLs)."""
+    """The ES module ``static/live/<view>.js`` as one self-contained text (relative imports as data: URLs)."""
     if not isinstance(view, str) or not re.fullmatch(r"[a-z0-9_]+", view):
         raise ValueError(f"Expected a view name such as 'planar_explorer' (letters, digits, _), got {view!r}")
     path = live_dir() / f"{view}.js"
@@ -213,7 +217,7 @@ def _base() -> type:
 
 
 class LiveView(_base()):  # type: ignore[misc]
-    """Any ``_theme/live/<view>.js`` as a Jupyter widget: ``LiveView("planar_explorer", **model)``.
+    """Any ``static/live/<view>.js`` as a Jupyter widget: ``LiveView("planar_explorer", **model)``.
 
     Every key of ``model`` (or, with no model, of ``MODELS[view](**options)``)
     becomes a synced traitlet, read and set as an attribute; the view's
@@ -296,7 +300,7 @@ class ResolvedRate(LiveView):
 
 # ---------------------------------------------------------------- story views (chapters 1, 3, 7)
 # The animations that tell a story, as a live view with a Play button and a time slider
-# (_theme/live/story.js). The model holds the chain and the motion θ(t) as a formula:
+# (lib/jacobians/widgets/static/live/story.js). The model holds the chain and the motion θ(t) as a formula:
 # θ_i(t) = offset_i + rate_i t + Σ amp sin(freq t + phase) over the waves of joint i, on
 # ``frames`` instants t_k = t_end k / frames (``closed``: the motion is periodic, the last
 # instant is t_end (frames - 1)/frames) or t_end k / (frames - 1) (open).

@@ -11,8 +11,8 @@ r"""The two 3-D live views (issue #13) in JupyterLab, and their models for the b
   ``w.Ja``, ``w.B``, ``w.phi`` from the library).
 
 A model holds what the library says about the chain (screw axes, home, joint
-axis points, reach) and the state; the view modules ``_theme/live/<view>.js``
-compute what they draw with ``_theme/live/kinematics.js``, which the browser
+axis points, reach) and the state; the view modules ``lib/jacobians/widgets/static/live/<view>.js``
+compute what they draw with ``lib/jacobians/widgets/static/live/kinematics.js``, which the browser
 tests keep equal to the library. The same module is the book page's (mounted
 by ``{live-view}``, ``_ext/live_views.py``, from :data:`SPATIAL_MODELS`) and
 the widget's ``_esm`` (:class:`jacobians.widgets.live.LiveView`). Colours are
@@ -80,7 +80,7 @@ def _theta(theta: Sequence[float] | NDArray[np.float64] | None, default: Sequenc
 
 
 def columns_model(robot: str = "spatial_5r", theta: Sequence[float] | None = None, column: int = 3) -> dict[str, Any]:
-    """The model of the columns explorer, as ``_theme/live/columns_explorer.js`` reads it.
+    """The model of the columns explorer, as ``lib/jacobians/widgets/static/live/columns_explorer.js`` reads it.
 
     >>> m = columns_model(theta=[0.3, -0.5, 0.9, 0.4, 0.3], column=3)
     >>> len(m["S"]), len(m["S"][0]), m["column"], m["theta"][2], m["name"]
@@ -119,7 +119,7 @@ def columns_model(robot: str = "spatial_5r", theta: Sequence[float] | None = Non
 
 
 def gimbal_model(robot: str = "zyz_wrist", theta: Sequence[float] | None = None, rep: str = "zyx") -> dict[str, Any]:
-    """The model of the gimbal-lock view, as ``_theme/live/gimbal_lock.js`` reads it.
+    """The model of the gimbal-lock view, as ``lib/jacobians/widgets/static/live/gimbal_lock.js`` reads it.
 
     Both wrists are in the model (the view switches between them); ``robot`` is
     the one shown first. ``theta`` in rad (default 30°, 60°, 0°).
