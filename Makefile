@@ -17,7 +17,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
 
-.PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides bench lab slides slides-pdf exercises clean distclean vendor browser grade
+.PHONY: help setup book test lint test-lib test-js test-notebooks test-browser test-slides bench lab slides slides-pdf exercises clean distclean vendor browser grade
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -66,6 +66,7 @@ book: vendor
 test: setup
 	$(MAKE) lint
 	$(MAKE) test-lib
+	$(MAKE) test-js
 	$(MAKE) test-notebooks
 	$(MAKE) book
 	$(MAKE) test-browser
@@ -75,9 +76,16 @@ lint: setup
 	$(BIN)/ruff check lib tools _ext tests
 	$(BIN)/mypy
 	$(BIN)/mypy _ext
+	node_modules/.bin/eslint lib/jacobians/widgets/static/live tests/js
+	node_modules/.bin/tsc -p jsconfig.json
 
 test-lib: setup
 	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+
+# the live views' numeric modules under Node, against values the library writes (no browser)
+test-js: setup
+	$(PY) -m tools.js_fixtures _build/js-fixtures.json
+	JS_FIXTURES=_build/js-fixtures.json node --test tests/js/
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval

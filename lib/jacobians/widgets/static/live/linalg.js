@@ -1,28 +1,55 @@
-// Small dense linear algebra for the live views (issue #13): input checks, 3-vectors
+// @ts-check
+// Small dense linear algebra for the live views: input checks, 3-vectors
 // and 3×3 matrices, and a one-sided Jacobi (Hestenes) SVD with the solvers and ellipsoids
 // built on it. Split out of kinematics.js, which re-exports the public functions; the
 // library counterparts are listed there. Matrices are arrays of rows.
+
+/** @typedef {number[]} Vec a vector */
+/** @typedef {number[][]} Mat a matrix, as an array of rows */
+/**
+ * A thin SVD from one-sided Jacobi: sigma descending; b and w as in `jacobi`; rowsSide tells which side of A.
+ * @typedef {{sigma: Vec, b: Vec[], w: Vec[], rowsSide: boolean}} SVD
+ */
 
 export const EPS = 2.220446049250313e-16;
 
 // ------------------------------------------------------------ validation
 
+/** An array or a typed array (not a DataView): what a vector or a row may be given as.
+ * @param {unknown} x
+ * @returns {x is ArrayLike<unknown>}
+ */
+function isArrayLike(x) {
+  return Array.isArray(x) || (ArrayBuffer.isView(x) && !(x instanceof DataView));
+}
+
+/** A short description of a value, for error messages.
+ * @param {unknown} x
+ * @returns {string}
+ */
 export function describe(x) {
   if (Array.isArray(x)) {
     if (x.length && Array.isArray(x[0])) return `an array of ${x.length} rows of ${x[0].length}`;
     return `an array of length ${x.length}`;
   }
-  if (ArrayBuffer.isView(x)) return `a typed array of length ${x.length}`;
+  if (isArrayLike(x)) return `a typed array of length ${x.length}`;
+  if (ArrayBuffer.isView(x)) return "a DataView";
   if (x === null) return "null";
   return `${typeof x} ${String(x).slice(0, 60)}`;
 }
 
+/** A copy of x as an array of finite numbers (of length len if given), or an error that names it.
+ * @param {unknown} x
+ * @param {string} name
+ * @param {number} [len]
+ * @returns {Vec}
+ */
 export function vector(x, name, len) {
-  const ok = Array.isArray(x) || (ArrayBuffer.isView(x) && !(x instanceof DataView));
-  if (!ok || (len !== undefined && x.length !== len) || x.length === 0) {
+  if (!isArrayLike(x) || (len !== undefined && x.length !== len) || x.length === 0) {
     const want = len === undefined ? "a non-empty array of numbers" : `an array of ${len} numbers`;
     throw new Error(`Expected ${name} as ${want}, got ${describe(x)}`);
   }
+  /** @type {Vec} */
   const out = new Array(x.length);
   for (let i = 0; i < x.length; i++) {
     const v = x[i];
@@ -34,17 +61,25 @@ export function vector(x, name, len) {
   return out;
 }
 
+/** A copy of A as rows of finite numbers (rows×cols if given), or an error that names it.
+ * @param {unknown} A
+ * @param {string} name
+ * @param {number} [rows]
+ * @param {number} [cols]
+ * @returns {Mat}
+ */
 export function matrix(A, name, rows, cols) {
   const shape = `${rows ?? "m"}×${cols ?? "n"}`;
   if (!Array.isArray(A) || A.length === 0 || (rows !== undefined && A.length !== rows)) {
     throw new Error(`Expected ${name} with shape ${shape} (an array of rows), got ${describe(A)}`);
   }
-  const c = cols ?? (A[0] && A[0].length);
+  /** @type {number | undefined} */
+  const c = cols ?? (isArrayLike(A[0]) ? A[0].length : undefined);
+  /** @type {Mat} */
   const out = new Array(A.length);
   for (let r = 0; r < A.length; r++) {
     const row = A[r];
-    const isRow = Array.isArray(row) || (ArrayBuffer.isView(row) && !(row instanceof DataView));
-    if (!isRow || row.length !== c || c === 0) {
+    if (!isArrayLike(row) || row.length !== c || c === 0) {
       throw new Error(`Expected ${name} with shape ${shape} (an array of rows), got row ${r} as ${describe(row)}`);
     }
     out[r] = vector(row, `${name}[${r}]`, c);
@@ -52,6 +87,12 @@ export function matrix(A, name, rows, cols) {
   return out;
 }
 
+/** x if it is a finite number > 0 (>= 0 with allowZero), else an error that names it.
+ * @param {unknown} x
+ * @param {string} name
+ * @param {boolean} allowZero
+ * @returns {number}
+ */
 export function nonNegative(x, name, allowZero) {
   if (typeof x !== "number" || !Number.isFinite(x) || x < 0 || (!allowZero && x === 0)) {
     throw new Error(`Expected ${name} as a ${allowZero ? "non-negative" : "positive"} finite number, got ${String(x)}`);
@@ -61,17 +102,25 @@ export function nonNegative(x, name, allowZero) {
 
 // ------------------------------------------------------------ 3-vectors, 3×3
 
+/** @type {(a: Vec, b: Vec) => Vec} */
 export const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+/** R x for a 3×3 R. @type {(R: Mat, x: Vec) => Vec} */
 export const mulMv = (R, x) => [
   R[0][0] * x[0] + R[0][1] * x[1] + R[0][2] * x[2],
   R[1][0] * x[0] + R[1][1] * x[1] + R[1][2] * x[2],
   R[2][0] * x[0] + R[2][1] * x[1] + R[2][2] * x[2],
 ];
+/** Rᵀ x for a 3×3 R. @type {(R: Mat, x: Vec) => Vec} */
 export const mulMtv = (R, x) => [
   R[0][0] * x[0] + R[1][0] * x[1] + R[2][0] * x[2],
   R[0][1] * x[0] + R[1][1] * x[1] + R[2][1] * x[2],
   R[0][2] * x[0] + R[1][2] * x[1] + R[2][2] * x[2],
 ];
+/** A B for 3×3 matrices.
+ * @param {Mat} A
+ * @param {Mat} B
+ * @returns {Mat}
+ */
 export function mulMM(A, B) {
   const C = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
   for (let i = 0; i < 3; i++) {
@@ -79,9 +128,16 @@ export function mulMM(A, B) {
   }
   return C;
 }
+/** [w], the 3×3 skew-symmetric matrix of w. @type {(w: Vec) => Mat} */
 export const skew = (w) => [[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]];
+/** @type {(x: Vec) => number} */
 export const norm = (x) => Math.hypot(...x);
 
+/** The 4×4 transform of a rotation R and a position p.
+ * @param {Mat} R
+ * @param {Vec} p
+ * @returns {Mat}
+ */
 export function transform(R, p) {
   return [[R[0][0], R[0][1], R[0][2], p[0]], [R[1][0], R[1][1], R[1][2], p[1]],
     [R[2][0], R[2][1], R[2][2], p[2]], [0, 0, 0, 1]];
@@ -89,6 +145,12 @@ export function transform(R, p) {
 
 // ------------------------------------------------------------ SVD (one-sided Jacobi)
 
+/** (x, y) ← (c x − s y, s x + c y), in place.
+ * @param {Vec} x
+ * @param {Vec} y
+ * @param {number} c
+ * @param {number} s
+ */
 function rotate(x, y, c, s) {
   for (let i = 0; i < x.length; i++) {
     const xi = x[i], yi = y[i];
@@ -100,10 +162,15 @@ function rotate(x, y, c, s) {
 // Orthogonalise the vectors xs (k vectors of one length) by plane rotations:
 // [b_1 … b_k] = [x_1 … x_k] W with W (k×k, columns w_i) orthogonal and the b_i
 // mutually orthogonal. σ_i = |b_i|, sorted in descending order.
+/**
+ * @param {Mat} xs
+ * @returns {{sigma: Vec, b: Vec[], w: Vec[]}}
+ */
 function jacobi(xs) {
   const k = xs.length;
   const b = xs.map((x) => x.slice());
   const W = Array.from({ length: k }, (_, i) => Array.from({ length: k }, (_, j) => (i === j ? 1 : 0)));
+  /** @type {(x: Vec, y: Vec) => number} */
   const dot = (x, y) => { let s = 0; for (let i = 0; i < x.length; i++) s += x[i] * y[i]; return s; };
   for (let sweepNo = 0; sweepNo < 60; sweepNo++) {
     let rotated = false;
@@ -122,25 +189,39 @@ function jacobi(xs) {
     if (!rotated) break;
   }
   // W is stored by columns: W[i] is w_i.
-  const order = b.map((x, i) => [norm(x), i]).sort((u, v) => v[0] - u[0]);
+  /** @type {[number, number][]} */
+  const order = b.map((x, i) => /** @type {[number, number]} */ ([norm(x), i])).sort((u, v) => v[0] - u[0]);
   return { sigma: order.map((o) => o[0]), b: order.map((o) => b[o[1]]), w: order.map((o) => W[o[1]]) };
 }
 
 // The vectors of the smaller side of A (m×n): its rows if m <= n (then w_i are
 // the left singular vectors u_i and b_i = Aᵀ u_i = σ_i v_i), else its columns
 // (then w_i are the right singular vectors v_i and b_i = A v_i = σ_i u_i).
+/**
+ * @param {Mat} A
+ * @returns {SVD}
+ */
 function svd(A) {
   const m = A.length, n = A[0].length;
   if (m <= n) return { rowsSide: true, ...jacobi(A) };
   return { rowsSide: false, ...jacobi(Array.from({ length: n }, (_, j) => A.map((row) => row[j]))) };
 }
 
-/** Singular values of A (m×n), min(m, n) of them, descending. */
+/** Singular values of A (m×n), min(m, n) of them, descending.
+ * @param {unknown} A
+ * @returns {Vec}
+ */
 export function singularValues(A) {
   return svd(matrix(A, "A")).sigma;
 }
 
 // θ̇ = Σ_i h(σ_i) ... with h(σ) = gain(σ)/σ; the thin SVD of J, V the wanted velocity.
+/**
+ * @param {unknown} J
+ * @param {unknown} V
+ * @param {(sigma: Vec) => Vec} h
+ * @returns {Vec}
+ */
 function svdSolve(J, V, h) {
   const A = matrix(J, "J");
   const b = vector(V, "V", A.length);
@@ -148,6 +229,14 @@ function svdSolve(J, V, h) {
   return apply(d, b, h(d.sigma), A.length, A[0].length);
 }
 
+/** Σ_i hs_i (u_iᵀ b) σ_i v_i: the rates of the gains hs from the SVD d of an m×n J.
+ * @param {SVD} d
+ * @param {Vec} b
+ * @param {Vec} hs
+ * @param {number} m
+ * @param {number} n
+ * @returns {Vec}
+ */
 function apply(d, b, hs, m, n) {
   const out = new Array(n).fill(0);
   for (let i = 0; i < d.sigma.length; i++) {
@@ -167,12 +256,19 @@ function apply(d, b, hs, m, n) {
   return out;
 }
 
+/** @type {(rcond: number) => (sigma: Vec) => Vec} */
 const pinvGain = (rcond) => (sigma) => sigma.map((s) => (s > rcond * sigma[0] ? 1 / (s * s) : 0));
+/** @type {(lam2: number) => (sigma: Vec) => Vec} */
 const dlsGain = (lam2) => (sigma) => sigma.map((s) => { const den = s * s + lam2; return den > 0 ? 1 / den : 0; });
 
 /**
  * For the resolved-rate loop, on a J and V it built itself (not checked again): one SVD gives
  * {rate: pinvRates(J, V) or dlsRates(J, V, damping), sigma: singularValues(J)}, the same numbers.
+ * @param {Mat} J
+ * @param {Vec} V
+ * @param {string} method "pinv" or "dls"
+ * @param {number} damping
+ * @returns {{rate: Vec, sigma: Vec}}
  */
 export function ratesAndSigma(J, V, method, damping) {
   const d = svd(J);
@@ -180,18 +276,32 @@ export function ratesAndSigma(J, V, method, damping) {
   return { rate: apply(d, V, h(d.sigma), J.length, J[0].length), sigma: d.sigma };
 }
 
-/** Damped least squares θ̇ = (JᵀJ + λ²I)⁻¹JᵀV (m×n J, m-vector V), λ = damping >= 0, as velocity.dls_rates. */
+/** Damped least squares θ̇ = (JᵀJ + λ²I)⁻¹JᵀV (m×n J, m-vector V), λ = damping >= 0, as velocity.dls_rates.
+ * @param {unknown} J
+ * @param {unknown} V
+ * @param {unknown} damping
+ * @returns {Vec}
+ */
 export function dlsRates(J, V, damping) {
   const lam = nonNegative(damping, "damping", true);
   return svdSolve(J, V, dlsGain(lam * lam));
 }
 
-/** Pseudo-inverse rates J⁺V; singular values below rcond·σ_max count as zero (velocity.pinv_rates). */
+/** Pseudo-inverse rates J⁺V; singular values below rcond·σ_max count as zero (velocity.pinv_rates).
+ * @param {unknown} J
+ * @param {unknown} V
+ * @param {number} [rcond]
+ * @returns {Vec}
+ */
 export function pinvRates(J, V, rcond = 1e-10) {
   nonNegative(rcond, "rcond", false);
   return svdSolve(J, V, pinvGain(rcond));
 }
 
+/**
+ * @param {unknown} A
+ * @returns {{axes: Vec, directions: Mat, k: number, n: number}}
+ */
 function ellipsoid(A) {
   const a = matrix(A, "A");
   const k = a.length, n = a[0].length;
@@ -204,6 +314,8 @@ function ellipsoid(A) {
 /**
  * Velocity ellipsoid of a k×n block A (e.g. the x, y rows of the geometric Jacobian):
  * {axes: σ_i descending (k of them, 0 where k > n), directions: k×k, column i the direction of axis i}.
+ * @param {unknown} A
+ * @returns {{axes: Vec, directions: Mat}}
  */
 export function velocityEllipsoid(A) {
   const { axes, directions } = ellipsoid(A);
@@ -213,6 +325,9 @@ export function velocityEllipsoid(A) {
 /**
  * Force ellipsoid: the same directions, semi-axes 1/σ_i, Infinity where σ_i <= rtol·σ_max
  * (default rtol = max(k, n)·ε), as analysis.force_ellipsoid. A view must clip Infinity.
+ * @param {unknown} A
+ * @param {number | null} [rtol]
+ * @returns {{axes: Vec, directions: Mat}}
  */
 export function forceEllipsoid(A, rtol = null) {
   const { axes, directions, k, n } = ellipsoid(A);
