@@ -149,3 +149,81 @@ def test_course_exercises_loads_in_a_fresh_interpreter_and_registers_every_exerc
             "print(len(exercises.exercise_ids()), 'jacobians.grading' in sys.modules)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
     assert out.stdout.split() == ["51", "True"], out.stderr
+
+
+# ------------------------------------------------------------------ the numeric core
+# The numeric core: the modules that compute. They import numpy, the standard library and
+# each other, and nothing of the teaching layer (symbolic, plotting, widgets, grading,
+# verified), which may import them. Adapters to other libraries (interop: Pinocchio, the
+# Robotics Toolbox; a URDF loader) import those inside the function that needs them, so
+# `import jacobians` stays numpy-only.
+TEACHING = ("jacobians.symbolic", "jacobians.plotting", "jacobians.widgets", "jacobians.grading",
+            "jacobians.verified")
+ADAPTERS = {"jacobians.interop", "jacobians.urdf"}
+
+
+def _core() -> dict[str, Path]:
+    return {n: p for n, p in _modules().items()
+            if n.startswith("jacobians") and not any(n == t or n.startswith(t + ".") for t in TEACHING)}
+
+
+def _module_level_imports(path: Path) -> set[str]:
+    """Top-level package names imported at module level (not inside a function or class body)."""
+    out: set[str] = set()
+    for node in ast.parse(path.read_text(encoding="utf-8")).body:
+        if isinstance(node, ast.Import):
+            out |= {a.name.split(".")[0] for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and not node.level:
+            out.add((node.module or "").split(".")[0])
+    return out
+
+
+def _all_imports(path: Path) -> set[str]:
+    out: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            out |= {a.name.split(".")[0] for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and not node.level:
+            out.add((node.module or "").split(".")[0])
+    return out
+
+
+def test_the_numeric_core_imports_only_numpy_the_standard_library_and_itself():
+    core = _core()
+    assert {"jacobians.lie", "jacobians.chain", "jacobians.jacobian", "jacobians.ik", "jacobians.robots"} <= set(core)
+    allowed = set(sys.stdlib_module_names) | {"numpy", "jacobians", "__future__"}
+    for name, path in core.items():
+        extra = _module_level_imports(path) - allowed
+        assert not extra, f"{name} imports {sorted(extra)} at module level: the numeric core is numpy-only"
+        if name not in ADAPTERS:
+            extra = _all_imports(path) - allowed
+            assert not extra, f"{name} imports {sorted(extra)}: only the adapters {sorted(ADAPTERS)} may, lazily"
+
+
+def test_the_numeric_core_never_imports_the_teaching_layer():
+    graph = _graph()
+    for name in _core():
+        for teaching in TEACHING:
+            assert _reaches(graph, name, teaching) is None, _reaches(graph, name, teaching)
+
+
+def test_the_layer_rules_catch_a_violation(tmp_path):
+    bad = tmp_path / "bad.py"
+    bad.write_text("import numpy as np\nimport sympy\n\ndef f():\n    import matplotlib\n")
+    assert _module_level_imports(bad) == {"numpy", "sympy"}
+    assert _all_imports(bad) == {"numpy", "sympy", "matplotlib"}
+    assert _reaches({"jacobians.lie": {"jacobians.plotting.x"}, "jacobians.plotting.x": set()},
+                    "jacobians.lie", "jacobians.plotting") is not None
+
+
+def test_importing_the_numeric_core_loads_no_heavy_library():
+    names = sorted(_core())
+    code = ("import importlib, sys\n"
+            f"for name in {names!r}:\n"
+            "    importlib.import_module(name)\n"
+            "heavy = ('sympy', 'matplotlib', 'scipy', 'ipywidgets', 'anywidget', 'IPython', 'pinocchio',\n"
+            "         'roboticstoolbox', 'spatialmath', 'yourdfpy')\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in heavy))\n"
+            f"print(sorted(m for m in sys.modules if m.startswith({TEACHING!r})))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
+    assert out.stdout.split("\n")[:2] == ["[]", "[]"], out.stdout + out.stderr
