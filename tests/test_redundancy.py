@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from fp_bounds import gamma, solve_bound
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -65,10 +66,18 @@ def test_redundant_rates_solve_the_task_for_every_z(seed):
     m, n = 2, int(rng.integers(3, 7))
     J, V, z = rng.normal(size=(m, n)), rng.normal(size=m), rng.normal(size=n)
     qd = redundant_rates(J, V, z)
-    assert np.allclose(J @ qd, V, atol=1e-10)
+    # Tolerances from the conditioning of a random J (fp_bounds, derived there): the computed qd is exact
+    # for J + δJ with |δJ| <= γ|J|, so |J qd - V| <= 2γ (|J| |qd| + |V|); the least-norm part moves by
+    # solve_bound (κ = σ_max/σ_min), the projection of z by 2κγ|z| (J⁺J's sensitivity) on each side.
+    g = gamma(m, n)
+    sigma = np.linalg.svd(J, compute_uv=False)
+    kappa = sigma[0] / sigma[-1]
+    assert np.linalg.norm(J @ qd - V) <= 2 * g * (sigma[0] * np.linalg.norm(qd) + np.linalg.norm(V))
     base = np.linalg.pinv(J) @ V
-    assert np.allclose(qd, base + (np.eye(n) - np.linalg.pinv(J) @ J) @ z, atol=1e-10)
-    assert abs(base @ (qd - base)) < 1e-10  # the null-space part is orthogonal to the least-norm part
+    apart = solve_bound(J, V, base) + 8 * kappa * g * np.linalg.norm(z)
+    assert np.linalg.norm(qd - (base + (np.eye(n) - np.linalg.pinv(J) @ J) @ z)) <= apart
+    # the null-space part is orthogonal to the least-norm part
+    assert abs(base @ (qd - base)) <= np.linalg.norm(base) * (apart + 4 * g * np.linalg.norm(qd))
     assert np.allclose(nullspace_projector(J) @ nullspace_projector(J), nullspace_projector(J), atol=1e-12)
 
 

@@ -1,52 +1,37 @@
-"""Keep the book's execution cache in step with the course library.
+"""Keep the book's execution cache in step with the course library (by hand).
 
 Jupyter Book's cache (``_build/.jupyter_cache``) keys each notebook on its own
-code cells, not on the ``jacobians`` library the cells import, so after a
-change in ``lib/`` (the library and the course content) it would keep serving outputs computed by the old
-library. ``make book`` runs this first: it hashes every file of the library
-(and ``pyproject.toml``) and, when the hash differs from the one stored beside
-the cache, empties the cache so that every page is executed again.
+code cells, not on the ``jacobians`` library the cells import. The book's
+Sphinx extension ``_ext/library_deps.py`` handles this in every build: it
+hashes the library's files (``lib/`` and ``pyproject.toml``), empties the cache
+when the hash differs from the one stamped beside it, and marks every page
+that uses the library outdated so that Sphinx reads and executes it again.
+This command does the first half only (empty a cache filled under another
+library); the hash and the guard are the extension's.
 
 Usage: python -m tools.cache_guard [CACHE_DIR]   (default _build/.jupyter_cache)
 """
 
 from __future__ import annotations
 
-import hashlib
-import shutil
 import sys
 from pathlib import Path
 
+from _ext import library_deps
+
 ROOT = Path(__file__).resolve().parent.parent
 LIBRARY = ROOT / "lib"
-STAMP_NAME = ".library-hash"
+STAMP_NAME = library_deps.STAMP_SUFFIX
 
 
 def library_hash(library: Path = LIBRARY, extra: tuple[Path, ...] = (ROOT / "pyproject.toml",)) -> str:
-    """SHA-256 over the library's files (path and bytes), in a fixed order."""
-    h = hashlib.sha256()
-    files = sorted(p for p in library.rglob("*") if p.is_file()
-                   and not any(part == "__pycache__" or part.endswith(".egg-info") for part in p.parts))
-    for path in [*files, *(p for p in extra if p.is_file())]:
-        h.update(path.relative_to(library.parent).as_posix().encode() if path.is_relative_to(library.parent)
-                 else path.name.encode())
-        h.update(b"\0")
-        h.update(path.read_bytes())
-        h.update(b"\0")
-    return h.hexdigest()
+    """SHA-256 over the library's files (path and bytes), in a fixed order: as the book's build computes it."""
+    return library_deps.library_hash([library, *extra], library.parent)
 
 
 def guard(cache: Path, digest: str) -> bool:
     """Empty ``cache`` if it was filled under another library; return True if it was emptied."""
-    stamp = cache.parent / (cache.name + STAMP_NAME)
-    old = stamp.read_text().strip() if stamp.is_file() else None
-    emptied = False
-    if old != digest and cache.exists():
-        shutil.rmtree(cache)
-        emptied = True
-    stamp.parent.mkdir(parents=True, exist_ok=True)
-    stamp.write_text(digest + "\n")
-    return emptied
+    return library_deps.guard(cache, digest)
 
 
 def main(argv: list[str]) -> int:

@@ -79,11 +79,14 @@ BOOK: tuple[Package, ...] = (MATHJAX,)
 
 
 def book(dest: Path = BOOK_VENDOR, site_static: Path | None = SITE_STATIC) -> None:
-    """Write ``dest`` (``_vendor``) afresh with :data:`BOOK`.
+    """Write ``dest`` (``_vendor``) afresh with :data:`BOOK`, and bring a built site in step with it.
 
-    Sphinx copies ``_vendor`` into ``_static`` but never deletes what left it,
-    so the trees this folder held before (and holds now) are also removed from
-    ``site_static``; the next build copies the current ones.
+    Sphinx copies ``_vendor`` into ``_static`` but never deletes what left it.
+    So in an already built site (``site_static``) the trees this folder held
+    before and no longer holds are removed, and the trees it holds now are
+    replaced by the fresh copies at once: the built pages and decks keep
+    loading them whether or not a Sphinx build follows (``make slides``,
+    ``make vendor`` run none).
     """
     previous = {p.name for p in dest.iterdir()} if dest.is_dir() else set()
     shutil.rmtree(dest, ignore_errors=True)
@@ -91,12 +94,15 @@ def book(dest: Path = BOOK_VENDOR, site_static: Path | None = SITE_STATIC) -> No
     for package in BOOK:
         package.copy(dest)
     if site_static is not None and site_static.is_dir():
-        for name in previous | {p.folder for p in BOOK}:
+        current = {p.folder for p in BOOK}
+        for name in previous | current:
             stale = site_static / name
             if stale.is_dir():
                 shutil.rmtree(stale)
             elif stale.exists():
                 stale.unlink()
+        for name in sorted(current):
+            shutil.copytree(dest / name, site_static / name)
 
 
 def main(argv: list[str]) -> int:

@@ -18,6 +18,7 @@ from __future__ import annotations
 import json
 import math
 
+import fp_bounds
 import live_views_spatial as spatial
 import numpy as np
 import pytest
@@ -134,28 +135,43 @@ def test_view_numbers_match_library_at_200_configurations(harness, wrist, rep):
               singular: s.singular, normJ: s.normJ, normA: s.normA, level: s.level};
     })""", [el, thetas.tolist()])
     ref = _library(chain, thetas, rep)
+    # Well-conditioned numbers (T, J, det B, σ_min, margin, |J|) at TOL; the first and third angles, B(φ) (built
+    # from them) and J_a are ill-conditioned near the lock, by 1/h with h = cos φ₂ (ZYX) or sin φ₂ (ZYZ), the
+    # norm of the two entries of R each angle is an atan2 of: bounds derived in fp_bounds (angle_bound,
+    # analytic_bound), computed at each configuration.
+    R = ref["T"][:, :3, :3]
+    h = np.hypot(R[:, 0, 0], R[:, 1, 0]) if rep == "zyx" else np.hypot(R[:, 2, 0], R[:, 2, 1])
     worst: dict[str, float] = {}
+    over: list[str] = []
     compared = 0
+
+    def note(key: str, err: float, allowed: float = TOL) -> None:
+        worst[key] = max(worst.get(key, 0.0), err)
+        if not err <= allowed:
+            over.append(f"{key} at θ={thetas[k].tolist()}: {err:.1e} > {allowed:.1e}")
+
     for k, g in enumerate(got):
         lib_singular = bool(np.isnan(ref["Ja"][k]).any())
         assert g["singular"] is lib_singular, (thetas[k], g["margin"])
         for key in ("T", "B", "J", "detB", "sigmaMin", "margin", "normJ"):
             r = np.asarray(ref[key][k])
             err = float(np.max(np.abs(np.asarray(g[key]) - r)) / max(1.0, float(np.max(np.abs(r)))))
-            worst[key] = max(worst.get(key, 0.0), err)
+            note(key, err, fp_bounds.angle_bound(float(h[k])) if key == "B" else TOL)
         d = (np.asarray(g["phi"]) - ref["phi"][k] + np.pi) % (2 * np.pi) - np.pi
-        worst["phi"] = max(worst.get("phi", 0.0), float(np.abs(d).max()))
+        if h[k] < 1e-13 or h[k] > 1e-11:   # around the lock threshold (1e-12) the sides may take different branches
+            note("phi", float(np.abs(d).max()), TOL if h[k] < 1e-13 else fp_bounds.angle_bound(float(h[k])))
         if lib_singular:
             assert g["Ja"] is None and g["normA"] is None and g["level"] == "singular"
         else:
             compared += 1
             r = ref["Ja"][k]
-            worst["Ja"] = max(worst.get("Ja", 0.0), float(np.abs(np.asarray(g["Ja"]) - r).max() / max(1.0, np.abs(r).max())))
-            worst["normA"] = max(worst.get("normA", 0.0), abs(g["normA"] - np.linalg.norm(r)) / max(1.0, np.linalg.norm(r)))
+            allowed = fp_bounds.analytic_bound(float(h[k]), float(np.abs(ref["J"][k]).max()))
+            note("Ja", float(np.abs(np.asarray(g["Ja"]) - r).max() / max(1.0, np.abs(r).max())), allowed)
+            note("normA", abs(g["normA"] - np.linalg.norm(r)) / max(1.0, np.linalg.norm(r)), allowed)
     assert compared > 0.95 * N_CONFIGS
     print(f"\ngimbal view, {wrist}, {rep}: largest difference from the library: "
           + ", ".join(f"{k} {v:.1e}" for k, v in worst.items()))
-    assert max(worst.values()) <= TOL, worst
+    assert not over, over[:10]
     _check_state(el, model)
     assert seen["console"] == []
 

@@ -4,10 +4,23 @@ For 200 random configurations (seeded) of each teaching arm, the ES module's
 forward kinematics, space, body, geometric and analytic Jacobians, B(φ), DLS
 and pseudo-inverse steps and ellipse axes are compared with ``jacobians``.
 
-Tolerance: ``|js - lib| <= TOL * max(1, max |lib|)`` over each returned
+Tolerance: ``|js - lib| <= allowed * max(1, max |lib|)`` over each returned
 matrix or vector, i.e. absolute for entries of size up to 1 and relative to
-the largest entry beyond (the analytic Jacobian grows like 1/cos φ₂). Angles
-are compared modulo 2π; ellipse directions up to the sign of each column.
+the largest entry beyond. ``allowed`` is ``TOL = 1e-12`` for well-conditioned
+quantities (kinematics, Jacobians, B(φ), positions) and, for ill-conditioned
+ones, a bound from the conditioning of that very computation, derived in
+``fp_bounds.py`` and computed at each configuration: pseudo-inverse and DLS
+solves (``solve_bound``: κ of the step), Euler angles and analytic Jacobians
+near a representation singularity (``angle_bound``, ``analytic_bound``: 1/cos φ₂),
+singular values and ellipse axes (Weyl), ellipse directions (Wedin: 1/gap).
+Angles are compared modulo 2π; ellipse directions up to the sign of each column.
+
+The resolved-rate loop is compared one step at a time from the same state
+(the library's θ_k for the module's step, the module's θ_k for the library's
+step), never as two whole runs: a run through a near-singularity amplifies
+the last bits of every step, and another CPU or BLAS kernel rounds them
+differently. ``make test-numerics`` runs these tests on other OpenBLAS
+kernels and in reverse order.
 
 Needs no built book: it serves the repository on 127.0.0.1 and opens
 ``tests/browser/live_harness.html``, which imports the module.
@@ -20,10 +33,12 @@ from pathlib import Path
 from urllib.parse import urlsplit
 
 import bookcheck
+import fp_bounds
 import numpy as np
 import pytest
 
 import jacobians as jac
+from jacobians.plotting import arm_reach
 
 ROOT = Path(__file__).resolve().parents[2]
 TOL = 1e-12
@@ -158,43 +173,73 @@ def test_module_matches_library(kin_page, name):
     pinv = jac.velocity.pinv_rates(Js, twists)
     sv = jac.analysis.singular_values(Js)
     errs: dict[str, list[float]] = {}
+    over: list[str] = []
     nonsingular = {"zyx": 0, "zyz": 0}
+    R = T[:, :3, :3]
+    # h: the norm of the two entries of R the first and third angles are atan2 of (cos φ₂ for ZYX, sin φ₂ for ZYZ)
+    h = {"zyx": np.hypot(R[:, 0, 0], R[:, 1, 0]), "zyz": np.hypot(R[:, 2, 0], R[:, 2, 1])}
 
-    def note(key: str, value: float) -> None:
+    def note(key: str, value: float, allowed: float = TOL) -> None:
+        """Record a difference; it must be within ``allowed`` (TOL, or a bound from fp_bounds stated there)."""
         errs.setdefault(key, []).append(value)
+        if not value <= allowed:
+            over.append(f"{key} at configuration {k}: {value:.2e} > {allowed:.2e}")
+
+    def solved(key: str, got, J, V, ref, lam: float) -> None:
+        """A pseudo-inverse (lam = 0) or DLS solve: fp_bounds.solve_bound, relative to max(1, |ref|)."""
+        if lam == 0.0 and fp_bounds.truncation_is_ambiguous(J):
+            return
+        bound = fp_bounds.solve_bound(J, V, ref, lam) / max(1.0, float(np.abs(ref).max()))
+        note(key, _err(got, ref), max(TOL, bound))
 
     for k, r in enumerate(out):
         for key, ref in (("T", T[k]), ("Js", Js[k]), ("Jb", Jb[k]), ("Jg", Jg[k]), ("fk", T[k]),
                          ("space", Js[k]), ("body", Jb[k]), ("geometric", Jg[k]), ("viaFrame", Jb[k]),
                          ("points", P[k]), ("pointsAlone", P[k]),
-                         ("Bzyx", B["zyx"][k]), ("Bzyz", B["zyz"][k]), ("pinv", pinv[k]), ("sv", sv[k])):
+                         ("Bzyx", B["zyx"][k]), ("Bzyz", B["zyz"][k])):
             note(key, _err(r[key], ref))
+        # singular values: Weyl, |δσ| <= ||δJ|| <= γ σ_max on each side
+        note("sv", _err(r["sv"], sv[k]), max(TOL, 2 * fp_bounds.gamma(6, arm.dof) * float(sv[k][0])))
+        solved("pinv", r["pinv"], Js[k], twists[k], pinv[k], 0.0)
         for i, lam in enumerate(LAMBDAS):
-            note(f"dls λ={lam}", _err(r["dls"][i], dls[i][k]))
+            solved(f"dls λ={lam}", r["dls"][i], Js[k], twists[k], dls[i][k], lam)
         for rep in ("zyx", "zyz"):
             got = r[rep]
             lib_singular = bool(np.isnan(Ja[rep][k]).any())
             assert got["singular"] is lib_singular, (
                 f"{name} θ={thetas[k].tolist()}: {rep} singular flag {got['singular']}, library {lib_singular}")
-            note(f"phi {rep}", _angle_err(got["phi"], phi[rep][k]))
+            # Both sides switch to the lock convention (third angle 0, first a well-conditioned atan2) when
+            # h < 1e-12; around that threshold they may take different branches, so no comparison there.
+            if h[rep][k] < 1e-13:
+                note(f"phi {rep}", _angle_err(got["phi"], phi[rep][k]))
+            elif h[rep][k] > 1e-11:
+                note(f"phi {rep}", _angle_err(got["phi"], phi[rep][k]), fp_bounds.angle_bound(float(h[rep][k])))
             note(f"margin {rep}", abs(got["margin"] - float(
                 jac.representations.representation_singularity_margin(phi[rep][k], rep))))
             if lib_singular:
                 assert got["J"] is None
             else:
                 nonsingular[rep] += 1
-                note(f"Ja {rep}", _err(got["J"], Ja[rep][k]))
+                note(f"Ja {rep}", _err(got["J"], Ja[rep][k]),
+                     fp_bounds.analytic_bound(float(h[rep][k]), float(np.abs(Jg[k]).max())))
         if name in PLANAR:
             Jv = Jg[k][3:5]
             axes, dirs = jac.analysis.velocity_ellipsoid(Jv)
             faxes, fdirs = jac.analysis.force_ellipsoid(Jv)
-            note("ellipse axes", _err(r["vel"]["axes"], axes))
-            note("ellipse directions", _direction_err(r["vel"]["directions"], dirs))
-            note("force axes", _err(r["force"]["axes"], faxes))
-            note("force directions", _direction_err(r["force"]["directions"], fdirs))
+            g2 = fp_bounds.gamma(2, arm.dof)
+            note("ellipse axes", _err(r["vel"]["axes"], axes), max(TOL, 2 * g2 * float(axes[0])))
+            # a singular vector turns by at most ||δJ|| / gap (Wedin's sin θ theorem); gap = σ₁ - σ₂
+            gap = max(float(axes[0] - axes[1]), fp_bounds.EPS)
+            note("ellipse directions", _direction_err(r["vel"]["directions"], dirs),
+                 max(TOL, 4 * g2 * float(axes[0]) / gap))
+            # 1/σ: relative error of σ times 1/σ; the force axes are relative to max(1, 1/σ_min)
+            note("force axes", _err(r["force"]["axes"], faxes),
+                 max(TOL, 4 * g2 * float(axes[0]) / float(axes[-1]) ** 2 / max(1.0, float(faxes.max()))))
+            note("force directions", _direction_err(r["force"]["directions"], fdirs),
+                 max(TOL, 4 * g2 * float(axes[0]) / gap))
             for i, lam in enumerate(LAMBDAS):
-                note(f"dls J_v λ={lam}", _err(r["dlsv"][i], jac.velocity.dls_rates(Jv, vels[k], lam)))
-            note("pinv J_v", _err(r["pinvv"], jac.velocity.pinv_rates(Jv, vels[k])))
+                solved(f"dls J_v λ={lam}", r["dlsv"][i], Jv, vels[k], jac.velocity.dls_rates(Jv, vels[k], lam), lam)
+            solved("pinv J_v", r["pinvv"], Jv, vels[k], jac.velocity.pinv_rates(Jv, vels[k]), 0.0)
             note("Ja planar (x, y, φ)", _err(r["planarA"], Ja["zyx"][k][[3, 4, 0]]))
     # The analytic Jacobian must have been compared, not only flagged: ZYX is
     # never singular for these random draws; ZYZ is singular everywhere for a
@@ -210,8 +255,7 @@ def test_module_matches_library(kin_page, name):
     print(f"\n{name}: largest difference from the library, per quantity")
     for key, value in worst.items():
         print(f"  {key:22s} {value:.2e}")
-    bad = {key: value for key, value in worst.items() if not value <= TOL}
-    assert not bad, f"{name}: differences above {TOL}: {bad}"
+    assert not over, f"{name}: differences above what the conditioning allows: {over[:10]}"
 
 
 def test_representation_singularity_is_a_flag_not_nan(kin_page):
@@ -297,40 +341,86 @@ def _paths(arm, name: str):
     return out
 
 
+# One resolved-rate step of the module from each state θ_k of the library's run: the comparison is of one step
+# from the same state, never of two whole runs (a run through a near-singularity amplifies the last bits of
+# every step, and the next machine's BLAS kernel rounds them differently). The whole run of the module is
+# then tied to its own step function exactly: run.thetas[k + 1] === step(run.thetas[k]).theta.
+RR_STEPS_JS = """({S, M, cases}) => {
+  const K = window.K, chain = K.makeChain(S, M);
+  return cases.map(([th0, path, pdot, dt, method, lam, libThetas]) => {
+    const steps = libThetas.map((th, k) => K.resolvedRateStep(chain, th, path[k], pdot[k], dt, method, lam));
+    const run = K.resolvedRate(chain, th0, path, dt, method, lam);
+    let selfGap = 0;
+    for (let k = 0; k + 1 < run.thetas.length; k++) {
+      const s = K.resolvedRateStep(chain, run.thetas[k], path[k], pdot[k], dt, method, lam);
+      for (let i = 0; i < s.theta.length; i++) selfGap = Math.max(selfGap, Math.abs(s.theta[i] - run.thetas[k + 1][i]));
+      for (let i = 0; i < s.rate.length; i++) selfGap = Math.max(selfGap, Math.abs(s.rate[i] - run.rates[k][i]));
+    }
+    return {steps, selfGap, runLength: run.thetas.length};
+  });
+}"""
+
+
+def _forward_differences(P: np.ndarray, dt: float) -> np.ndarray:
+    """velocity.resolved_rate's default target velocities (the same IEEE operations as the library and the module)."""
+    Pdot = np.zeros_like(P)
+    Pdot[:-1] = np.diff(P, axis=0) / dt
+    return Pdot
+
+
+def _check_steps(label: str, arm, reach: float, thetas, path, pdot, dt, method, lam, js_steps, worst, widened,
+                 gain: float = 2.0, theta_from_js: bool = False) -> int:
+    """Compare step k of the module with the library's step from the same θ_k; return the number of ambiguous steps.
+
+    ``js_steps[k]`` is the module's step from ``thetas[k]`` ({theta, rate, position, sigmaMin}), or, with
+    ``theta_from_js``, a module run whose θ_k are ``thetas`` (then θ_{k+1} of the run is compared).
+    """
+    ambiguous = 0
+    for k, th in enumerate(thetas):
+        step = fp_bounds.Step(arm, th, path[k], pdot[k], dt, method, lam, gain)
+        js = js_steps[k]
+        nxt = js["theta"] if not theta_from_js else (thetas[k + 1] if k + 1 < len(thetas) else None)
+        diffs = fp_bounds.compare_step(step, reach, js["rate"], js["position"], js["sigmaMin"], th, nxt)
+        if not diffs:
+            ambiguous += 1
+            continue
+        for key, (e, allowed) in diffs.items():
+            assert e <= allowed, (f"{label}, step {k}: {key} differs by {e:.2e} (relative to max(1, |lib|)); "
+                                  f"allowed {allowed:.2e} from the conditioning of this step")
+            if allowed > TOL:
+                widened[key] = max(widened.get(key, 0.0), allowed)
+            worst[key] = max(worst.get(key, 0.0), e)
+    return ambiguous
+
+
 @pytest.mark.parametrize("name", ["planar_2r", "planar_3r", "ur5"])
 def test_resolved_rate_matches_library(kin_page, name):
-    """The loop of the resolved-rate view: every step's θ, θ̇, p, |error| and σ_min, as velocity.resolved_rate."""
+    """The loop of the resolved-rate view, one step at a time from the library's θ_k: θ_(k+1), θ̇, p and σ_min."""
     page = kin_page[0]
     arm = ARMS[name]()
+    reach = float(arm_reach(arm))
     cases = _paths(arm, name)
-    got = page.evaluate("""({S, M, cases}) => {
-      const K = window.K, chain = K.makeChain(S, M);
-      return cases.map(([th0, path, dt, method, lam]) => K.resolvedRate(chain, th0, path, dt, method, lam));
-    }""", {"S": arm.screw_axes.tolist(), "M": arm.home.tolist(),
-           "cases": [[c[1].tolist(), c[2].tolist(), c[3], c[4], c[5]] for c in cases]})
+    refs = [jac.velocity.resolved_rate(arm, th0, path, dt, method=method, damping=lam)
+            for (_, th0, path, dt, method, lam) in cases]
+    pdots = [_forward_differences(np.asarray(c[2], dtype=float), c[3]) for c in cases]
+    got = page.evaluate(RR_STEPS_JS, {"S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "cases": [
+        [c[1].tolist(), c[2].tolist(), pd.tolist(), c[3], c[4], c[5], ref.thetas.tolist()]
+        for c, pd, ref in zip(cases, pdots, refs, strict=True)]})
     worst: dict[str, float] = {}
-    widened = []
-    for (label, th0, path, dt, method, lam), r in zip(cases, got, strict=True):
-        ref = jac.velocity.resolved_rate(arm, th0, path, dt, method=method, damping=lam)
-        # A run through a near-singularity (the pseudo-inverse's rates ~ 1/σ_min) is ill-conditioned:
-        # the library's own answer moves when θ0 moves by one ulp. The module may differ by ten times that.
-        ulp = jac.velocity.resolved_rate(arm, np.nextafter(th0, np.inf), path, dt, method=method, damping=lam)
-        for key, js in (("thetas", r["thetas"]), ("rates", r["rates"]), ("positions", r["positions"]),
-                        ("errors", r["errors"]), ("sigma_min", r["sigmaMin"])):
-            e = _err(js, getattr(ref, key))
-            sensitivity = _err(getattr(ulp, key), getattr(ref, key))
-            allowed = max(TOL, 10 * sensitivity)
-            if allowed > TOL:
-                widened.append(f"{label} {key}: {e:.1e} (library vs itself at θ0 + 1 ulp: {sensitivity:.1e})")
-            else:
-                worst[key] = max(worst.get(key, 0.0), e)
-            assert e <= allowed, (f"{name} {label}: {key} differs by {e:.2e} (relative to max(1, |lib|)); "
-                                  f"the library moves by {sensitivity:.1e} when θ0 moves by one ulp")
-    print(f"\nresolved rate {name}, {len(cases)} runs of 81 steps, well-conditioned: "
-          + ", ".join(f"{k} {v:.1e}" for k, v in worst.items()))
-    for line in widened:
-        print(f"  ill-conditioned, {line}")
-    assert len(widened) < len(cases), "every run was ill-conditioned: nothing was checked at 1e-12"
+    widened: dict[str, float] = {}
+    ambiguous = 0
+    for (label, _th0, path, dt, method, lam), pdot, ref, r in zip(cases, pdots, refs, got, strict=True):
+        assert r["runLength"] == len(path)
+        assert r["selfGap"] == 0.0, f"{label}: the module's run is not its own step function repeated ({r['selfGap']})"
+        ambiguous += _check_steps(f"{name} {label}", arm, reach, ref.thetas, path, pdot, dt, method, lam,
+                                  r["steps"], worst, widened)
+    n_steps = sum(len(c[2]) for c in cases)
+    assert ambiguous <= 0.01 * n_steps, f"{ambiguous} of {n_steps} steps sat on the pseudo-inverse's cut-off"
+    print(f"\nresolved rate {name}, {len(cases)} runs, {n_steps} steps, one step from the library's θ_k; "
+          "largest difference: " + ", ".join(f"{k} {v:.1e}" for k, v in worst.items()))
+    if widened:
+        print("  largest bound above 1e-12 (ill-conditioned steps): "
+              + ", ".join(f"{k} {v:.1e}" for k, v in widened.items()))
 
 
 def test_bad_input_throws_a_clear_error(kin_page):
@@ -380,7 +470,7 @@ def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
 
     page = kin_page[0]
     arm = ARMS[name]()
-    reach = float(jac.plotting.arm_reach(arm))
+    reach = float(arm_reach(arm))
     rng = np.random.default_rng(7)
     # reachable targets: the tool at random configurations
     targets = [arm.fk(th)[:2, 3] for th in rng.uniform(-np.pi, np.pi, (N_CONFIGS, arm.dof))]
@@ -398,32 +488,75 @@ def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
         note("path x", _err(js["x"], x))
         note("path v", _err(js["v"], v))
     fake = type("Start", (), {"chain": arm})()
-    starts = []
+    # The start: Newton steps with 1 mm of damping (ResolvedRateExplorer._start_configuration, RR.startConfiguration).
+    # Each step of the module, from each iterate θ_j of the library's own sequence, is compared with the library's
+    # step (a DLS solve: fp_bounds.solve_bound); the two stopping tests (|e| < 1e-12 m) may stop one step apart,
+    # so the ends are compared by where the tool is: within 1e-12 m of the target, plus the rounding of fk.
+    g = fp_bounds.gamma(2, arm.dof)
+    iterates, newton_targets = [], []
+    for x0 in targets:
+        th = np.array([0.3] + [0.9] * (arm.dof - 1))[:arm.dof]
+        for _ in range(200):
+            if np.linalg.norm(x0 - arm.fk(th)[:2, 3]) < 1e-12:
+                break
+            iterates.append(th)
+            newton_targets.append(x0)
+            th = th + jac.velocity.dls_rates(jac.geometric_jacobian(arm, th)[3:5], x0 - arm.fk(th)[:2, 3], 1e-3)
+        lib_start = ResolvedRateExplorer._start_configuration(fake, x0)  # type: ignore[arg-type]
+        assert np.array_equal(th, lib_start), "the test's copy of the library's Newton loop is not the library's"
+    js_newton = page.evaluate("""({S, M, thetas, targets}) => {
+      const K = window.K, chain = K.makeChain(S, M);
+      return thetas.map((th, j) => {
+        const e = K.evaluate(chain, th), err = [targets[j][0] - e.T[0][3], targets[j][1] - e.T[1][3]];
+        const d = K.dlsRates([e.Jg[3], e.Jg[4]], err, 1e-3);
+        return th.map((t, i) => t + d[i]);
+      });
+    }""", {"S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "thetas": [t.tolist() for t in iterates],
+           "targets": [t.tolist() for t in newton_targets]})
+    for th, x0, js_next in zip(iterates, newton_targets, js_newton, strict=True):
+        J = jac.geometric_jacobian(arm, th)[3:5]
+        e = x0 - arm.fk(th)[:2, 3]
+        d = jac.velocity.dls_rates(J, e, 1e-3)
+        allowed = max(TOL, (fp_bounds.solve_bound(J, e, d, 1e-3, dv=g * reach) + 2 * fp_bounds.EPS * np.abs(th).max())
+                      / max(1.0, np.abs(th + d).max()))
+        err = _err(js_next, th + d)
+        assert err <= allowed, f"{name}: a Newton step from θ={th.tolist()} differs by {err:.1e}, allowed {allowed:.1e}"
+        note("start: one Newton step", err)
     for x0, js in zip(targets, got["starts"], strict=True):
         ref = ResolvedRateExplorer._start_configuration(fake, x0)  # type: ignore[arg-type]
-        starts.append(_err(js, ref))
-        # Newton's last steps are below 1e-12 m: where the module and numpy stop one step apart, θ can differ
-        # by such a step over σ_min. Where the tool ends up agrees to 1e-12 at every start:
-        note("start: tool vs library's", float(np.abs(arm.fk(np.array(js))[:2, 3] - arm.fk(ref)[:2, 3]).max()))
-    note("start θ (median of 200)", float(np.median(starts)))
+        lib_miss = float(np.linalg.norm(arm.fk(ref)[:2, 3] - x0))
+        js_miss = float(np.linalg.norm(arm.fk(np.array(js))[:2, 3] - x0))
+        assert js_miss <= max(lib_miss, 1e-12) + 2 * g * reach, (x0, js_miss, lib_miss)
+    # The runs: from each θ_k of the module's own run, the library's step gives the module's θ_(k+1), θ̇_k, p_k, σ_min.
+    widened: dict[str, float] = {}
+    ambiguous = 0
+    n_steps = 0
     for (p, m, lam), js in zip(cases, got["runs"], strict=True):
         w = ResolvedRate(arm, p, m, lam)
-        ref = w.run
-        th0 = ResolvedRateExplorer._start_configuration(fake, w.target()[1][0])  # type: ignore[arg-type]
-        note("run θ0", _err(js["theta0"], th0))
-        ulp = jac.velocity.resolved_rate(arm, np.nextafter(th0, np.inf), w.target()[1], 4 / 159, method=m, damping=lam,
-                                         gain=2.0, target_velocities=w.target()[2])
-        for key, jkey in (("thetas", "thetas"), ("rates", "rates"), ("positions", "positions"), ("errors", "errors"),
-                          ("sigma_min", "sigmaMin")):
-            e = _err(js["run"][jkey], getattr(ref, key))
-            allowed = max(TOL, 10 * _err(getattr(ulp, key), getattr(ref, key)))
-            assert e <= allowed, f"{name} {p} {m} λ={lam}: {key} differs by {e:.1e}, allowed {allowed:.1e}"
-            if allowed == TOL:
-                note(f"run {key}", e)
+        t, x, v = (np.asarray(a, dtype=float) for a in w.target())
+        note("run path", _err(js["xd"], x))
+        th0 = ResolvedRateExplorer._start_configuration(fake, x[0])  # type: ignore[arg-type]
+        # both starts put the tool within 1e-12 m of x[0] (their stopping test), up to the rounding of fk
+        start_gap = float(np.abs(arm.fk(np.array(js["theta0"]))[:2, 3] - arm.fk(th0)[:2, 3]).max())
+        assert start_gap <= 2e-12 + 2 * g * reach, (p, m, lam, start_gap)
+        run = js["run"]
+        steps = [{"rate": run["rates"][k], "position": run["positions"][k], "sigmaMin": run["sigmaMin"][k]}
+                 for k in range(len(run["thetas"]))]
+        js_path = np.asarray(js["xd"], dtype=float)
+        js_vel = np.asarray(got["paths"][ResolvedRateExplorer.PATHS.index(p)]["v"], dtype=float)
+        ambiguous += _check_steps(f"{name} {p} {m} λ={lam}", arm, reach, np.asarray(run["thetas"], dtype=float),
+                                  js_path, js_vel, float(js["t"][1] - js["t"][0]), m, lam, steps,
+                                  worst, widened, gain=2.0, theta_from_js=True)
+        n_steps += len(run["thetas"])
+    assert ambiguous <= 0.01 * n_steps, f"{ambiguous} of {n_steps} steps sat on the pseudo-inverse's cut-off"
     note("resample", _err(got["resampled"], resample([[0, 0], [1, 0], [1, 1], [0.4, 1.3]], 17)))
+    if widened:
+        print("  largest bound above 1e-12 (ill-conditioned steps): "
+              + ", ".join(f"{k} {v:.1e}" for k, v in widened.items()))
     for key, value in worst.items():
         MAX_ERR[f"{name} resolved-rate view: {key}"] = value
     print(f"\n{name}: resolved-rate view, largest difference from the library")
     for key, value in worst.items():
         print(f"  {key:26s} {value:.2e}")
-    assert all(v <= TOL for v in worst.values()), worst
+    # every entry of worst was asserted against its own bound above; the well-conditioned ones are at TOL:
+    assert all(worst[k] <= TOL for k in worst if k.startswith(("path", "resample", "run path"))), worst
