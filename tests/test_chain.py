@@ -236,6 +236,25 @@ def test_bad_types():
         jac.robots.planar_2r().fk([1.0])
 
 
+
+def test_a_column_of_joint_values_is_refused_with_what_to_pass():
+    """(n, 1), as the Robotics Toolbox accepts, is not a batch of n one-joint configurations: say to pass (n,)."""
+    arm = jac.robots.ur5()
+    col = np.zeros((6, 1))
+    for f in (arm.fk, lambda t: jac.space_jacobian(arm, t), lambda t: jac.body_jacobian(arm, t),
+              lambda t: jac.jacobian(arm, t, "geometric")):
+        with pytest.raises(ValueError, match=r"flat array of shape \(6,\), got a column of shape \(6, 1\)"):
+            f(col)
+    with pytest.raises(ValueError, match=r"np.ravel"):
+        arm.fk(np.zeros((3, 6, 1)))
+    # what stays valid: the flat vector, a batch of rows, and for one joint a column of k configurations
+    assert arm.fk(col.ravel()).shape == (4, 4) and arm.fk(np.zeros((1, 6))).shape == (1, 4, 4)
+    one = jac.SerialChain(_col(0, 0, 1, 0, 0, 0), np.eye(4))
+    assert one.fk(np.zeros((5, 1))).shape == (5, 4, 4)
+    # a wrong length still gets the length message
+    with pytest.raises(ValueError, match=r"shape \(\.\.\., 6\) for a chain with 6 joints, got shape \(5, 1\)"):
+        arm.fk(np.zeros((5, 1)))
+
 def test_joint_points_say_where_joints_are_drawn():
     arm = jac.robots.spatial_5r(h=0.5, l1=1.0, l2=1.0, l3=0.5, l4=0.3)
     # joint 4 turns about x through (l1 + l2, 0, h): the point closest to the origin would be (0, 0, h)
