@@ -20,6 +20,8 @@ array([0., 2., 0.])
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -202,6 +204,9 @@ class SerialChain:
         Parameters
         ----------
         theta : array_like, shape (..., n)
+            One configuration, shape (n,), or a batch of them along leading
+            axes (one per row for shape (k, n)). A column of shape (n, 1) is
+            refused: pass ``np.ravel(theta)``.
 
         Returns
         -------
@@ -387,6 +392,35 @@ class SerialChain:
             M = M @ transform_array(tool, "tool", batch_allowed=False)
         S[np.abs(S) < 1e-15] = 0.0
         return cls(S, M, link_homes=np.array(frames), name=name, joint_points=np.array(points))
+
+
+    @classmethod
+    def from_urdf(cls, path: str | os.PathLike[str], base: str, tip: str, name: str | None = None) -> SerialChain:
+        r"""The chain from link ``base`` to link ``tip`` of a URDF file.
+
+        {s} is the base link's frame and {b} the tip link's frame. Revolute,
+        continuous and prismatic joints become the chain's joints, in order
+        from base to tip; fixed joints are folded in. The link frames
+        (``link_homes``) are the child links of the moving joints and the joint
+        points are the joint frames' origins. See :mod:`jacobians.urdf` for the
+        conversion and :func:`jacobians.urdf.read_chain` for the joint names
+        and limits. Needs the optional package yourdfpy
+        (``pip install 'jacobians[urdf]'``), imported only here.
+
+        Raises ``ValueError`` for a link the file does not have, a tip that is
+        not below the base, and floating, planar or mimic joints on the way.
+
+        >>> from jacobians.robots import urdf_path
+        >>> arm = SerialChain.from_urdf(urdf_path("panda"), "panda_link0", "panda_link8")
+        >>> arm.dof, arm.joint_types
+        (7, 'RRRRRRR')
+        """
+        from .urdf import read_chain
+
+        data = read_chain(path, base, tip)
+        label = name if name is not None else f"{data.robot_name or 'URDF'} ({base} to {tip})"
+        return cls(data.screw_axes, data.home, link_homes=data.link_homes, name=label,
+                   joint_points=data.joint_points)
 
 
 def _as_chain(chain: object) -> SerialChain:
