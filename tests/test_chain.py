@@ -103,7 +103,7 @@ def test_from_dh_link_frames_follow_the_dh_product():
         if i < 2:
             T = T @ A(q[i] + off[i], d[i], a[i], alpha[i])
         else:
-            T = T @ A(0.0, d[i] + q[i], a[i], alpha[i])
+            T = T @ A(off[i], d[i] + q[i], a[i], alpha[i])  # prismatic: constant angle off[i], length d + q
         frames.append(T)
     assert np.allclose(chain.fk(q), frames[-1], atol=1e-12)
     assert np.allclose(chain.link_poses(q), np.stack(frames), atol=1e-12)
@@ -130,6 +130,62 @@ def test_roboticstoolbox_dh_agrees():
         J0 = robot.jacob0(q)  # rows (v, omega) of the tool origin in the base frame
         J = jac.geometric_jacobian(chain, q)
         assert np.allclose(J0[:3], J[3:], atol=1e-10) and np.allclose(J0[3:], J[:3], atol=1e-10)
+
+
+
+def _rtb_dh_robot(rtb, a, alpha, d, theta, types, modified):
+    """The Robotics Toolbox's robot for a DH table in the from_dh reading: d and theta are the columns at home."""
+    links = []
+    for i, kind in enumerate(types):
+        if kind == "R":
+            cls = rtb.RevoluteMDH if modified else rtb.RevoluteDH
+            links.append(cls(a=a[i], alpha=alpha[i], d=d[i], offset=theta[i]))
+        else:  # the Toolbox's prismatic length is q + offset: its offset is the home length d
+            cls = rtb.PrismaticMDH if modified else rtb.PrismaticDH
+            links.append(cls(a=a[i], alpha=alpha[i], theta=theta[i], offset=d[i], qlim=[-10, 10]))
+    return rtb.DHRobot(links)
+
+
+def test_from_dh_prismatic_keeps_its_constant_theta_as_in_the_toolbox():
+    """The chain of the report: PRPR, with the constant angles 4 and 2 of the prismatic joints in ``offset``."""
+    rtb = pytest.importorskip("roboticstoolbox")
+    chain = jac.SerialChain.from_dh([0, 2, 0, 0], [0] * 4, [0] * 4, offset=[4, 0, 2, 0], joint_types="PRPR")
+    robot = rtb.DHRobot([rtb.PrismaticDH(theta=4, qlim=[-9, 9]), rtb.RevoluteDH(a=2),
+                         rtb.PrismaticDH(theta=2, qlim=[-9, 9]), rtb.RevoluteDH()])
+    plain = jac.SerialChain.from_dh([0, 2, 0, 0], [0] * 4, [0] * 4, joint_types="PRPR")
+    for q in np.random.default_rng(7).uniform(-2, 2, (20, 4)):
+        # entries of T are at most |a| + |q| sums of order 10, so 1e-12 is many times double rounding
+        assert np.allclose(chain.fk(q), robot.fkine(q).A, atol=1e-12)
+    # the old reading (constant angles dropped) is a different chain: the check above fails on it
+    q = np.array([0.5, 0.3, -0.7, 0.2])
+    assert np.abs(plain.fk(q) - robot.fkine(q).A).max() > 0.5
+
+
+@pytest.mark.parametrize("modified", [False, True])
+def test_from_dh_matches_the_toolbox_on_random_tables(modified):
+    """Random DH tables with random joint types (both conventions): forward kinematics and Jacobians agree."""
+    rtb = pytest.importorskip("roboticstoolbox")
+    rng = np.random.default_rng(11 + modified)
+    worst = 0.0
+    for _ in range(40):
+        n = int(rng.integers(1, 8))
+        types = "".join(rng.choice(["R", "P"], n, p=[0.6, 0.4]))
+        a, d, theta = rng.uniform(-1, 1, (3, n))
+        alpha = rng.uniform(-np.pi, np.pi, n)
+        chain = jac.SerialChain.from_dh(a, alpha, d, offset=theta, joint_types=types,
+                                        convention="modified" if modified else "classical")
+        robot = _rtb_dh_robot(rtb, a, alpha, d, theta, types, modified)
+        assert chain.joint_types == types
+        for q in rng.uniform(-np.pi, np.pi, (5, n)) * np.array([1.0 if t == "R" else 0.5 for t in types]):
+            T = robot.fkine(q).A
+            J0 = robot.jacob0(q)  # rows (v, omega) of the tool origin, in the base frame
+            J = jac.geometric_jacobian(chain, q)
+            # n <= 7 links of length <= 2.6 (|a| + |d| + |q|): entries <= 20, products of 2n matrices,
+            # so rounding stays below 1e-13; 1e-11 leaves room and still catches any wrong constant
+            assert np.allclose(chain.fk(q), T, atol=1e-11)
+            assert np.allclose(J[3:], J0[:3], atol=1e-11) and np.allclose(J[:3], J0[3:], atol=1e-11)
+            worst = max(worst, np.abs(chain.fk(q) - T).max(), np.abs(np.vstack([J[3:], J[:3]]) - J0).max())
+    assert worst < 1e-11
 
 
 # ---------------------------------------------------------------- bad input
@@ -179,6 +235,25 @@ def test_bad_types():
     with pytest.raises(ValueError, match="theta"):
         jac.robots.planar_2r().fk([1.0])
 
+
+
+def test_a_column_of_joint_values_is_refused_with_what_to_pass():
+    """(n, 1), as the Robotics Toolbox accepts, is not a batch of n one-joint configurations: say to pass (n,)."""
+    arm = jac.robots.ur5()
+    col = np.zeros((6, 1))
+    for f in (arm.fk, lambda t: jac.space_jacobian(arm, t), lambda t: jac.body_jacobian(arm, t),
+              lambda t: jac.jacobian(arm, t, "geometric")):
+        with pytest.raises(ValueError, match=r"flat array of shape \(6,\), got a column of shape \(6, 1\)"):
+            f(col)
+    with pytest.raises(ValueError, match=r"np.ravel"):
+        arm.fk(np.zeros((3, 6, 1)))
+    # what stays valid: the flat vector, a batch of rows, and for one joint a column of k configurations
+    assert arm.fk(col.ravel()).shape == (4, 4) and arm.fk(np.zeros((1, 6))).shape == (1, 4, 4)
+    one = jac.SerialChain(_col(0, 0, 1, 0, 0, 0), np.eye(4))
+    assert one.fk(np.zeros((5, 1))).shape == (5, 4, 4)
+    # a wrong length still gets the length message
+    with pytest.raises(ValueError, match=r"shape \(\.\.\., 6\) for a chain with 6 joints, got shape \(5, 1\)"):
+        arm.fk(np.zeros((5, 1)))
 
 def test_joint_points_say_where_joints_are_drawn():
     arm = jac.robots.spatial_5r(h=0.5, l1=1.0, l2=1.0, l3=0.5, l4=0.3)

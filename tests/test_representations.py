@@ -81,3 +81,32 @@ def test_bad_input():
         rep.rate_to_angular_velocity([0, 0], "zyx")
     with pytest.raises(ValueError, match="rotation"):
         rep.coordinates_from_rotation(np.ones((3, 3)), "zyx")
+
+
+def test_zyx_order_is_yaw_pitch_roll_the_reverse_of_the_toolbox_and_urdf():
+    """'zyx' lists (yaw, pitch, roll); the Toolbox's tr2rpy/rpy2r(order='zyx') and URDF's rpy list (roll, pitch, yaw)."""
+    smb = pytest.importorskip("spatialmath.base")
+    R = random_rotation(np.random.default_rng(3), 200)
+    for Ri in R:
+        zyx = rep.coordinates_from_rotation(Ri, "zyx")
+        rpy = rep.roll_pitch_yaw(Ri)
+        # both sides are atan2 of the same entries: agreement to a few eps of angles of size <= pi
+        assert np.allclose(rpy, smb.tr2rpy(Ri, order="zyx"), atol=1e-12)
+        assert np.allclose(zyx, rpy[::-1], atol=0)
+        assert np.allclose(rep.rotation_from_roll_pitch_yaw(rpy), smb.rpy2r(*rpy, order="zyx"), atol=1e-12)
+        yaw, pitch, roll = zyx  # R = Rz(yaw) Ry(pitch) Rx(roll), each about its named axis
+        assert np.allclose(lie.rotation_about("z", yaw) @ lie.rotation_about("y", pitch) @ lie.rotation_about("x", roll),
+                           Ri, atol=1e-12)
+    # a rotation with distinct roll and yaw tells the orders apart: reading the toolbox's vector as 'zyx' is wrong
+    phi = np.array([0.3, -0.2, 0.1])
+    R1 = rep.rotation_from_coordinates(phi, "zyx")
+    assert not np.allclose(rep.rotation_from_coordinates(smb.tr2rpy(R1, order="zyx"), "zyx"), R1, atol=1e-3)
+    # batches keep their shape
+    assert rep.roll_pitch_yaw(R).shape == (200, 3) and rep.rotation_from_roll_pitch_yaw(np.zeros((4, 3))).shape == (4, 3, 3)
+
+
+def test_roll_pitch_yaw_bad_input():
+    with pytest.raises(ValueError, match="shape"):
+        rep.rotation_from_roll_pitch_yaw([0.0, 0.0])
+    with pytest.raises(ValueError):
+        rep.roll_pitch_yaw(np.eye(4))

@@ -163,13 +163,25 @@ def screw_axes_array(value: object, name: str = "screw_axes") -> NDArray[np.floa
 
 
 def theta_array(value: object, dof: int, name: str = "theta") -> NDArray[np.float64]:
-    """Joint values with shape (..., dof)."""
+    """Joint values with shape (..., dof): one configuration (dof,), or a batch of them along leading axes.
+
+    A column of shape (dof, 1) (as the Robotics Toolbox and MATLAB accept) is
+    refused with a message that says to pass a flat vector: the last axis is
+    always the joint axis, so reading a column as one configuration would make
+    (1, 1)-shaped input mean two things for a one-joint chain.
+    """
     th = as_float_array(value, name)
     if th.ndim == 0:
         if dof == 1:
             th = th.reshape(1)
         else:
             raise ValueError(f"Expected {name} with shape (..., {dof}), got a scalar")
+    if dof > 1 and th.ndim >= 2 and th.shape[-1] == 1 and th.shape[-2] == dof:
+        raise ValueError(
+            f"Expected {name} as {dof} joint values in a flat array of shape ({dof},), got a column of shape "
+            f"{th.shape}: pass np.ravel({name}) (a 2-D array is read as a batch of configurations, one per row, "
+            f"shape (k, {dof}))"
+        )
     if th.shape[-1] != dof:
         raise ValueError(
             f"Expected {name} with shape (..., {dof}) for a chain with {dof} joints, got shape {th.shape}"

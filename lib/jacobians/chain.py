@@ -20,6 +20,8 @@ array([0., 2., 0.])
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -202,6 +204,9 @@ class SerialChain:
         Parameters
         ----------
         theta : array_like, shape (..., n)
+            One configuration, shape (n,), or a batch of them along leading
+            axes (one per row for shape (k, n)). A column of shape (n, 1) is
+            refused: pass ``np.ravel(theta)``.
 
         Returns
         -------
@@ -279,29 +284,47 @@ class SerialChain:
         tool: ArrayLike | None = None,
         name: str | None = None,
     ) -> SerialChain:
-        r"""A chain from Denavit–Hartenberg parameters.
+        r"""A chain from a Denavit–Hartenberg table, in either DH convention.
 
-        Classical (standard) convention, link by link:
-        :math:`{}^{i-1}T_i = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`.
-        Modified (Craig) convention:
-        :math:`{}^{i-1}T_i = R_x(\alpha{i-1})\,T_x(a{i-1})\,R_z(\theta_i)\,T_z(d_i)`,
-        where the i-th entries of ``a`` and ``alpha`` are :math:`a{i-1}, \alpha{i-1}`.
+        A DH table has four numbers per joint, :math:`a_i, \alpha_i, d_i, \theta_i`;
+        one of :math:`\theta_i` (revolute) or :math:`d_i` (prismatic) is the joint
+        variable and the other three are constants. ``convention`` says how the
+        table is read (both are taken; the default is the classical one):
 
-        For a revolute joint the joint variable is :math:`\theta_i` minus its
-        ``offset``; for a prismatic joint it is :math:`d_i` minus its offset and
-        ``d`` gives the value at the home pose. The screw axis of joint i is the
-        z axis of the frame it turns about, at the home pose.
+        * ``"classical"`` (standard, Denavit–Hartenberg; the Robotics Toolbox's
+          ``RevoluteDH``/``PrismaticDH``):
+          :math:`{}^{i-1}T_i = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`, and
+          joint i moves along or about the z axis of frame i - 1;
+        * ``"modified"`` (Craig; the Toolbox's ``RevoluteMDH``/``PrismaticMDH``):
+          :math:`{}^{i-1}T_i = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`,
+          where the i-th entries of ``a`` and ``alpha`` are :math:`a_{i-1}, \alpha_{i-1}`,
+          and joint i moves along or about the z axis of frame i.
+
+        ``d`` and ``offset`` are the d and θ columns of the table at the home pose
+        (all joint values zero), in both conventions and for both joint types:
+
+        * revolute joint: :math:`\theta_i = q_i + \text{offset}_i` and :math:`d_i`
+          is constant;
+        * prismatic joint: :math:`d_i = q_i + d` (``d`` is its length at home) and
+          :math:`\theta_i = \text{offset}_i` is constant.
+
+        So a Toolbox ``PrismaticDH(theta=t, a=a, alpha=al, offset=o)`` is
+        ``a=a, alpha=al, d=o, offset=t`` here, and ``RevoluteDH(d=d, a=a,
+        alpha=al, offset=o)`` is ``a=a, alpha=al, d=d, offset=o``. The screw
+        axis of joint i is the z axis it moves along or about, at the home pose.
 
         Parameters
         ----------
         a, alpha, d : array_like, shape (n,)
         offset : array_like, shape (n,), optional
-            Joint angle (revolute) at the home pose; default zeros.
+            The θ column at the home pose: a revolute joint's angle at
+            :math:`q_i = 0`, a prismatic joint's constant angle. Default zeros.
         joint_types : str, optional
             One letter per joint, ``'R'`` or ``'P'``; default all revolute.
         convention : {"classical", "modified"}
         tool : array_like, shape (4, 4), optional
             Constant transform from the last DH frame to {b}.
+        name : str, optional
 
         Returns
         -------
@@ -311,6 +334,13 @@ class SerialChain:
         >>> arm = SerialChain.from_dh(a=[1.0, 1.0], alpha=[0, 0], d=[0, 0])
         >>> arm.screw_axes[:, 1]
         array([ 0.,  0.,  1.,  0., -1.,  0.])
+
+        A prismatic joint keeps its constant θ (here 90°, so it slides along z
+        of a frame turned by 90° about z):
+
+        >>> arm = SerialChain.from_dh([1.0, 0.0], [0, 0], [0, 0], offset=[np.pi / 2, 0.0], joint_types="PR")
+        >>> arm.fk([0.5, 0.0])[:3, 3].round(12) + 0.0
+        array([0. , 1. , 0.5])
         """
         if convention not in ("classical", "modified"):
             raise ValueError(f"Expected convention 'classical' or 'modified', got {convention!r}")
@@ -341,7 +371,7 @@ class SerialChain:
         points = []
         T = np.eye(4)
         for i in range(n):
-            th_i = offset[i] if joint_types[i] == "R" else 0.0
+            th_i = offset[i]  # the θ column at home: a revolute joint's home angle, a prismatic joint's constant
             if convention == "classical":
                 z_frame = T  # joint i turns about z of frame i-1
                 T = T @ rot("z", th_i) @ trans("z", d[i]) @ trans("x", a[i]) @ rot("x", alpha[i])
@@ -362,6 +392,35 @@ class SerialChain:
             M = M @ transform_array(tool, "tool", batch_allowed=False)
         S[np.abs(S) < 1e-15] = 0.0
         return cls(S, M, link_homes=np.array(frames), name=name, joint_points=np.array(points))
+
+
+    @classmethod
+    def from_urdf(cls, path: str | os.PathLike[str], base: str, tip: str, name: str | None = None) -> SerialChain:
+        r"""The chain from link ``base`` to link ``tip`` of a URDF file.
+
+        {s} is the base link's frame and {b} the tip link's frame. Revolute,
+        continuous and prismatic joints become the chain's joints, in order
+        from base to tip; fixed joints are folded in. The link frames
+        (``link_homes``) are the child links of the moving joints and the joint
+        points are the joint frames' origins. See :mod:`jacobians.urdf` for the
+        conversion and :func:`jacobians.urdf.read_chain` for the joint names
+        and limits. Needs the optional package yourdfpy
+        (``pip install 'jacobians[urdf]'``), imported only here.
+
+        Raises ``ValueError`` for a link the file does not have, a tip that is
+        not below the base, and floating, planar or mimic joints on the way.
+
+        >>> from jacobians.robots import urdf_path
+        >>> arm = SerialChain.from_urdf(urdf_path("panda"), "panda_link0", "panda_link8")
+        >>> arm.dof, arm.joint_types
+        (7, 'RRRRRRR')
+        """
+        from .urdf import read_chain
+
+        data = read_chain(path, base, tip)
+        label = name if name is not None else f"{data.robot_name or 'URDF'} ({base} to {tip})"
+        return cls(data.screw_axes, data.home, link_homes=data.link_homes, name=label,
+                   joint_points=data.joint_points)
 
 
 def _as_chain(chain: object) -> SerialChain:

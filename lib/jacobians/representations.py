@@ -3,9 +3,17 @@ r"""Minimal coordinates of orientation and the matrices that relate their rates 
 Three representations :math:`\phi` of a rotation :math:`R`:
 
 ``"zyx"``
-    roll–pitch–yaw: :math:`R = R_z(\phi_1) R_y(\phi_2) R_x(\phi_3)`,
-    :math:`\phi_1, \phi_3 \in (-\pi, \pi]`, :math:`\phi_2 \in [-\pi/2, \pi/2]`.
-    Singular (gimbal lock) where :math:`\cos\phi_2 = 0`.
+    Z–Y–X Euler angles, in the order **(yaw, pitch, roll)**:
+    :math:`R = R_z(\phi_1) R_y(\phi_2) R_x(\phi_3)` with :math:`\phi_1` the yaw
+    (about z), :math:`\phi_2` the pitch (about y), :math:`\phi_3` the roll
+    (about x); :math:`\phi_1, \phi_3 \in (-\pi, \pi]`, :math:`\phi_2 \in [-\pi/2, \pi/2]`.
+    Singular (gimbal lock) where :math:`\cos\phi_2 = 0`. The same rotation
+    as roll–pitch–yaw angles about fixed axes, but the vector is listed the
+    other way round from URDF's ``rpy`` and the Robotics Toolbox's
+    ``tr2rpy(R, order="zyx")`` / ``rpy2r(..., order="zyx")``, which give and take
+    **(roll, pitch, yaw)**: reverse it (``phi[::-1]``), or use
+    :func:`roll_pitch_yaw` and :func:`rotation_from_roll_pitch_yaw`, which
+    take and give that order.
 ``"zyz"``
     Euler angles: :math:`R = R_z(\phi_1) R_y(\phi_2) R_z(\phi_3)`,
     :math:`\phi_2 \in [0, \pi]`. Singular where :math:`\sin\phi_2 = 0`.
@@ -44,6 +52,8 @@ __all__ = [
     "angular_velocity_to_rate",
     "representation_singularity_margin",
     "RepresentationSingularityError",
+    "roll_pitch_yaw",
+    "rotation_from_roll_pitch_yaw",
 ]
 
 REPRESENTATIONS = ("zyx", "zyz", "exp")
@@ -82,7 +92,11 @@ def _rx(a: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 def rotation_from_coordinates(phi: ArrayLike, representation: str = "zyx") -> NDArray[np.float64]:
-    """The rotation matrix (..., 3, 3) described by ``phi`` (..., 3)."""
+    r"""The rotation matrix (..., 3, 3) described by ``phi`` (..., 3).
+
+    For ``"zyx"``, ``phi`` is (yaw, pitch, roll): :math:`R = R_z(\phi_1)R_y(\phi_2)R_x(\phi_3)`
+    (reversed from URDF's ``rpy``; see :func:`rotation_from_roll_pitch_yaw`).
+    """
     representation = check_representation(representation)
     phi = real_array(phi, "phi", (3,))
     if representation == "exp":
@@ -114,13 +128,42 @@ def _coords(R: NDArray[np.float64], representation: str) -> NDArray[np.float64]:
 
 
 def coordinates_from_rotation(R: ArrayLike, representation: str = "zyx") -> NDArray[np.float64]:
-    """Coordinates ``phi`` (..., 3) of the rotation ``R`` (..., 3, 3), within the principal ranges.
+    r"""Coordinates ``phi`` (..., 3) of the rotation ``R`` (..., 3, 3), within the principal ranges.
+
+    For ``"zyx"`` they come in the order (yaw, pitch, roll), with
+    :math:`R = R_z(\phi_1)R_y(\phi_2)R_x(\phi_3)`: the reverse of the Robotics
+    Toolbox's ``tr2rpy(R, order="zyx")`` and of URDF's ``rpy`` (see :func:`roll_pitch_yaw`).
 
     At a representation singularity one of the infinitely many solutions is
     returned (the last angle set to zero).
     """
     representation = check_representation(representation)
     return _coords(rotation_array(R, "R"), representation)
+
+
+def roll_pitch_yaw(R: ArrayLike) -> NDArray[np.float64]:
+    r"""Angles (roll, pitch, yaw), shape (..., 3), of ``R`` = :math:`R_z(\text{yaw})R_y(\text{pitch})R_x(\text{roll})`.
+
+    The order of URDF's ``rpy`` attribute and of the Robotics Toolbox's
+    ``tr2rpy(R, order="zyx")``: the ``"zyx"`` coordinates reversed.
+
+    >>> R = rotation_from_coordinates([0.3, -0.2, 0.1], "zyx")  # yaw 0.3, pitch -0.2, roll 0.1
+    >>> roll_pitch_yaw(R).round(12) + 0.0
+    array([ 0.1, -0.2,  0.3])
+    """
+    return _coords(rotation_array(R, "R"), "zyx")[..., ::-1].copy()
+
+
+def rotation_from_roll_pitch_yaw(rpy: ArrayLike) -> NDArray[np.float64]:
+    r"""The rotation :math:`R_z(\text{yaw})R_y(\text{pitch})R_x(\text{roll})`, shape (..., 3, 3), of ``rpy``.
+
+    ``rpy`` = (roll, pitch, yaw), shape (..., 3).
+
+    What a URDF ``origin`` with ``rpy="roll pitch yaw"`` means, and the
+    Robotics Toolbox's ``rpy2r(roll, pitch, yaw, order="zyx")``.
+    """
+    rpy = real_array(rpy, "rpy", (3,))
+    return _rz(rpy[..., 2]) @ _ry(rpy[..., 1]) @ _rx(rpy[..., 0])
 
 
 def _B(phi: NDArray[np.float64], representation: str) -> NDArray[np.float64]:

@@ -17,6 +17,7 @@ array([[ 0.,  0.,  1.,  0.,  0.,  0.],
 from __future__ import annotations
 
 from collections.abc import Collection
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -34,6 +35,14 @@ __all__ = [
     "spatial_5r",
     "zyx_wrist",
     "zyz_wrist",
+    "panda",
+    "puma560",
+    "iiwa14",
+    "stanford",
+    "puma_like",
+    "DH_TABLES",
+    "URDF_ROBOTS",
+    "urdf_path",
     "PLANAR_NAMES",
 ]
 
@@ -189,3 +198,133 @@ def zyz_wrist(tool: float = 0.2) -> SerialChain:
     origin = [0, 0, 0]
     S = np.stack([_revolute([0, 0, 1], origin), _revolute([0, 1, 0], origin), _revolute([0, 0, 1], origin)], axis=1)
     return SerialChain(S, _translation([0, 0, tool]), name="ZYZ wrist")
+
+
+# ---------------------------------------------------------------- industrial arms
+# Denavit–Hartenberg tables of arms students meet, in metres and radians, from the
+# makers' published kinematics (the same numbers as the Robotics Toolbox's models):
+# columns a, alpha, d, theta (theta: a revolute joint's home angle, a prismatic
+# joint's constant angle), the joint types, the convention, and the pose of {b}
+# in the last DH frame.
+_PI = float(np.pi)
+DH_TABLES: dict[str, dict[str, object]] = {
+    # Franka Emika Panda, Craig's (modified) convention, from Franka's documentation;
+    # {b} is the flange (panda_link8), 0.107 m along z of frame 7.
+    "panda": dict(
+        a=[0.0, 0.0, 0.0, 0.0825, -0.0825, 0.0, 0.088],
+        alpha=[0.0, -_PI / 2, _PI / 2, _PI / 2, -_PI / 2, _PI / 2, _PI / 2],
+        d=[0.333, 0.0, 0.316, 0.0, 0.384, 0.0, 0.0],
+        theta=[0.0] * 7, joint_types="RRRRRRR", convention="modified", tool_z=0.107,
+    ),
+    # Unimation Puma 560, classical convention (Corke and Armstrong-Hélouvry; the
+    # base height 0.67183 m is in d1); {b} is frame 6 at the wrist centre.
+    "puma560": dict(
+        a=[0.0, 0.4318, 0.0203, 0.0, 0.0, 0.0],
+        alpha=[_PI / 2, 0.0, -_PI / 2, _PI / 2, -_PI / 2, 0.0],
+        d=[0.67183, 0.0, 0.15005, 0.4318, 0.0, 0.0],
+        theta=[0.0] * 6, joint_types="RRRRRR", convention="classical", tool_z=0.0,
+    ),
+    # KUKA LBR iiwa 14 R820, classical convention, lengths from KUKA's data sheet
+    # (0.36, 0.42, 0.40 m between the wrist-like joint groups); {b} is the flange,
+    # 0.126 m past joint 7's intersection point.
+    "iiwa14": dict(
+        a=[0.0] * 7,
+        alpha=[-_PI / 2, _PI / 2, _PI / 2, -_PI / 2, -_PI / 2, _PI / 2, 0.0],
+        d=[0.36, 0.0, 0.42, 0.0, 0.4, 0.0, 0.126],
+        theta=[0.0] * 7, joint_types="RRRRRRR", convention="classical", tool_z=0.0,
+    ),
+    # Stanford arm (Scheinman), classical convention; joint 3 is prismatic with the
+    # constant angle -pi/2; {b} is frame 6.
+    "stanford": dict(
+        a=[0.0, 0.0, 0.0203, 0.0, 0.0, 0.0],
+        alpha=[-_PI / 2, _PI / 2, 0.0, -_PI / 2, _PI / 2, 0.0],
+        d=[0.412, 0.154, 0.0, 0.0, 0.0, 0.0],
+        theta=[0.0, 0.0, -_PI / 2, 0.0, 0.0, 0.0], joint_types="RRPRRR", convention="classical", tool_z=0.0,
+    ),
+}
+
+# The URDF files shipped with the library (kinematics only, no meshes): name -> (file, base link, tip link).
+URDF_ROBOTS: dict[str, tuple[str, str, str]] = {
+    "panda": ("panda.urdf", "panda_link0", "panda_link8"),
+    "puma560": ("puma560.urdf", "base_link", "link6"),
+    "iiwa14": ("iiwa14.urdf", "base_link", "tool0"),
+    "stanford": ("stanford.urdf", "base_link", "link6"),
+}
+
+_NAMES = {"panda": "Franka Panda", "puma560": "Puma 560", "iiwa14": "KUKA iiwa 14", "stanford": "Stanford arm"}
+
+
+def _from_table(key: str) -> SerialChain:
+    t = DH_TABLES[key]
+    tool = _translation([0.0, 0.0, float(t["tool_z"])])  # type: ignore[arg-type]
+    return SerialChain.from_dh(
+        t["a"], t["alpha"], t["d"], offset=t["theta"], joint_types=str(t["joint_types"]),  # type: ignore[arg-type]
+        convention=str(t["convention"]), tool=tool, name=_NAMES[key],
+    )
+
+
+def panda() -> SerialChain:
+    """The Franka Emika Panda (7 revolute joints) to its flange, from its modified DH table (``DH_TABLES``).
+
+    At home (all joints zero) the arm points straight up and the flange is at
+    (0.088, 0, 0.926) m facing down. The same arm as a URDF file: ``urdf_path("panda")``.
+    """
+    return _from_table("panda")
+
+
+def puma560() -> SerialChain:
+    """The Unimation Puma 560 (6 revolute joints, spherical wrist), from its classical DH table.
+
+    {s} is on the floor under joint 1 (d1 = 0.67183 m) and {b} is frame 6,
+    at the wrist centre. The same arm as a URDF file: ``urdf_path("puma560")``.
+    """
+    return _from_table("puma560")
+
+
+def iiwa14() -> SerialChain:
+    """The KUKA LBR iiwa 14 R820 (7 revolute joints) to its flange, from its classical DH table.
+
+    Joints 2, 4, 6 are the shoulder, elbow and wrist; the flange is 1.306 m
+    above the base at home. The same arm as a URDF file: ``urdf_path("iiwa14")``.
+    """
+    return _from_table("iiwa14")
+
+
+def stanford() -> SerialChain:
+    """The Stanford arm (RRPRRR: joint 3 slides), from its classical DH table; {b} is frame 6.
+
+    The same arm as a URDF file: ``urdf_path("stanford")``.
+    """
+    return _from_table("stanford")
+
+
+def puma_like(H: float = 0.66, L1: float = 0.43, L2: float = 0.43, d6: float = 0.06) -> SerialChain:
+    r"""A Puma-like arm with no shoulder offset and a spherical wrist (6 revolute joints).
+
+    Joint 1 turns about z through the origin; joints 2 and 3 about y through
+    :math:`(0, 0, H)` and :math:`(L_1, 0, H)`; the wrist axes x, y, x meet at
+    the wrist centre :math:`p_w = (L_1 + L_2, 0, H)`. The tool {b} is at
+    :math:`p_w + (d_6, 0, 0)` with the orientation of {s}.
+    """
+    H, L1, L2, d6 = (positive_float(v, k) for v, k in zip((H, L1, L2, d6), ("H", "L1", "L2", "d6"), strict=True))
+    pw = [L1 + L2, 0.0, H]
+    axes: list[tuple[list[float], list[float]]] = [
+        ([0, 0, 1], [0, 0, 0]), ([0, 1, 0], [0, 0, H]), ([0, 1, 0], [L1, 0, H]),
+        ([1, 0, 0], pw), ([0, 1, 0], pw), ([1, 0, 0], pw),
+    ]
+    S = np.stack([_revolute(w, q) for w, q in axes], axis=1)
+    return SerialChain(S, _translation([L1 + L2 + d6, 0.0, H]), name="Puma-like",
+                       joint_points=[q for _, q in axes])
+
+
+def urdf_path(name: str) -> Path:
+    """The path of a URDF file shipped with the library: ``"panda"``, ``"puma560"``, ``"iiwa14"`` or ``"stanford"``.
+
+    Load it with ``SerialChain.from_urdf(urdf_path(name), base, tip)``; the
+    base and tip links of each are in ``URDF_ROBOTS``.
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"Expected a robot name as a str, got {type(name).__name__}")
+    if name not in URDF_ROBOTS:
+        raise ValueError(f"No shipped URDF named {name!r}: expected one of {sorted(URDF_ROBOTS)}")
+    return Path(__file__).resolve().parent / "data" / URDF_ROBOTS[name][0]
