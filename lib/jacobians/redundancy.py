@@ -46,9 +46,9 @@ from .acceleration import _derivative_and_jacobian
 from .analysis import nullspace_projector
 from .chain import SerialChain, _as_chain
 from .frames import Frame, check_frame
-from .velocity import pinv_rates
+from .velocity import dls_rates, pinv_rates
 
-__all__ = ["manipulability_gradient", "redundant_rates"]
+__all__ = ["manipulability_gradient", "redundant_rates", "task_priority_rates", "weighted_pinv_rates"]
 
 
 def _rows(rows: Sequence[int] | None) -> list[int]:
@@ -147,4 +147,96 @@ def redundant_rates(J: ArrayLike, V: ArrayLike, z: ArrayLike, rcond: float = 1e-
     base = pinv_rates(A, V, rcond)
     P = nullspace_projector(A, rtol=rcond)
     out: NDArray[np.float64] = base + (P @ zz[..., :, None])[..., 0]
+    return out
+
+
+def _damped(A: NDArray[np.float64], b: NDArray[np.float64], damping: float) -> NDArray[np.float64]:
+    r""":math:`A^\dagger b` for damping 0, else the damped least-squares solution (gains at most 1/(2 damping))."""
+    out: NDArray[np.float64] = pinv_rates(A, b) if damping == 0.0 else dls_rates(A, b, damping)
+    return out
+
+
+def task_priority_rates(J1: ArrayLike, V1: ArrayLike, J2: ArrayLike, V2: ArrayLike, damping: float = 0.0,
+                        method: str = "nakamura") -> NDArray[np.float64]:
+    r"""Joint rates for a primary task :math:`J_1\dot\theta = V_1` and a secondary one :math:`J_2\dot\theta = V_2`.
+
+    ``method="nakamura"`` (Nakamura, Hanafusa and Yoshikawa):
+    :math:`\dot\theta = J_1^\dagger V_1 + (J_2P_1)^{\#}(V_2 - J_2J_1^\dagger V_1)` with
+    :math:`P_1 = I - J_1^\dagger J_1`. The secondary task is met as well as the
+    primary one allows; but where :math:`J_2P_1` loses rank while :math:`J_1` and
+    :math:`J_2` do not (an *algorithmic singularity*), :math:`(J_2P_1)^\dagger` has a
+    gain :math:`1/\sigma_{\min}(J_2P_1)` and the rates blow up.
+
+    ``method="singularity_robust"`` (Chiaverini):
+    :math:`\dot\theta = J_1^\dagger V_1 + P_1J_2^{\#}V_2`. It never inverts :math:`J_2P_1`,
+    so it stays bounded at algorithmic singularities; the price is that the
+    secondary task is not met exactly even where it could be.
+
+    In both, :math:`A^{\#}` is the pseudo-inverse for ``damping = 0`` and the
+    damped least-squares inverse :math:`A^T(AA^T + \lambda^2I)^{-1}` otherwise
+    (gains at most :math:`1/(2\lambda)`). The primary task is met exactly
+    wherever :math:`J_1` has full row rank: the second term lies in the null space of :math:`J_1`.
+
+    >>> import numpy as np
+    >>> J1, J2 = np.array([[1.0, 0.0, 0.0]]), np.array([[0.0, 1.0, 0.0]])
+    >>> task_priority_rates(J1, [1.0], J2, [2.0])
+    array([1., 2., 0.])
+    """
+    A1, A2 = as_float_array(J1, "J1"), as_float_array(J2, "J2")
+    if A1.ndim < 2 or A2.ndim < 2 or A1.shape[-1] != A2.shape[-1]:
+        raise ValueError(f"Expected J1 (..., m1, n) and J2 (..., m2, n) with the same n, "
+                         f"got shapes {A1.shape} and {A2.shape}")
+    if isinstance(damping, bool) or not isinstance(damping, (int, float, np.floating, np.integer)) \
+            or not np.isfinite(damping) or damping < 0:
+        raise ValueError(f"Expected damping as a finite number >= 0, got {damping!r}")
+    if method not in ("nakamura", "singularity_robust"):
+        raise ValueError(f"Expected method 'nakamura' or 'singularity_robust', got {method!r}")
+    b1, b2 = as_float_array(V1, "V1"), as_float_array(V2, "V2")
+    if b1.shape[-1:] != A1.shape[-2:-1] or b2.shape[-1:] != A2.shape[-2:-1]:
+        raise ValueError(f"Expected V1 with {A1.shape[-2]} and V2 with {A2.shape[-2]} entries, "
+                         f"got shapes {b1.shape} and {b2.shape}")
+    check_finite(b1, "V1")
+    check_finite(b2, "V2")
+    lam = float(damping)
+    first = pinv_rates(A1, b1)
+    P1 = nullspace_projector(A1)
+    if method == "nakamura":
+        A2P1 = A2 @ P1
+        rest = b2 - (A2 @ first[..., :, None])[..., 0]
+        second = _damped(A2P1, rest, lam)
+        # (J2 P1)^# maps into the row space of J2 P1, which P1 fixes: project again so rounding stays out of N(J1)^perp
+        second = (P1 @ second[..., :, None])[..., 0]
+    else:
+        second = (P1 @ _damped(A2, b2, lam)[..., :, None])[..., 0]
+    out: NDArray[np.float64] = first + second
+    return out
+
+
+def weighted_pinv_rates(J: ArrayLike, V: ArrayLike, W: ArrayLike) -> NDArray[np.float64]:
+    r"""The weighted least-norm rates :math:`\dot\theta = W^{-1}J^T(JW^{-1}J^T)^{-1}V`.
+
+    The minimiser of :math:`\dot\theta^TW\dot\theta` subject to :math:`J\dot\theta = V`, for a
+    symmetric positive definite weight W (e.g. larger for joints that should move
+    less). Computed as :math:`L^{-T}(JL^{-T})^\dagger V` with :math:`W = LL^T` (Cholesky), which
+    is the same where J has full row rank and stays defined where it does not.
+
+    >>> import numpy as np
+    >>> weighted_pinv_rates(np.array([[1.0, 1.0]]), [1.0], np.diag([1.0, 3.0]))
+    array([0.75, 0.25])
+    """
+    A = as_float_array(J, "J")
+    Wm = as_float_array(W, "W")
+    n = A.shape[-1] if A.ndim >= 2 else -1
+    if A.ndim < 2 or Wm.shape[-2:] != (n, n):
+        raise ValueError(f"Expected J (..., m, n) and W (..., n, n), got shapes {A.shape} and {Wm.shape}")
+    check_finite(Wm, "W")
+    if not np.allclose(Wm, np.swapaxes(Wm, -1, -2), rtol=1e-12, atol=1e-12 * np.abs(Wm).max()):
+        raise ValueError("Expected a symmetric weight W")
+    try:
+        L = np.linalg.cholesky(Wm)
+    except np.linalg.LinAlgError:
+        raise ValueError("Expected a positive definite weight W (its Cholesky factorisation failed)") from None
+    Linv_T = np.swapaxes(np.linalg.inv(L), -1, -2)
+    y = pinv_rates(A @ Linv_T, V)
+    out: NDArray[np.float64] = (Linv_T @ y[..., :, None])[..., 0]
     return out
