@@ -21,7 +21,7 @@ no daemon). When the grader runs as root, a sandbox gets:
   folders above them, such as a private ``/root``), a fresh ``/proc`` of
   its own PID namespace, a minimal ``/dev``, a size-limited ``tmpfs`` at
   ``/tmp`` and the scratch folder at ``/home/student`` (working directory,
-  ``HOME``). The submissions, the gradebook, other scratch folders and the
+  ``HOME``); everything else read-only. The submissions, the gradebook, other scratch folders and the
   grader's processes are not in it. Its command line goes through a pipe
   (``--args``): the sandbox's own ``/proc`` shows only ``bwrap --args N -- <the program run>``;
 * **limits for the whole sandbox** through a cgroup of its own (v1 ``memory``,
@@ -314,7 +314,9 @@ class _Cgroup:
         out = []
         try:
             if self.kind == "v1":
-                if int((self.dirs["memory"] / "memory.failcnt").read_text()) > 0:
+                mem = self.dirs["memory"]
+                control = dict(ln.split() for ln in (mem / "memory.oom_control").read_text().splitlines())
+                if int(control.get("oom_kill", 0)) or int((mem / "memory.failcnt").read_text()):
                     out.append("memory")
                 if int((self.dirs["pids"] / "pids.events").read_text().split()[-1]) > 0:
                     out.append("processes")
@@ -427,8 +429,9 @@ def _limiter(limits: Limits, cpu_seconds: float, cgroup: _Cgroup | None, uid: in
         resource.setrlimit(resource.RLIMIT_AS, (limits.address_space, limits.address_space))
         resource.setrlimit(resource.RLIMIT_FSIZE, (limits.file_size, limits.file_size))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-        if uid is not None:  # the uid is this sandbox's alone: a count of its processes
-            resource.setrlimit(resource.RLIMIT_NPROC, (limits.processes, limits.processes))
+        if uid is not None:  # the uid is this sandbox's alone: a count of its processes (threads not counted;
+            nproc = 2 * limits.processes  # the cgroup, which counts both, is the first barrier)
+            resource.setrlimit(resource.RLIMIT_NPROC, (nproc, nproc))
     return apply
 
 
@@ -471,7 +474,7 @@ def _binds(scratch: Path, views: Path, limits: Limits) -> list[str]:
     for k, folder in enumerate(_needed()):
         args += ["--ro-bind", str(views / str(k)), folder]
     args += ["--proc", "/proc", "--dev", "/dev", "--size", str(limits.tmp_size), "--tmpfs", "/tmp",
-             "--bind", str(scratch), HOME, "--chdir", HOME]
+             "--bind", str(scratch), HOME, "--chdir", HOME, "--remount-ro", "/"]
     return args
 
 
