@@ -244,3 +244,56 @@ def test_without_isolation_the_grader_refuses_unless_unsafe(monkeypatch, tmp_pat
     with pytest.raises(grade.Refused, match="bwrap is missing.*UNSAFE=1"):
         grade.grade_class(tmp_path)
     assert not (tmp_path / "gradebook.csv").exists()
+
+
+# --------------------------------------------------------------------------- the grader's own work is bounded
+@pytest.mark.parametrize("tree", [
+    ["F", "Pow", [["Integer", "3"], ["Integer", "100000000"]]],  # 85 s of the grader's CPU before the bounds
+    ["F", "Pow", [["F", "Pow", [["Integer", "3"], ["Integer", "64"]]], ["Integer", "64"]]],  # 3**4096
+    ["F", "Pow", [["Integer", "9" * 399], ["Integer", "64"]]],
+    ["F", "Mul", [["Symbol", "x", {}]] * 100],  # x**100, made by Mul
+    ["F", "Pow", [["Symbol", "x", {}], ["Rational", "1", "100000"]]],
+])
+def test_a_decoder_bomb_decodes_to_too_large(tree):
+    from course.classroom.answers import Opaque, decode
+
+    assert decode({"t": "sympy", "v": tree}) == Opaque("too large")
+
+
+def test_answers_of_the_course_still_decode():
+    import sympy as sp
+
+    from course.classroom.answers import decode, encode
+
+    x = sp.Symbol("x", real=True)
+    for value in (sp.sqrt(2) * x**2, (1 + x) ** -3, sp.Rational(2**200, 3), sp.Matrix([[x**64, 1 / x]])):
+        assert decode(encode(value)) == value
+
+
+def test_overlong_log_lines_are_skipped_unread(tmp_path):
+    from course.classroom import grade
+
+    log = tmp_path / "checks.jsonl"
+    good = json.dumps({"exercise": "ch02_ex1", "answer": {"t": "int", "v": "1"}})
+    log.write_text(good + "\n" + json.dumps({"exercise": "ch02_ex1", "answer": {"t": "str", "v": "x" * (
+        grade.MAX_LOG_LINE + 10)}}) + "\n", encoding="utf-8")
+    assert grade._last_checks(log, {"ch02_ex1"})["ch02_ex1"]["answer"] == {"t": "int", "v": "1"}
+
+
+def test_the_checker_gets_a_cpu_budget():
+    from course.classroom import grade
+
+    with pytest.raises(grade._OverTime), grade._cpu_limit(0.2):
+        while True:
+            pass
+
+
+def test_an_exercise_variable_travels_as_its_id_and_is_rebuilt_only_in_the_sandbox():
+    from course import exercises
+    from course.classroom.answers import Opaque, decode, encode
+
+    ns = {"__name__": "__main__", "ex4": exercises.load("ch01_ex4", seed="s1")}
+    exec("def f(T):\n    return ex4.given['inverse']\n", ns)
+    data = encode(ns["f"])
+    assert data["constants"]["ex4"] == {"t": "exercise", "id": "ch01_ex4"}
+    assert decode(data["constants"]["ex4"]) == Opaque("Exercise")  # the grader never builds it

@@ -25,16 +25,19 @@ after; a change is reported as a row. Notebooks are graded in a process pool.
 from __future__ import annotations
 
 import ast
+import contextlib
 import csv
 import hashlib
 import io
 import json
 import os
 import re
+import signal
 import sys
 import tempfile
+import threading
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import astuple, dataclass, replace
 from pathlib import Path
@@ -63,6 +66,12 @@ COLUMNS = ("student", "notebook", "exercise", "seed", "correct", "message")
 NOTEBOOK = "(notebook)"
 #: Start of every message when the class was graded without isolation (``UNSAFE=1``).
 UNSAFE_NOTE = "[UNSAFE: graded without isolation] "
+#: Most bytes of a notebook's answer log read, and longest line decoded (an answer of 200 000 numbers fits).
+MAX_LOG = 64 << 20
+MAX_LOG_LINE = 8 << 20
+#: CPU seconds the grader may spend regrading one answer (decoding it and running the course's checker);
+#: a second line behind the bounds of :mod:`~course.classroom.answers`.
+CHECK_CPU = 60.0
 #: Biggest notebook read, in bytes.
 MAX_BYTES = 50 << 20
 
@@ -308,14 +317,17 @@ def _read_lines(path: Path, most: int) -> list[str]:
 
 
 def _last_checks(log: Path, wanted: set[str]) -> dict[str, dict[str, Any]]:
-    """The last logged check of each wanted exercise (the log is the student's data: read with limits)."""
+    """The last logged check of each wanted exercise (the log is the student's data: read with limits:
+    :data:`MAX_LOG` bytes in all, lines of at most :data:`MAX_LOG_LINE` bytes)."""
     out: dict[str, dict[str, Any]] = {}
     try:
         with open(log, "rb") as f:
-            data = f.read(256 << 20)
+            data = f.read(MAX_LOG)
     except OSError:
         return out
     for line in data.splitlines():
+        if len(line) > MAX_LOG_LINE:
+            continue
         try:
             entry = json.loads(line)
         except (ValueError, RecursionError):
@@ -329,16 +341,20 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
              limits: Limits) -> tuple[str, str]:
     from .answers import CodeAnswer, decode
 
-    answer = decode(entry["answer"])
     extra = ""
     proxy = None
-    if isinstance(answer, CodeAnswer):
-        if answer.library:
-            extra += f" (The answer is the library function {'.'.join(answer.library)}, not the notebook's code.)"
-        proxy = SandboxedFunction(answer, scratch, limits)
-        answer = proxy
     try:
-        fb = exercises.check(eid, answer, seed=sid)
+        with _cpu_limit(CHECK_CPU):
+            answer = decode(entry["answer"])
+            if isinstance(answer, CodeAnswer):
+                if answer.library:
+                    extra += (f" (The answer is the library function {'.'.join(answer.library)}, not the "
+                              "notebook's code.)")
+                proxy = SandboxedFunction(answer, scratch, limits, seed=sid)
+                answer = proxy
+            fb = exercises.check(eid, answer, seed=sid)
+    except _OverTime:
+        return "0", f"not graded: checking this answer took more than {CHECK_CPU:g} s of the grader's time"
     finally:
         if proxy is not None:
             proxy.close()
@@ -348,6 +364,30 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
         extra += f" (Checked in the notebook with seed {str(entry.get('seed'))[:40]!r}; graded for the ID's variant.)"
     kind = "" if fb.correct else "not attempted: " if fb.kind == "empty" else f"{fb.kind}: "
     return ("1" if fb.correct else "0"), (kind + str(fb.message) + extra).replace("\n", " ")
+
+
+class _OverTime(Exception):
+    pass
+
+
+@contextlib.contextmanager
+def _cpu_limit(seconds: float) -> Iterator[None]:
+    """Raise :class:`_OverTime` in the block once this process has spent ``seconds`` of CPU in it (the
+    profiling timer, SIGPROF: the checker's own guard uses the real-time one). Main thread only."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def over(signum: int, frame: Any) -> None:
+        raise _OverTime()
+
+    old = signal.signal(signal.SIGPROF, over)
+    signal.setitimer(signal.ITIMER_PROF, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, old)
 
 
 # --------------------------------------------------------------------------- a class

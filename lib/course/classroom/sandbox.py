@@ -589,7 +589,8 @@ class SandboxedFunction:
     is killed and later calls raise ``RuntimeError``.
     """
 
-    def __init__(self, answer: Any, scratch: Path, limits: Limits, *, call_timeout: float = 10.0) -> None:
+    def __init__(self, answer: Any, scratch: Path, limits: Limits, *, call_timeout: float = 10.0,
+                 seed: str | int | None = None) -> None:
         from .answers import encode  # noqa: F401  (imported for its side effect: numpy loaded once)
 
         self.__name__ = answer.name
@@ -599,7 +600,7 @@ class SandboxedFunction:
             [sys.executable, "-P", "-m", "course.classroom._callee"], scratch, limits,
             cpu_seconds=limits.notebook_timeout, pipes=True)
         spec = {"name": answer.name, "source": answer.source, "helpers": answer.helpers, "imports": answer.imports,
-                "constants": answer.constants, "library": answer.library}
+                "constants": answer.constants, "library": answer.library, "seed": seed}
         self.error: str | None = None
         reply = self._ask(spec, timeout=60.0)
         if "error" in reply:
