@@ -27,6 +27,9 @@ import numpy as np
 from tools.make_exercises import SOURCES, exercise_cells, student_notebook
 
 WAYS = ("right", "wrong", "half", "blank")
+#: A way that only the tests use: each answer cell holds the book's worked solution, as the book writes it
+#: (reading the variant from the notebook's ``exN.given``, calling helpers of its own).
+BOOK = "book"
 _SEED_LINE = re.compile(r"^SEED\s*=.*$", re.M)
 
 
@@ -71,9 +74,10 @@ def answer_source(exercise_id: str, seed: str | int, way: str) -> str:
 
 def submission(chapter: str, student: str | int, way: str) -> nbformat.NotebookNode:
     """The notebook ``chapter`` (e.g. ``"02_space_jacobian"``) handed in by ``student``, answered ``way``."""
-    if way not in WAYS:
-        raise ValueError(f"Expected a way in {WAYS}, got {way!r}")
+    if way not in (*WAYS, BOOK):
+        raise ValueError(f"Expected a way in {(*WAYS, BOOK)}, got {way!r}")
     nb = student_notebook(SOURCES / f"{chapter}.md")
+    solutions = book_solutions(chapter) if way == BOOK else {}
     for cell in nb.cells:
         if cell.cell_type == "code" and _SEED_LINE.search(cell.source):
             cell.source = _SEED_LINE.sub(f"SEED = {student!r}  # your student ID", cell.source, count=1)
@@ -85,9 +89,32 @@ def submission(chapter: str, student: str | int, way: str) -> nbformat.NotebookN
         this = way
         if way == "half":
             this = "right" if k < len(by_id) // 2 else "blank"
-        if this != "blank":
+        if this == BOOK:
+            cells[1].source = solutions[eid]
+        elif this != "blank":
             cells[1].source = answer_source(eid, student, this)
     return nb
+
+
+def book_solutions(chapter: str) -> dict[str, str]:
+    """The worked solution of each exercise of ``chapter``: its solution cells that do not call the checker."""
+    import jupytext
+
+    from tools.make_exercises import SOLUTION_TAG
+
+    nb = jupytext.read(SOURCES / f"{chapter}.md")
+    out: dict[str, list[str]] = {}
+    current = None
+    for cell in nb.cells:
+        if cell.cell_type != "code":
+            continue
+        m = re.search(r"""exercises\.load\(\s*["'](ch\d\d_ex\d+)["']""", cell.source)
+        if m:
+            current = m.group(1)
+        tags = cell.get("metadata", {}).get("tags", [])
+        if current and SOLUTION_TAG in tags and "exercises.check(" not in cell.source:
+            out.setdefault(current, []).append(cell.source)
+    return {eid: "\n\n".join(srcs) + "\n" for eid, srcs in out.items()}
 
 
 def make_class(folder: Path, n: int, chapters: list[str] | None = None) -> list[Path]:

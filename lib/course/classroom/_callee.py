@@ -1,7 +1,8 @@
 """Inside the sandbox: define a student's function from its collected source and call it on request.
 
 Protocol on stdin/stdout, one JSON object a line: first the function's spec
-(:class:`course.classroom.answers.CodeAnswer` fields), answered by
+(:class:`course.classroom.answers.CodeAnswer` fields, and ``seed``: the ID being graded, for which the
+notebook's exercise variables such as ``ex4`` are loaded again), answered by
 ``{"ready": true}`` or ``{"error": ...}``; then ``{"args": [...]}`` requests,
 answered by ``{"ok": value}`` or ``{"raised": [name, message]}``. Run by
 :class:`course.classroom.sandbox.SandboxedFunction`, never by the grader itself.
@@ -14,8 +15,20 @@ import json
 import sys
 from typing import Any
 
+from course.classroom import answers
 from course.classroom.answers import decode, encode
 from course.classroom.sandbox import GUARD
+
+
+def _exercise_loader(seed: Any) -> Any:
+    """Load an exercise variable of the notebook again, for the ID being graded (the spec's ``seed``)."""
+    from course import exercises
+
+    def load(exercise_id: str) -> Any:
+        if exercise_id not in exercises.exercise_ids():
+            raise ValueError(f"unknown exercise {exercise_id!r}")
+        return exercises.load(exercise_id, seed=seed)
+    return load
 
 
 def _build(spec: dict[str, Any]) -> Any:
@@ -25,6 +38,8 @@ def _build(spec: dict[str, Any]) -> Any:
         for part in qualname.split("."):
             obj = getattr(obj, part)
         return obj
+    if spec.get("seed") is not None:
+        answers._EXERCISE_LOADER["load"] = _exercise_loader(spec["seed"])
     ns: dict[str, Any] = {"__name__": "__main__"}
     for item in spec.get("imports", []):
         if item[0] == "import":

@@ -42,6 +42,15 @@ __all__ = ["CodeAnswer", "Opaque", "decode", "encode"]
 
 #: Most entries of an array, nodes of a sympy tree or items of a list kept; bigger answers are Opaque.
 MAX_NODES = 200_000
+#: Bounds that keep decoding cheap whatever the data (the grader decodes outside any sandbox). Every
+#: rational number a sympy tree builds, at any node, has a numerator and denominator of at most
+#: MAX_BITS bits, and every rational exponent at most MAX_EXPONENT in numerator and denominator: no answer
+#: of this course comes near (the largest exponents are squares and square roots), and with both bounds each
+#: arithmetic step that sympy evaluates while rebuilding works on at most MAX_BITS-bit numbers and makes at
+#: most MAX_BITS * MAX_EXPONENT bits, a fraction of a millisecond; ``["F", "Pow", [3, 100000000]]`` costs
+#: nothing. A tree that breaks a bound decodes to ``Opaque("too large")``.
+MAX_BITS = 4096
+MAX_EXPONENT = 64
 _MAX_TEXT = 20_000
 
 # sympy classes a tree may name: arithmetic, the elementary functions, matrices and arrays.
@@ -62,6 +71,8 @@ class Opaque:
     type_name: str
 
     def __repr__(self) -> str:
+        if self.type_name == "too large":
+            return "<an answer too large to grade (see answers.MAX_BITS and MAX_EXPONENT)>"
         return f"<an object of type {self.type_name} that could not be collected>"
 
 
@@ -137,6 +148,9 @@ def _enc(x: Any, budget: list[int], depth: int) -> dict[str, Any]:
     module = type(x).__module__ or ""
     if module.startswith("sympy"):
         return _enc_sympy(x, budget)
+    if type(x).__name__ == "Exercise" and module.startswith("jacobians.grading") and isinstance(
+            getattr(x, "id", None), str):  # the notebook's ``exN``: rebuilt, not copied (see EXERCISE)
+        return {"t": "exercise", "id": x.id[:60]}
     if isinstance(x, (types.FunctionType, types.BuiltinFunctionType, types.MethodType)):
         return _enc_function(x, budget)
     return {"t": "opaque", "type": type(x).__name__[:60]}
@@ -236,16 +250,31 @@ def _source(fn: Any) -> str | None:
     return src[:_MAX_TEXT * 5]
 
 
+#: How :func:`decode` turns an exercise variable of the notebook (``ex4 = exercises.load("ch01_ex4", ...)``,
+#: which a function answer may read, as the book's worked solutions read ``ex4.given``) back into an object:
+#: only the sandbox that calls a student's function sets ``load`` (:mod:`course.classroom._callee`), to load
+#: the exercise again for the ID being graded. Elsewhere it decodes to an :class:`Opaque`.
+_EXERCISE_LOADER: dict[str, Any] = {}
+
+
 # --------------------------------------------------------------------------- decode (runs in the grader)
 def decode(data: Any) -> Any:
-    """The answer :func:`encode` gave ``data`` for; malformed data gives an :class:`Opaque`. Never evaluates."""
+    """The answer :func:`encode` gave ``data`` for; malformed data gives an :class:`Opaque`. Never evaluates.
+
+    >>> decode({"t": "sympy", "v": ["F", "Pow", [["Integer", "3"], ["Integer", "100000000"]]]})
+    <an answer too large to grade (see answers.MAX_BITS and MAX_EXPONENT)>
+    """
+    budget = [MAX_NODES]
     try:
-        return _dec(data, 0)
+        return _dec(data, 0, budget)
+    except _TooBig:
+        return Opaque("too large")
     except Exception:
         return Opaque("malformed")
 
 
-def _dec(d: Any, depth: int) -> Any:
+def _dec(d: Any, depth: int, budget: list[int]) -> Any:
+    _spend(budget)
     if depth > 60 or not isinstance(d, dict):
         raise ValueError("malformed")
     t = d.get("t")
@@ -262,12 +291,13 @@ def _dec(d: Any, depth: int) -> Any:
     if t == "str":
         return str(d["v"])
     if t in ("list", "tuple"):
-        items = [_dec(v, depth + 1) for v in d["v"]]
+        items = [_dec(v, depth + 1, budget) for v in d["v"]]
         return items if t == "list" else tuple(items)
     if t == "dict":
-        return {_dec(k, depth + 1): _dec(v, depth + 1) for k, v in d["v"]}
+        return {_dec(k, depth + 1, budget): _dec(v, depth + 1, budget) for k, v in d["v"]}
     if t == "ndarray":
         shape = tuple(int(n) for n in d["shape"])
+        _spend(budget, len(d["v"]))
         kind = d["dtype"]
         if kind in "biu":
             return np.array([int(v) for v in d["v"]], dtype=bool if kind == "b" else int).reshape(shape)
@@ -277,25 +307,28 @@ def _dec(d: Any, depth: int) -> Any:
             return np.array([complex(float(a), float(b)) for a, b in d["v"]]).reshape(shape)
         arr = np.empty(len(d["v"]), dtype=object)
         for i, v in enumerate(d["v"]):
-            arr[i] = _dec(v, depth + 1)
+            arr[i] = _dec(v, depth + 1, budget)
         return arr.reshape(shape)
     if t in ("sympy", "sympy-matrix", "sympy-array"):
-        return _dec_sympy(d)
+        return _dec_sympy(d, budget)
     if t == "function":
         return CodeAnswer(str(d.get("name", "function")), d.get("source"), [str(h) for h in d.get("helpers", [])],
                           [[str(p) for p in i] for i in d.get("imports", [])], dict(d.get("constants", {})),
                           [str(p) for p in d["library"]] if d.get("library") else None)
     if t == "opaque":
         return Opaque(str(d.get("type", "?"))[:60])
+    if t == "exercise":
+        load = _EXERCISE_LOADER.get("load")
+        return load(str(d.get("id"))[:60]) if load else Opaque("Exercise")
     raise ValueError("malformed")
 
 
-def _dec_sympy(d: dict[str, Any]) -> Any:
+def _dec_sympy(d: dict[str, Any], budget: list[int]) -> Any:
     import sympy as sp
 
     if d["t"] == "sympy":
-        return _untree(d["v"], 0)
-    entries = [_untree(e, 0) for e in d["v"]]
+        return _untree(d["v"], 0, budget)
+    entries = [_untree(e, 0, budget) for e in d["v"]]
     shape = [int(n) for n in d["shape"]]
     if d["t"] == "sympy-matrix":
         cls = getattr(sp.matrices, d["cls"]) if d["cls"] in _SYMPY_MATRICES else sp.Matrix
@@ -304,9 +337,21 @@ def _dec_sympy(d: dict[str, Any]) -> Any:
     return cls(entries, tuple(shape))
 
 
-def _untree(node: Any, depth: int) -> Any:
+def _bounded(e: Any) -> Any:
+    """``e`` if its numbers are within :data:`MAX_BITS` and its exponent within :data:`MAX_EXPONENT`."""
     import sympy as sp
 
+    if isinstance(e, sp.Rational) and max(abs(e.p).bit_length(), abs(e.q).bit_length()) > MAX_BITS:
+        raise _TooBig()
+    if isinstance(e, sp.Pow) and isinstance(e.exp, sp.Rational) and max(abs(e.exp.p), e.exp.q) > MAX_EXPONENT:
+        raise _TooBig()
+    return e
+
+
+def _untree(node: Any, depth: int, budget: list[int]) -> Any:
+    import sympy as sp
+
+    _spend(budget)
     if depth > 200 or not isinstance(node, list) or not node:
         raise ValueError("malformed")
     head = node[0]
@@ -325,9 +370,11 @@ def _untree(node: Any, depth: int) -> Any:
     if head == "S" and node[1] in _SYMPY_SINGLETONS:
         return getattr(sp.S, str(node[1]))
     if head == "Undefined":
-        return sp.Function(str(node[1]))(*[_untree(a, depth + 1) for a in node[2]])
+        return sp.Function(str(node[1])[:100])(*[_untree(a, depth + 1, budget) for a in node[2]])
     if head == "F" and node[1] in _SYMPY_FUNCS:
         cls = getattr(sp, str(node[1]))
-        args = [_untree(a, depth + 1) for a in node[2]]
-        return cls(*args)
+        args = [_untree(a, depth + 1, budget) for a in node[2]]
+        if cls is sp.Pow and len(args) == 2:
+            _bounded(sp.Pow(sp.Symbol("x"), args[1], evaluate=False))  # the exponent, before any evaluation
+        return _bounded(cls(*args))
     raise ValueError("malformed")

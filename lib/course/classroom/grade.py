@@ -25,23 +25,38 @@ after; a change is reported as a row. Notebooks are graded in a process pool.
 from __future__ import annotations
 
 import ast
+import contextlib
 import csv
 import hashlib
 import io
 import json
 import os
 import re
-import shutil
+import signal
 import sys
 import tempfile
+import threading
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import astuple, dataclass
+from dataclasses import astuple, dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from .sandbox import EVENTS, Limits, SandboxedFunction, kill_tree, make_scratch, sandbox_python, start, warning
+from .sandbox import (
+    EVENTS,
+    Limits,
+    SandboxedFunction,
+    isolation,
+    kill_tree,
+    limits_hit,
+    make_scratch,
+    remove_scratch,
+    sandbox_home,
+    scratch_owner,
+    start,
+    unsafe_allowed,
+)
 
 __all__ = ["COLUMNS", "NOTEBOOK", "Row", "exercises_of", "grade_class", "grade_notebook", "main", "student_id"]
 
@@ -49,11 +64,23 @@ __all__ = ["COLUMNS", "NOTEBOOK", "Row", "exercises_of", "grade_class", "grade_n
 COLUMNS = ("student", "notebook", "exercise", "seed", "correct", "message")
 #: The ``exercise`` of a row about the whole notebook (it could not be read, a cell raised, ...).
 NOTEBOOK = "(notebook)"
+#: Start of every message when the class was graded without isolation (``UNSAFE=1``).
+UNSAFE_NOTE = "[UNSAFE: graded without isolation] "
+#: Most bytes of a notebook's answer log read, and longest line decoded (an answer of 200 000 numbers fits).
+MAX_LOG = 64 << 20
+MAX_LOG_LINE = 8 << 20
+#: CPU seconds the grader may spend regrading one answer (decoding it and running the course's checker);
+#: a second line behind the bounds of :mod:`~course.classroom.answers`.
+CHECK_CPU = 60.0
 #: Biggest notebook read, in bytes.
 MAX_BYTES = 50 << 20
 
 _LOAD = re.compile(r"""exercises\.load\(\s*["'](ch\d\d_ex\d+)["']""")
 _LOG = "checks.jsonl"
+
+
+class Refused(RuntimeError):
+    """Isolation is impossible here and ``UNSAFE=1`` was not given: nothing was graded."""
 
 
 @dataclass(frozen=True)
@@ -191,7 +218,7 @@ def grade_notebook(path: Path, root: Path, limits: Limits, scratch_parent: Path)
     try:
         rows += _run_and_regrade(path, raw, nb, sid, wanted, scratch, limits, rel)
     finally:
-        shutil.rmtree(scratch, ignore_errors=True)
+        remove_scratch(scratch)
     try:
         if hashlib.sha256(path.read_bytes()).digest() != hashlib.sha256(raw).digest():
             rows.append(note("the submitted file changed while it was graded", student, seed))
@@ -214,14 +241,14 @@ def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: li
     clean = {"nbformat": 4, "nbformat_minor": 5, "metadata": {"kernelspec": {"name": "python3",
              "display_name": "Python 3", "language": "python"}}, "cells": code_cells}
     (scratch / "submission.ipynb").write_text(json.dumps(clean), encoding="utf-8")
-    ids = _owner(scratch)
-    if ids:
-        os.chown(scratch / "submission.ipynb", *ids)
+    uid = scratch_owner(scratch)
+    if uid is not None:
+        os.chown(scratch / "submission.ipynb", uid, uid)
     log = scratch / _LOG
-    env = {"JACOBIANS_PROGRESS_LOG": str(log)}
+    env = {"JACOBIANS_PROGRESS_LOG": sandbox_home(scratch) + "/" + _LOG}
     if isinstance(sid, int):
         env["JACOBIANS_SEED"] = str(sid)  # the set-up cell of older notebooks reads it
-    proc = start([sandbox_python()[0], "-m", "course.classroom._runner", "submission.ipynb", "result.json",
+    proc = start([sys.executable, "-P", "-m", "course.classroom._runner", "submission.ipynb", "result.json",
                   str(limits.cell_timeout)], scratch, limits, cpu_seconds=limits.notebook_timeout, env=env)
     t0 = time.monotonic()
     try:
@@ -229,7 +256,12 @@ def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: li
         finished = True
     except Exception:
         finished = False
-    kill_tree(proc)  # the kernel too, and anything that left the group
+    hit = limits_hit(proc)
+    kill_tree(proc)  # every process of the sandbox, however it was started
+    if "memory" in hit:
+        note(f"used all the memory a notebook may use ({limits.memory >> 20} MB); a process was stopped")
+    if "processes" in hit:
+        note(f"tried to run more than {limits.processes} processes and threads at once; it was not allowed to")
     if not finished:
         note(f"did not finish within {limits.notebook_timeout:g} s and was stopped; the checks made before "
              "count")
@@ -262,11 +294,6 @@ def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: li
     return rows
 
 
-def _owner(scratch: Path) -> tuple[int, int] | None:
-    st = scratch.stat()
-    return (st.st_uid, st.st_gid) if os.geteuid() == 0 else None
-
-
 def _read_json(path: Path) -> Any:
     try:
         if path.stat().st_size > 1 << 20:
@@ -290,14 +317,17 @@ def _read_lines(path: Path, most: int) -> list[str]:
 
 
 def _last_checks(log: Path, wanted: set[str]) -> dict[str, dict[str, Any]]:
-    """The last logged check of each wanted exercise (the log is the student's data: read with limits)."""
+    """The last logged check of each wanted exercise (the log is the student's data: read with limits:
+    :data:`MAX_LOG` bytes in all, lines of at most :data:`MAX_LOG_LINE` bytes)."""
     out: dict[str, dict[str, Any]] = {}
     try:
         with open(log, "rb") as f:
-            data = f.read(256 << 20)
+            data = f.read(MAX_LOG)
     except OSError:
         return out
     for line in data.splitlines():
+        if len(line) > MAX_LOG_LINE:
+            continue
         try:
             entry = json.loads(line)
         except (ValueError, RecursionError):
@@ -311,16 +341,20 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
              limits: Limits) -> tuple[str, str]:
     from .answers import CodeAnswer, decode
 
-    answer = decode(entry["answer"])
     extra = ""
     proxy = None
-    if isinstance(answer, CodeAnswer):
-        if answer.library:
-            extra += f" (The answer is the library function {'.'.join(answer.library)}, not the notebook's code.)"
-        proxy = SandboxedFunction(answer, scratch, limits)
-        answer = proxy
     try:
-        fb = exercises.check(eid, answer, seed=sid)
+        with _cpu_limit(CHECK_CPU):
+            answer = decode(entry["answer"])
+            if isinstance(answer, CodeAnswer):
+                if answer.library:
+                    extra += (f" (The answer is the library function {'.'.join(answer.library)}, not the "
+                              "notebook's code.)")
+                proxy = SandboxedFunction(answer, scratch, limits, seed=sid)
+                answer = proxy
+            fb = exercises.check(eid, answer, seed=sid)
+    except _OverTime:
+        return "0", f"not graded: checking this answer took more than {CHECK_CPU:g} s of the grader's time"
     finally:
         if proxy is not None:
             proxy.close()
@@ -330,6 +364,30 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
         extra += f" (Checked in the notebook with seed {str(entry.get('seed'))[:40]!r}; graded for the ID's variant.)"
     kind = "" if fb.correct else "not attempted: " if fb.kind == "empty" else f"{fb.kind}: "
     return ("1" if fb.correct else "0"), (kind + str(fb.message) + extra).replace("\n", " ")
+
+
+class _OverTime(Exception):
+    pass
+
+
+@contextlib.contextmanager
+def _cpu_limit(seconds: float) -> Iterator[None]:
+    """Raise :class:`_OverTime` in the block once this process has spent ``seconds`` of CPU in it (the
+    profiling timer, SIGPROF: the checker's own guard uses the real-time one). Main thread only."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def over(signum: int, frame: Any) -> None:
+        raise _OverTime()
+
+    old = signal.signal(signal.SIGPROF, over)
+    signal.setitimer(signal.ITIMER_PROF, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, old)
 
 
 # --------------------------------------------------------------------------- a class
@@ -364,6 +422,10 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
     if not root.is_dir():
         raise ValueError(f"Expected a folder of submissions, got {str(root)!r}")
     limits = limits or Limits()
+    how = isolation()  # (probed once here, before the worker processes are forked: they inherit the answer)
+    if not how.ok and not unsafe_allowed():
+        raise Refused(f"make grade refuses to grade: {how.reason}. Without isolation one student's code could "
+                      "read or change another's work and grade. To grade anyway, at your own risk: UNSAFE=1")
     gradebook, reports = root / "gradebook.csv", root / "reports"
     skip = {gradebook, reports}
     before = _tree_digest(root, skip)
@@ -378,6 +440,8 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
             with ProcessPoolExecutor(max_workers=workers) as pool:
                 results = list(pool.map(_worker, jobs))
     rows = [r for rs in results for r in rs]
+    if not how.ok:
+        rows = [replace(r, message=UNSAFE_NOTE + r.message) for r in rows]
     after = _tree_digest(root, skip)
     for name in sorted(set(before) | set(after)):
         if before.get(name) != after.get(name):
@@ -423,10 +487,15 @@ def main(argv: list[str] | None = None) -> int:
         print(f"make grade: {a.submissions} is not a folder (give SUBMISSIONS=<dir>)", file=sys.stderr)
         return 2
     t0 = time.perf_counter()
-    if warning():
-        print("make grade: warning:", warning(), file=sys.stderr)
-    rows = grade_class(a.submissions, workers=a.workers,
-                       limits=Limits(cell_timeout=a.cell_timeout, notebook_timeout=a.notebook_timeout))
+    how = isolation()
+    if not how.ok and unsafe_allowed():
+        print(f"make grade: WARNING: grading WITHOUT isolation ({how.reason}); every row says so", file=sys.stderr)
+    try:
+        rows = grade_class(a.submissions, workers=a.workers,
+                           limits=Limits(cell_timeout=a.cell_timeout, notebook_timeout=a.notebook_timeout))
+    except Refused as exc:
+        print(exc, file=sys.stderr)
+        return 3
     n = len({r.notebook for r in rows if r.exercise != "(submissions)"})
     right = sum(r.correct == "1" for r in rows)
     graded = sum(r.correct in ("0", "1") for r in rows)

@@ -1,21 +1,47 @@
-"""Running a student's code: a separate process, an unprivileged user, a scratch folder, limits.
+"""Running a student's code: a bubblewrap sandbox per notebook, its own uid, whole-sandbox limits.
 
-What a sandboxed process gets (:func:`start`):
+Each sandbox (:func:`start`) is made with Debian's ``bubblewrap`` (``bwrap``, the
+sandbox Flatpak uses; chosen because it is small, packaged everywhere and needs
+no daemon). When the grader runs as root, a sandbox gets:
 
-* its own session (so the whole process group can be killed), with the scratch
-  folder as working directory, ``HOME`` and ``TMPDIR``;
-* when the grader runs as root, the user ``nobody`` (no supplementary groups):
-  the submissions folder and the gradebook, owned by the instructor, are then
-  out of its reach by file permissions;
-* resource limits: CPU seconds, address space, size of a written file, no core
-  files;
-* an audit hook (:data:`GUARD`, run first in the kernel) that refuses to open a
-  file for writing outside the scratch folder, to delete, rename or create
-  anything there, or to start a program, and notes each attempt in
-  ``.sandbox_events`` so the gradebook can say so. The hook is a reporter; the
-  user and the permissions are the barrier (a hook can be dodged with ctypes).
+* **a uid of its own**: the grader takes a free uid from a private range
+  (:data:`UID_BASE`, held by a lock file for the sandbox's lifetime), switches
+  to it with ``setpriv --reuid --regid --clear-groups`` and only then starts
+  ``bwrap``, which makes the user namespace. That uid owns nothing on the
+  machine but the sandbox's scratch folder;
+* **namespaces** (``--unshare-all``): no network (only its own loopback), its
+  own PID namespace (``--die-with-parent``: when the sandbox's first process
+  ends, the kernel kills every process in it, however it was started), its own
+  IPC and hostname; no further user namespaces (``--disable-userns``), a new
+  session (``--new-session``);
+* **a filesystem of its own**: an empty root with read-only binds of ``/usr``,
+  the Python installation, the virtual environment and the course's ``lib``
+  folder (bound first, in a mount namespace of the sandbox's own, on the empty
+  folders of :data:`VIEWS`, so that the sandbox's uid needs no right on the
+  folders above them, such as a private ``/root``), a fresh ``/proc`` of
+  its own PID namespace, a minimal ``/dev``, a size-limited ``tmpfs`` at
+  ``/tmp`` and the scratch folder at ``/home/student`` (working directory,
+  ``HOME``); everything else read-only. The submissions, the gradebook, other scratch folders and the
+  grader's processes are not in it. Its command line goes through a pipe
+  (``--args``): the sandbox's own ``/proc`` shows only ``bwrap --args N -- <the program run>``;
+* **limits for the whole sandbox** through a cgroup of its own (v1 ``memory``,
+  ``pids`` and ``freezer`` hierarchies, or the v2 unified hierarchy with the
+  ``memory`` and ``pids`` controllers): memory (swap included where the kernel
+  counts it, tmpfs pages included) and the number of processes and threads.
+  At the end the cgroup is frozen, every process in it killed and the cgroup
+  removed. Resource limits are the second line: CPU seconds, address space per
+  process, processes of its uid (the uid is the sandbox's alone, so this is a
+  whole-sandbox count too), size of a written file, no core files;
+* an **audit hook** (:data:`GUARD`, run first in every sandboxed Python) that
+  reports attempts to write outside the scratch folder or to start programs
+  (``.sandbox_events``), so that the gradebook can say what a notebook tried.
+  The hook is a reporter; the barrier is the sandbox.
 
-The kernel has the network (the course needs none; a container would remove it).
+:func:`isolation` says whether all this is possible here. If it is not (no
+``bwrap``, not root, no cgroup hierarchy the grader may write, user namespaces
+disabled), ``make grade`` refuses to grade and prints why; ``UNSAFE=1`` grades
+anyway, as the grader's own user with only the resource limits and the hook,
+and every gradebook row then says so.
 
 >>> Limits().cell_timeout
 30.0
@@ -23,37 +49,46 @@ The kernel has the network (the course needs none; a container would remove it).
 
 from __future__ import annotations
 
+import errno
+import fcntl
 import json
 import os
-import pwd
 import resource
 import select
+import shutil
 import signal
 import subprocess
 import sys
-import sysconfig
 import tempfile
 import time
-import uuid
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 from typing import Any
 
-__all__ = ["GUARD", "MARKER", "Limits", "SandboxedFunction", "kill_tree", "make_scratch", "sandbox_ids",
-           "sandbox_python", "start", "warning"]
+__all__ = ["GUARD", "MARKER", "HOME", "Isolation", "Limits", "SandboxedFunction", "isolation", "kill_tree",
+           "make_scratch", "start", "unsafe_allowed"]
 
 #: Start of every message of the audit hook (the grader finds attempts by it).
 MARKER = "[grading sandbox]"
 
-#: Environment variable holding a unique token per sandboxed process tree (to find strays after a run).
-RUN_ENV = "JACOBIANS_SANDBOX_RUN"
-
 #: Name of the file, in the scratch folder, where the audit hook notes refused operations.
 EVENTS = ".sandbox_events"
 
-#: The code the grader runs first in a student's kernel: the audit hook (see the module docstring).
+#: Where the scratch folder is inside a sandbox (its working directory and HOME).
+HOME = "/home/student"
+
+#: First uid of the range the sandboxes run as (uids nobody else on a Debian machine uses); :data:`UID_COUNT` uids.
+UID_BASE = 2_100_000_000
+UID_COUNT = 10_000
+
+#: Name of the cgroup folder (under each hierarchy) holding one cgroup per running sandbox.
+CGROUP_PARENT = "jacobians-grade"
+
+#: Environment variable that allows grading without isolation (``make grade UNSAFE=1`` sets it).
+UNSAFE_ENV = "JACOBIANS_GRADE_UNSAFE"
+
 GUARD = r'''
 def _jacobians_sandbox_guard():
     import os, sys
@@ -108,143 +143,433 @@ del _jacobians_sandbox_guard
 
 @dataclass(frozen=True)
 class Limits:
-    """Time and size limits of a sandboxed run (seconds, bytes)."""
+    """Time and size limits of a sandboxed run (seconds, bytes; ``memory`` and ``processes`` for the whole
+    sandbox, the others per process)."""
 
     cell_timeout: float = 30.0
     notebook_timeout: float = 300.0
-    memory: int = 6 << 30
+    memory: int = 2 << 30
+    processes: int = 256
+    address_space: int = 6 << 30
     file_size: int = 64 << 20
+    tmp_size: int = 256 << 20
 
 
-def sandbox_ids() -> tuple[int, int] | None:
-    """``(uid, gid)`` the student's code runs as: ``nobody`` when the grader is root and ``nobody`` can run
-    Python with the course (see :func:`sandbox_python`), else None (the grader's own user)."""
-    return _sandbox()[1]
+@dataclass(frozen=True)
+class Isolation:
+    """Whether sandboxes can be made here (``ok``), why not (``reason``), and the cgroup version used."""
+
+    ok: bool
+    reason: str | None = None
+    cgroup: str | None = None
 
 
-def sandbox_python() -> list[str]:
-    """The interpreter of sandboxed processes, and the folders it needs on ``PYTHONPATH``.
-
-    As root, the grader's own interpreter when ``nobody`` can run it; otherwise
-    (an interpreter under a private home, as pyenv puts it) the interpreter
-    named by ``JACOBIANS_SANDBOX_PYTHON`` or the system's ``/usr/bin/pythonX.Y``
-    of the same version, given the grader's ``site-packages``. If none works for
-    ``nobody``, the student's code runs as the grader's user, and
-    :func:`warning` says so.
-    """
-    return _sandbox()[0]
-
-
-def warning() -> str | None:
-    """Why the sandbox could not drop to an unprivileged user (None when it could, or need not)."""
-    return _sandbox()[2]
-
-
-def _nobody() -> tuple[int, int] | None:
-    if not hasattr(os, "geteuid") or os.geteuid() != 0:
-        return None
-    try:
-        pw = pwd.getpwnam("nobody")
-    except KeyError:  # pragma: no cover - every Debian has nobody
-        return None
-    return pw.pw_uid, pw.pw_gid
+def unsafe_allowed() -> bool:
+    """Whether the instructor asked to grade without isolation (``UNSAFE=1``)."""
+    return os.environ.get(UNSAFE_ENV, "") not in ("", "0")
 
 
 @cache
-def _sandbox() -> tuple[list[str], tuple[int, int] | None, str | None]:
-    ids = _nobody()
-    if ids is None:
-        return [sys.executable, _lib_dir()], None, None
-    version = f"python{sys.version_info.major}.{sys.version_info.minor}"
-    site = sysconfig.get_paths()["purelib"]
-    candidates = [[sys.executable, _lib_dir()]]
-    named = os.environ.get("JACOBIANS_SANDBOX_PYTHON")
-    for exe in ([named] if named else []) + [f"/usr/bin/{version}", f"/usr/local/bin/{version}"]:
-        if exe and os.path.exists(exe):
-            candidates.append([exe, _lib_dir(), site])
-    for cand in candidates:
-        env = {"PATH": "/usr/bin:/bin", "PYTHONPATH": os.pathsep.join(cand[1:]), "HOME": "/",
-               "PYTHONDONTWRITEBYTECODE": "1"}
+def isolation() -> Isolation:
+    """Whether this machine can make the sandboxes of the module docstring; checked once by making one."""
+    if not hasattr(os, "geteuid") or os.geteuid() != 0:
+        return Isolation(False, "the grader is not root, so it cannot give each notebook a uid and a cgroup of "
+                                "its own (run it as root: sudo make grade ...)")
+    for tool, package in (("bwrap", "bubblewrap"), ("setpriv", "util-linux")):
+        if shutil.which(tool) is None:
+            return Isolation(False, f"{tool} is missing (apt-get install {package})")
+    kind, why = _cgroup_kind()
+    if kind is None:
+        return Isolation(False, why)
+    probe = Isolation(True, None, kind)
+    parent = Path(tempfile.mkdtemp(prefix="jacobians-probe-"))
+    try:
+        parent.chmod(0o711)
+        scratch = make_scratch(parent, isolate=True)
+        proc = _spawn([sys.executable, "-P", "-c", "import os; "
+                       f"assert not os.path.exists('/sys/fs/cgroup') and os.getuid() >= {UID_BASE}; "
+                       "import nbclient, ipykernel, numpy, course.classroom.answers"],
+                      scratch, Limits(), cpu_seconds=120, env={}, pipes=False, how=probe, stderr=True)
         try:
-            ok = subprocess.run([cand[0], "-c", "import nbclient, ipykernel, numpy, course.classroom.answers"],
-                                env=env, cwd="/", user=ids[0], group=ids[1], extra_groups=[], timeout=120,
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode == 0
-        except (OSError, subprocess.SubprocessError):
-            ok = False
-        if ok:
-            return cand, ids, None
-    return ([sys.executable, _lib_dir()], None,
-            "the user nobody cannot run Python with the course here (set JACOBIANS_SANDBOX_PYTHON); "
-            "the students' code runs as the grader's own user, guarded only by the audit hook and the hashes")
+            _, err = proc.communicate(timeout=120)
+            rc = proc.returncode
+        except subprocess.TimeoutExpired:
+            err, rc = b"timed out", -1
+        kill_tree(proc)
+        remove_scratch(scratch)
+    except OSError as exc:
+        return Isolation(False, f"a test sandbox could not be made ({exc})")
+    finally:
+        shutil.rmtree(parent, ignore_errors=True)
+    if rc != 0:
+        last = (err or b"").decode("utf-8", "replace").strip().splitlines()[-1:] or ["no message"]
+        return Isolation(False, f"a test sandbox failed (bwrap or Python inside it: {last[0][:200]}); "
+                                "are user namespaces allowed (sysctl kernel.unprivileged_userns_clone)?")
+    return probe
 
 
-def make_scratch(parent: Path) -> Path:
-    """A new empty folder under ``parent`` owned by the sandbox user, readable by nobody else."""
+# --------------------------------------------------------------------------- cgroups
+_V1 = ("memory", "pids", "freezer")
+
+
+def _cgroup_kind() -> tuple[str | None, str]:
+    root = Path("/sys/fs/cgroup")
+    if all(os.access(root / h, os.W_OK) and (root / h / "cgroup.procs").exists() for h in _V1):
+        return "v1", ""
+    if (root / "cgroup.controllers").exists():
+        have = (root / "cgroup.controllers").read_text().split()
+        if {"memory", "pids"} <= set(have) and os.access(root, os.W_OK):
+            return "v2", ""
+        return None, ("the cgroup v2 hierarchy lacks the memory or pids controller, or is not writable, so "
+                      "memory and processes cannot be limited for a whole sandbox")
+    return None, ("no writable cgroup hierarchy with memory and pids limits (v1 memory, pids and freezer "
+                  "under /sys/fs/cgroup, or v2), so memory and processes cannot be limited for a whole sandbox")
+
+
+class _Cgroup:
+    """One cgroup per sandbox (in each v1 hierarchy, or one v2 folder): limits, joining, killing, removing."""
+
+    def __init__(self, kind: str, name: str, limits: Limits) -> None:
+        self.kind = kind
+        root = Path("/sys/fs/cgroup")
+        if kind == "v1":
+            self.dirs = {h: root / h / CGROUP_PARENT / name for h in _V1}
+            for d in self.dirs.values():
+                d.mkdir(parents=True, exist_ok=True)
+            mem = self.dirs["memory"]
+            (mem / "memory.limit_in_bytes").write_text(str(limits.memory))
+            if (mem / "memory.memsw.limit_in_bytes").exists():  # no swap beyond the limit
+                (mem / "memory.memsw.limit_in_bytes").write_text(str(limits.memory))
+            (self.dirs["pids"] / "pids.max").write_text(str(limits.processes))
+        else:
+            parent = root / CGROUP_PARENT
+            parent.mkdir(exist_ok=True)
+            for d in (root, parent):
+                (d / "cgroup.subtree_control").write_text("+memory +pids")
+            d = parent / name
+            d.mkdir(exist_ok=True)
+            self.dirs = {"unified": d}
+            (d / "memory.max").write_text(str(limits.memory))
+            if (d / "memory.swap.max").exists():
+                (d / "memory.swap.max").write_text("0")
+            (d / "pids.max").write_text(str(limits.processes))
+        self.procs = [str(d / "cgroup.procs") for d in self.dirs.values()]
+
+    def pids(self) -> list[int]:
+        d = self.dirs.get("pids") or self.dirs["unified"]
+        try:
+            return [int(x) for x in (d / "cgroup.procs").read_text().split()]
+        except (OSError, ValueError):
+            return []
+
+    def _freeze(self, on: bool) -> None:
+        try:
+            if self.kind == "v1":
+                (self.dirs["freezer"] / "freezer.state").write_text("FROZEN" if on else "THAWED")
+            elif (self.dirs["unified"] / "cgroup.freeze").exists():
+                (self.dirs["unified"] / "cgroup.freeze").write_text("1" if on else "0")
+        except OSError:
+            pass
+
+    def kill(self) -> None:
+        """Kill every process of the sandbox (frozen first, so none can fork while it is killed); remove it."""
+        kill_file = self.dirs.get("unified", Path("/nonexistent")) / "cgroup.kill"
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline:
+            pids = self.pids()
+            if not pids:
+                break
+            if kill_file.exists():
+                kill_file.write_text("1")
+            else:
+                self._freeze(True)
+                for pid in pids:
+                    try:
+                        os.kill(pid, signal.SIGKILL)
+                    except ProcessLookupError:
+                        pass
+                self._freeze(False)  # killed processes die only when thawed
+            time.sleep(0.01)
+        for d in self.dirs.values():
+            for _ in range(200):
+                try:
+                    d.rmdir()
+                    break
+                except OSError as exc:
+                    if exc.errno == errno.ENOENT:
+                        break
+                    time.sleep(0.01)
+
+    def memory_peak(self) -> int | None:
+        d = self.dirs.get("memory") or self.dirs["unified"]
+        for name in ("memory.max_usage_in_bytes", "memory.peak"):
+            try:
+                return int((d / name).read_text())
+            except (OSError, ValueError):
+                continue
+        return None
+
+    def hit_limits(self) -> list[str]:
+        """What the sandbox ran into: ``"memory"`` and/or ``"processes"``."""
+        out = []
+        try:
+            if self.kind == "v1":
+                mem = self.dirs["memory"]
+                control = dict(ln.split() for ln in (mem / "memory.oom_control").read_text().splitlines())
+                if int(control.get("oom_kill", 0)) or int((mem / "memory.failcnt").read_text()):
+                    out.append("memory")
+                if int((self.dirs["pids"] / "pids.events").read_text().split()[-1]) > 0:
+                    out.append("processes")
+            else:
+                d = self.dirs["unified"]
+                events = dict(ln.split() for ln in (d / "memory.events").read_text().splitlines())
+                if int(events.get("oom_kill", 0)) or int(events.get("max", 0)):
+                    out.append("memory")
+                if int((d / "pids.events").read_text().split()[-1]) > 0:
+                    out.append("processes")
+        except (OSError, ValueError, IndexError):
+            pass
+        return out
+
+
+# --------------------------------------------------------------------------- uids and scratch folders
+@dataclass
+class _Scratch:
+    uid: int
+    lock: int  # an open, flock-ed file descriptor: the uid is this folder's while it is open
+
+
+_SCRATCH: dict[str, _Scratch] = {}
+
+
+def _uid_lock_dir() -> Path:
+    d = Path("/run/jacobians-grade-uids") if os.access("/run", os.W_OK) else \
+        Path(tempfile.gettempdir()) / "jacobians-grade-uids"
+    d.mkdir(mode=0o700, exist_ok=True)
+    return d
+
+
+def _take_uid() -> _Scratch:
+    folder = _uid_lock_dir()
+    start_at = (os.getpid() * 7919 + int(time.monotonic() * 1000)) % UID_COUNT
+    for k in range(UID_COUNT):
+        uid = UID_BASE + (start_at + k) % UID_COUNT
+        fd = os.open(folder / str(uid), os.O_CREAT | os.O_RDWR | os.O_CLOEXEC, 0o600)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            continue
+        return _Scratch(uid, fd)
+    raise RuntimeError(f"all {UID_COUNT} sandbox uids are in use")
+
+
+def make_scratch(parent: Path, *, isolate: bool | None = None) -> Path:
+    """A new empty folder under ``parent`` for one sandbox: owned by a uid of its own (when isolating, by
+    default when :func:`isolation` is possible), readable by nobody else. Give it back with
+    :func:`remove_scratch`."""
     path = Path(tempfile.mkdtemp(prefix="nb-", dir=parent))
-    ids = sandbox_ids()
     (path / "tmp").mkdir()
-    if ids:
+    if isolation().ok if isolate is None else isolate:
+        held = _take_uid()
+        _SCRATCH[str(path)] = held
         for p in (path, path / "tmp"):
-            os.chown(p, *ids)
+            os.chown(p, held.uid, held.uid)
     path.chmod(0o700)
     return path
+
+
+def scratch_owner(scratch: Path) -> int | None:
+    """The uid of ``scratch``'s sandbox (None without isolation)."""
+    held = _SCRATCH.get(str(scratch))
+    return held.uid if held else None
+
+
+def remove_scratch(scratch: Path) -> None:
+    """Delete ``scratch`` and give its uid back (after its sandboxes were killed)."""
+    shutil.rmtree(scratch, ignore_errors=True)
+    held = _SCRATCH.pop(str(scratch), None)
+    if held:
+        os.close(held.lock)
+
+
+def sandbox_home(scratch: Path) -> str:
+    """The scratch folder's path as the sandboxed process sees it."""
+    return HOME if _SCRATCH.get(str(scratch)) else str(scratch)
 
 
 def _lib_dir() -> str:
     return str(Path(__file__).resolve().parent.parent.parent)  # the folder holding course/ and jacobians/
 
 
-#: The run token of each started process, by pid (the process may be gone when its strays are looked for).
-_TOKENS: dict[int, str] = {}
-
-
-def _environment(scratch: Path, extra: dict[str, str]) -> dict[str, str]:
-    python = sandbox_python()
-    bin_dir = os.path.dirname(python[0])
+def _environment(home: str, extra: dict[str, str]) -> dict[str, str]:
     env = {
-        "PATH": bin_dir + os.pathsep + "/usr/local/bin:/usr/bin:/bin",
-        "HOME": str(scratch), "TMPDIR": str(scratch / "tmp"), "IPYTHONDIR": str(scratch / ".ipython"),
-        "MPLCONFIGDIR": str(scratch / ".matplotlib"), "JUPYTER_RUNTIME_DIR": str(scratch / ".jupyter"),
-        "JUPYTER_CONFIG_DIR": str(scratch / ".jupyter"), "XDG_CACHE_HOME": str(scratch / ".cache"),
-        "PYTHONPATH": os.pathsep.join(python[1:]), "PYTHONDONTWRITEBYTECODE": "1",
-        "PYDEVD_DISABLE_FILE_VALIDATION": "1",
-        "MPLBACKEND": "Agg", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
-        "MKL_NUM_THREADS": "1", RUN_ENV: uuid.uuid4().hex,
+        "PATH": os.path.dirname(sys.executable) + os.pathsep + "/usr/local/bin:/usr/bin:/bin",
+        "HOME": home, "USER": "student", "LOGNAME": "student", "TMPDIR": home + "/tmp",
+        "IPYTHONDIR": home + "/.ipython", "MPLCONFIGDIR": home + "/.matplotlib",
+        "JUPYTER_RUNTIME_DIR": home + "/.jupyter", "JUPYTER_CONFIG_DIR": home + "/.jupyter",
+        "XDG_CACHE_HOME": home + "/.cache", "PYTHONPATH": _lib_dir(), "PYTHONDONTWRITEBYTECODE": "1",
+        "PYDEVD_DISABLE_FILE_VALIDATION": "1", "MPLBACKEND": "Agg", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1",
+        "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
     }
     env.update(extra)
     return env
 
 
-def _limiter(limits: Limits, cpu_seconds: float) -> Callable[[], None]:
-    def apply() -> None:  # runs in the child before exec
+def _limiter(limits: Limits, cpu_seconds: float, cgroup: _Cgroup | None, uid: int | None) -> Callable[[], None]:
+    procs = cgroup.procs if cgroup else []
+
+    def apply() -> None:  # runs in the child, as root, before exec (then setpriv, then bwrap)
+        me = str(os.getpid())
+        for f in procs:
+            with open(f, "w") as fh:
+                fh.write(me)
         cpu = int(cpu_seconds) + 5
         resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
-        resource.setrlimit(resource.RLIMIT_AS, (limits.memory, limits.memory))
+        resource.setrlimit(resource.RLIMIT_AS, (limits.address_space, limits.address_space))
         resource.setrlimit(resource.RLIMIT_FSIZE, (limits.file_size, limits.file_size))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+        if uid is not None:  # the uid is this sandbox's alone: a count of its processes (threads not counted;
+            nproc = 2 * limits.processes  # the cgroup, which counts both, is the first barrier)
+            resource.setrlimit(resource.RLIMIT_NPROC, (nproc, nproc))
     return apply
+
+
+#: Empty folders where each sandbox's first process, in a mount namespace of its own, binds the folders the
+#: sandbox needs (the Python installation may sit under a private home such as /root/.pyenv, which the
+#: sandbox's uid cannot traverse; bwrap, started as that uid, binds them from here).
+VIEWS = Path("/run/jacobians-grade-view")
+
+
+def _needed() -> list[str]:
+    """The folders outside ``/usr`` that the sandboxed Python needs, each once (its symlinked path too)."""
+    out: list[str] = []
+    for folder in (sys.base_prefix, sys.prefix, _lib_dir()):
+        for path in (os.path.realpath(folder), os.path.abspath(folder)):
+            if not path.startswith("/usr/") and path not in out:
+                out.append(path)
+    return out
+
+
+def _views() -> Path:
+    base = VIEWS if os.access("/run", os.W_OK) else Path(tempfile.gettempdir()) / "jacobians-grade-view"
+    base.mkdir(mode=0o755, exist_ok=True)
+    base.chmod(0o755)
+    for k in range(len(_needed())):
+        (base / str(k)).mkdir(mode=0o755, exist_ok=True)
+    return base
+
+
+def _binds(scratch: Path, views: Path, limits: Limits) -> list[str]:
+    """bwrap's filesystem arguments (see the module docstring)."""
+    args = ["--ro-bind", "/usr", "/usr"]
+    for top in ("/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32"):
+        if os.path.islink(top):
+            args += ["--symlink", os.readlink(top), top]
+        elif os.path.isdir(top):
+            args += ["--ro-bind", top, top]
+    for f in ("/etc/ld.so.cache", "/etc/localtime", "/etc/nsswitch.conf"):
+        if os.path.exists(f):
+            args += ["--ro-bind", f, f]
+    for k, folder in enumerate(_needed()):
+        args += ["--ro-bind", str(views / str(k)), folder]
+    args += ["--proc", "/proc", "--dev", "/dev", "--size", str(limits.tmp_size), "--tmpfs", "/tmp",
+             "--bind", str(scratch), HOME, "--chdir", HOME, "--remount-ro", "/"]
+    return args
+
+
+_CLONE_NEWNS, _MS_BIND, _MS_REC, _MS_PRIVATE = 0x00020000, 4096, 16384, 1 << 18
+
+
+def _mount_views(views: Path) -> Callable[[], None]:
+    """In the child (root, before exec): a private mount namespace with the needed folders bound on the views."""
+    import ctypes
+
+    libc = ctypes.CDLL(None, use_errno=True)
+    pairs = [(src.encode(), str(views / str(k)).encode()) for k, src in enumerate(_needed())]
+
+    def apply() -> None:
+        if libc.unshare(_CLONE_NEWNS) != 0 or libc.mount(b"none", b"/", None, _MS_REC | _MS_PRIVATE, None) != 0:
+            raise OSError(ctypes.get_errno(), "unshare of the mount namespace failed")
+        for src, dst in pairs:
+            if libc.mount(src, dst, None, _MS_BIND | _MS_REC, None) != 0:
+                raise OSError(ctypes.get_errno(), f"bind of {src.decode()} failed")
+    return apply
+
+
+@dataclass
+class _Running:
+    cgroup: _Cgroup | None
+
+
+_RUNNING: dict[int, _Running] = {}
 
 
 def start(argv: list[str], scratch: Path, limits: Limits, *, cpu_seconds: float, env: dict[str, str] | None = None,
           pipes: bool = False) -> subprocess.Popen[bytes]:
-    """Start ``argv`` sandboxed in ``scratch`` (see the module docstring); stdout/stdin piped if ``pipes``."""
-    ids = sandbox_ids()
-    kwargs: dict[str, Any] = {}
-    if ids:
-        kwargs.update(user=ids[0], group=ids[1], extra_groups=[])
-    environment = _environment(scratch, env or {})
-    proc = subprocess.Popen(
-        argv, cwd=scratch, env=environment, start_new_session=True,
-        preexec_fn=_limiter(limits, cpu_seconds), close_fds=True,
-        stdin=subprocess.PIPE if pipes else subprocess.DEVNULL,
-        stdout=subprocess.PIPE if pipes else subprocess.DEVNULL, stderr=subprocess.DEVNULL, **kwargs)
-    _TOKENS[proc.pid] = environment[RUN_ENV]
+    """Start ``argv`` sandboxed in ``scratch`` (see the module docstring); stdout/stdin piped if ``pipes``.
+
+    Raises RuntimeError when isolation is impossible and ``UNSAFE`` was not given."""
+    how = isolation()
+    if not how.ok and not unsafe_allowed():
+        raise RuntimeError(f"cannot grade safely here: {how.reason}")
+    return _spawn(argv, scratch, limits, cpu_seconds=cpu_seconds, env=env or {}, pipes=pipes,
+                  how=how if how.ok else None)
+
+
+def _spawn(argv: list[str], scratch: Path, limits: Limits, *, cpu_seconds: float, env: dict[str, str],
+           pipes: bool, how: Isolation | None, stderr: bool = False) -> subprocess.Popen[bytes]:
+    held = _SCRATCH.get(str(scratch))
+    streams: dict[str, Any] = {
+        "stdin": subprocess.PIPE if pipes else subprocess.DEVNULL,
+        "stdout": subprocess.PIPE if pipes else subprocess.DEVNULL,
+        "stderr": subprocess.PIPE if stderr else subprocess.DEVNULL}
+    if how is None or held is None:  # UNSAFE: the grader's own user, resource limits, the hook
+        proc = subprocess.Popen(argv, cwd=scratch, env=_environment(str(scratch), env), start_new_session=True,
+                                preexec_fn=_limiter(limits, cpu_seconds, None, None), close_fds=True, **streams)
+        _RUNNING[proc.pid] = _Running(None)
+        return proc
+    assert how.cgroup is not None
+    views = _views()
+    cgroup = _Cgroup(how.cgroup, str(held.uid), limits)
+    limit, mount = _limiter(limits, cpu_seconds, cgroup, held.uid), _mount_views(views)
+
+    def prepare() -> None:
+        limit()
+        mount()
+
+    r = -1
+    try:
+        bargs = ["--unshare-all", "--unshare-user", "--disable-userns", "--die-with-parent", "--new-session",
+                 "--cap-drop", "ALL", "--hostname", "sandbox", *_binds(scratch, views, limits)]
+        r, w = os.pipe()
+        with os.fdopen(w, "wb") as fh:  # (a pipe holds 64 KB; the arguments are a few hundred bytes)
+            fh.write(b"".join(a.encode() + b"\0" for a in bargs))
+        cmd = ["setpriv", f"--reuid={held.uid}", f"--regid={held.uid}", "--clear-groups", "--",
+               "bwrap", "--args", str(r), "--", *argv]
+        proc = subprocess.Popen(cmd, cwd="/", env=_environment(HOME, env), start_new_session=True,
+                                preexec_fn=prepare, close_fds=True, pass_fds=(r,), **streams)
+    except BaseException:
+        cgroup.kill()
+        raise
+    finally:
+        if r >= 0:
+            os.close(r)
+    _RUNNING[proc.pid] = _Running(cgroup)
     return proc
 
 
+def limits_hit(proc: subprocess.Popen[bytes]) -> list[str]:
+    """The whole-sandbox limits ``proc``'s sandbox ran into (call before :func:`kill_tree`)."""
+    run = _RUNNING.get(proc.pid)
+    return run.cgroup.hit_limits() if run and run.cgroup else []
+
+
 def kill_tree(proc: subprocess.Popen[bytes]) -> None:
-    """Kill ``proc``'s process group, then any process still carrying its run token (one that left the group)."""
-    token = _TOKENS.pop(proc.pid, None)
+    """Kill every process of ``proc``'s sandbox (its cgroup; without isolation its process group) and wait."""
+    run = _RUNNING.pop(proc.pid, None)
+    if run and run.cgroup:
+        run.cgroup.kill()
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
@@ -253,20 +578,6 @@ def kill_tree(proc: subprocess.Popen[bytes]) -> None:
         proc.wait(timeout=10)
     except subprocess.TimeoutExpired:  # pragma: no cover
         pass
-    if token:
-        _kill_marked(token)
-
-
-def _kill_marked(token: str) -> None:
-    needle = f"{RUN_ENV}={token}".encode()
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            if needle in (entry / "environ").read_bytes().split(b"\0"):
-                os.kill(int(entry.name), signal.SIGKILL)
-        except (OSError, ValueError):
-            continue
 
 
 class SandboxedFunction:
@@ -278,17 +589,18 @@ class SandboxedFunction:
     is killed and later calls raise ``RuntimeError``.
     """
 
-    def __init__(self, answer: Any, scratch: Path, limits: Limits, *, call_timeout: float = 10.0) -> None:
+    def __init__(self, answer: Any, scratch: Path, limits: Limits, *, call_timeout: float = 10.0,
+                 seed: str | int | None = None) -> None:
         from .answers import encode  # noqa: F401  (imported for its side effect: numpy loaded once)
 
         self.__name__ = answer.name
         self.answer = answer
         self.call_timeout = call_timeout
         self._proc: subprocess.Popen[bytes] | None = start(
-            [sandbox_python()[0], "-m", "course.classroom._callee"], scratch, limits,
+            [sys.executable, "-P", "-m", "course.classroom._callee"], scratch, limits,
             cpu_seconds=limits.notebook_timeout, pipes=True)
         spec = {"name": answer.name, "source": answer.source, "helpers": answer.helpers, "imports": answer.imports,
-                "constants": answer.constants, "library": answer.library}
+                "constants": answer.constants, "library": answer.library, "seed": seed}
         self.error: str | None = None
         reply = self._ask(spec, timeout=60.0)
         if "error" in reply:
