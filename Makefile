@@ -17,7 +17,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
 
-.PHONY: help setup book test lint test-lib test-js test-notebooks test-browser test-slides bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
+.PHONY: help setup book test lint test-lib test-js test-notebooks test-browser test-slides test-install bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -27,11 +27,12 @@ help:
 	@echo "make slides-pdf one PDF handout per deck into _build/slides-pdf"
 	@echo "make exercises  student notebooks into _build/exercises"
 	@echo "make bench      speed benchmark against modern_robotics and Pinocchio"
+	@echo "make test-install  a student's install from a wheel in a fresh venv: notebooks, a live view, size"
 	@echo "make grade SUBMISSIONS=<dir>  grade every student notebook under <dir> (gradebook.csv, reports/), as root"
 	@echo "make book SOLUTIONS=0         the book without the solutions"
 
 # ------------------------------------------------------------------ set-up
-$(PY_STAMP): requirements.txt constraints.txt pyproject.toml
+$(PY_STAMP): requirements.txt requirements-book.txt constraints.txt pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
 	$(PY) -m pip install -q -r requirements.txt -c constraints.txt
@@ -78,6 +79,7 @@ test: setup
 	$(MAKE) book
 	$(MAKE) test-browser
 	$(MAKE) test-slides
+	$(MAKE) test-install
 
 lint: setup
 	$(BIN)/ruff check lib tools _ext tests
@@ -87,7 +89,7 @@ lint: setup
 	node_modules/.bin/tsc -p jsconfig.json
 
 test-lib: setup sandbox
-	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/install --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
 
 # the live views' numeric modules under Node, against values the library writes (no browser)
 test-js: setup
@@ -104,6 +106,11 @@ test-browser: setup browser
 
 test-slides: setup browser
 	$(BIN)/pytest tests/slides -q
+
+# A student's install: a wheel of the checkout into a fresh venv with [student] (from the pip cache), every
+# student notebook run there, a live view mounted in its JupyterLab; prints the time, size and package count.
+test-install: setup browser
+	$(BIN)/pytest tests/install -q -p no:cacheprovider
 
 bench: setup
 	$(PY) -m tools.bench

@@ -465,9 +465,10 @@ def test_student_versions_keep_every_non_solution_cell(student_dir):
         kept = [c for c in nb_src.cells
                 if not {"solution", "book-only"} & set(c.metadata.get("tags", []))]
         nb = nbformat.read(student_dir / f"{src.stem}.ipynb", as_version=4)
-        assert len(nb.cells) == len(kept) + 1  # + the banner
+        assert len(nb.cells) == len(kept) + 2  # + the banner and the install cell (_ext/reader_notebooks.py)
+        assert "course-install" in nb.cells[1].metadata["tags"]
         code_src = [c.source for c in kept if c.cell_type == "code"]
-        assert code_src == [c.source for c in nb.cells if c.cell_type == "code"]
+        assert code_src == [c.source for c in nb.cells[2:] if c.cell_type == "code"]
 
 
 def test_source_solutions_are_tagged():

@@ -38,6 +38,7 @@ from pathlib import Path
 
 import jupytext
 import nbformat
+from _ext.reader_notebooks import configured_course, imported_modules, install_cell
 
 ROOT = Path(__file__).resolve().parent.parent
 SOURCES = ROOT / "exercises"
@@ -65,8 +66,13 @@ def _plain_markdown(source: str) -> str:
     return source.strip("\n")
 
 
-def student_notebook(path: Path) -> nbformat.NotebookNode:
-    """The student version of one source notebook."""
+def student_notebook(path: Path, course: str | None = None) -> nbformat.NotebookNode:
+    """The student version of one source notebook.
+
+    Its first code cell installs what the notebook imports when it is missing
+    (``_ext/reader_notebooks.py``: the course from ``course``, a pip requirement,
+    when given; else the cell says how to install it).
+    """
     nb: nbformat.NotebookNode = jupytext.read(path)
     cells = []
     for cell in nb.cells:
@@ -93,7 +99,8 @@ def student_notebook(path: Path) -> nbformat.NotebookNode:
         "cell below it. First put your student ID between the quotes of `SEED = \"student-id\"` in the "
         "first code cell: it picks your own variant of every exercise, and your instructor grades that "
         "variant.*")
-    nb.cells = [banner] + cells
+    needs = imported_modules(nbformat.v4.new_notebook(cells=cells))  # what the student version imports
+    nb.cells = [banner, install_cell(needs, course)] + cells
     nb.metadata.pop("mystnb", None)
     jt = nb.metadata.get("jupytext")
     if isinstance(jt, dict):  # a plain .ipynb: no pairing with the source
@@ -158,8 +165,9 @@ def main(dest: Path) -> int:
     if not paths:
         print("make_exercises: no exercise sources found in", SOURCES, file=sys.stderr)
         return 1
+    course = configured_course(ROOT)  # repository.url of _config.yml: where the install cell gets the course
     for path in paths:
-        nb = student_notebook(path)
+        nb = student_notebook(path, course=course)
         check_student(nb)
         nbformat.validate(nb)
         nbformat.write(nb, dest / f"{path.stem}.ipynb")
