@@ -119,11 +119,12 @@ def _path_of_joints(robot: object, base: str, tip: str) -> list[object]:
     while link != base:
         joint = parent_joint.get(link)
         if joint is None:
-            walked = " -> ".join([tip] + [j.parent for j in path])  # type: ignore[attr-defined]
+            above = [j.parent for j in path]  # type: ignore[attr-defined]
+            where = (f"the links above it are {' -> '.join(above)} (up to the root)" if above
+                     else f"{tip!r} is the root of the tree")
             raise ValueError(
-                f"Link {tip!r} is not below link {base!r} in the URDF tree: going up from {tip!r} "
-                f"({walked}) reaches the root without passing {base!r}. The base must be an ancestor of the tip "
-                "(the chain cannot go through a branch point back down another branch)."
+                f"Link {tip!r} is not below link {base!r} in the URDF tree: {where}. The base must be an "
+                "ancestor of the tip (a chain cannot go up to a branch point and down another branch)."
             )
         path.append(joint)
         link = joint.parent
