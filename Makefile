@@ -135,7 +135,7 @@ distclean: clean
 # ------------------------------------------------------------------ grading a class (chapters/teaching.md)
 grade: setup sandbox
 	@test -n "$(SUBMISSIONS)" || { echo "Usage: make grade SUBMISSIONS=<folder of student notebooks>" >&2; exit 2; }
-	JACOBIANS_GRADE_UNSAFE=$(UNSAFE) $(PY) -m course.classroom.grade "$(SUBMISSIONS)"
+	JACOBIANS_GRADE_UNSAFE=$(UNSAFE) $(PY) -m course.classroom.grade "$(SUBMISSIONS)" $(if $(ROSTER),--roster "$(ROSTER)") $(if $(STUDENT),--student "$(STUDENT)")
 
 # ------------------------------------------------------------------ exercises and slides
 exercises: setup

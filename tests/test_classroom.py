@@ -2,7 +2,7 @@
 endless loop, raising, writing outside its scratch folder, tampering with the checker; the gradebook row by row.
 
 One chapter (exercises 2: two numeric, one symbolic, one code exercise) keeps it fast; the per-cell limit is
-a few seconds so that the endless loop is stopped quickly."""
+20 s: the endless loop is stopped, and the set-up cell finishes on a loaded machine."""
 
 from __future__ import annotations
 
@@ -25,10 +25,21 @@ from course.classroom.sandbox import Limits
 
 CHAPTER = "02_space_jacobian"
 IDS = ["ch02_ex1", "ch02_ex2", "ch02_ex3", "ch02_ex4"]
+#: The per-cell limit of the class: it stops the endless loop, and must leave the set-up cell (numpy, sympy,
+#: matplotlib and the course imported in a fresh sandbox) time to finish on a loaded shared machine too.
+CELL = 20
 
 
 def _id(k: int) -> str | int:
     return f"student-{k}" if string_ids_supported() else 100 + k
+
+
+def _need_isolation() -> None:
+    """Skip, with the reason, where make grade would refuse to grade (not root, no bubblewrap, no cgroups)."""
+    from course.classroom.sandbox import isolation
+
+    if not isolation().ok:
+        pytest.skip(f"make grade cannot isolate notebooks here: {isolation().reason}")
 
 
 def _with_cell(nb: nbformat.NotebookNode, index: int, source: str) -> nbformat.NotebookNode:
@@ -41,6 +52,7 @@ def _with_cell(nb: nbformat.NotebookNode, index: int, source: str) -> nbformat.N
 
 @pytest.fixture(scope="module")
 def graded(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[Row], dict[str, str]]:
+    _need_isolation()
     root = tmp_path_factory.mktemp("class") / "submissions"
     (root / "a" / "deep" / "folder").mkdir(parents=True)
     (root / "b").mkdir()
@@ -69,7 +81,7 @@ def graded(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[Row], d
                                  "CATALOGUE.check = lambda i, a, seed=None: Feedback(True, 'fine', 'correct')")
     write(cheat, root / "cheat.ipynb")
     before = {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in root.rglob("*.ipynb")}
-    rows = grade_class(root, workers=2, limits=Limits(cell_timeout=6, notebook_timeout=120))
+    rows = grade_class(root, workers=2, limits=Limits(cell_timeout=CELL, notebook_timeout=200))
     return root, rows, before
 
 
@@ -129,7 +141,7 @@ def test_broken_and_empty_notebooks_get_one_row_each_and_nothing_runs(graded):
 def test_endless_loop_is_stopped_and_the_other_cells_still_count(graded):
     _, rows, _ = graded
     notes = [r.message for r in _rows(rows, "loop.ipynb") if r.exercise == "(notebook)"]
-    assert notes == ["code cell 4 was stopped after 6 s (an endless loop?)"]  # (code cells counted from 1)
+    assert notes == [f"code cell 4 was stopped after {CELL} s (an endless loop?)"]  # (code cells counted from 1)
     assert [r.correct for r in _exercise_rows(rows, "loop.ipynb").values()] == ["1"] * 4
 
 
@@ -169,7 +181,7 @@ def test_one_html_report_per_student(graded):
     assert "4 of 4 exercises right" in page and "ch02_ex4" in page
     assert "http" not in page.replace('lang="en"', "")  # nothing loaded from the network
     loop = (root / "reports" / report_name(str(_id(4)))).read_text(encoding="utf-8")
-    assert "code cell 4 was stopped after 6 s" in loop
+    assert f"code cell 4 was stopped after {CELL} s" in loop
 
 
 # --------------------------------------------------------------------------- reading notebooks, no execution
@@ -296,6 +308,7 @@ def slow(x):
 
 @pytest.fixture()
 def student_functions(tmp_path):
+    _need_isolation()
     import tempfile
 
     path = tmp_path / "cell.py"

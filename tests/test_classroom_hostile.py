@@ -297,3 +297,362 @@ def test_an_exercise_variable_travels_as_its_id_and_is_rebuilt_only_in_the_sandb
     data = encode(ns["f"])
     assert data["constants"]["ex4"] == {"t": "exercise", "id": "ch01_ex4"}
     assert decode(data["constants"]["ex4"]) == Opaque("Exercise")  # the grader never builds it
+
+
+# --------------------------------------------------------------------------- part 2: a hostile class, graded
+CH02 = "02_space_jacobian"
+IDS02 = ["ch02_ex1", "ch02_ex2", "ch02_ex3", "ch02_ex4"]
+MARK = f"hostile-{os.getpid()}"
+
+_SURVIVOR = r'''import ctypes
+libc = ctypes.CDLL(None)  # fork + setsid + execve with an empty environment, done by libc (posix_spawn with
+line = ('{"exercise": "%s", "seed": "x", "correct": false, "kind": "wrong", "answer": {"t": "int", "v": "0"}}')
+script = ("end=$(($(date +%%s)+40)); while [ $(date +%%s) -lt $end ]; do for f in /home/*/checks.jsonl "
+          "/tmp/*/checks.jsonl /tmp/*/*/checks.jsonl /proc/*/cwd/checks.jsonl /proc/*/root/home/student/checks.jsonl; "
+          "do for e in ch02_ex1 ch02_ex2 ch02_ex3 ch02_ex4; do printf '%s\\n' \"$(printf '%s' '%s' | sed s/EX/$e/)\" "
+          ">> \"$f\"; done; done 2>/dev/null; sleep 0.2; done") % ("%s", "%s", line % "EX")
+attr = ctypes.create_string_buffer(1024)  # POSIX_SPAWN_SETSID: no Python runs in the child; no audit event)
+libc.posix_spawnattr_init(attr)
+libc.posix_spawnattr_setflags(attr, ctypes.c_short(0x80))
+pid = ctypes.c_int(0)
+argv = (ctypes.c_char_p * 4)(b"/bin/sh", b"-c", script.encode(), None)
+envp = (ctypes.c_char_p * 1)(None)
+assert libc.posix_spawn(ctypes.byref(pid), b"/bin/sh", None, attr, argv, envp) == 0
+assert libc.getsid(pid.value) == pid.value  # a session of its own: it left the kernel's process group
+'''
+
+_READER = r'''import glob, os
+found = []
+for pattern in (ROOT + "/**/*.ipynb", "/proc/*/cwd/*.ipynb", "/proc/*/root/home/student/*.ipynb", "/home/*/*.ipynb",
+                "/tmp/**/*.ipynb", "/dev/shm/*"):
+    found += [f for f in glob.glob(pattern, recursive=True)
+              if os.path.realpath(f) != "/home/student/submission.ipynb"]  # (its own notebook)
+stolen = "".join(open(f, errors="replace").read()[:2000] for f in found)
+stolen += "".join(open(f"/proc/{p}/cmdline", errors="replace").read() for p in ("1", "2"))
+raise RuntimeError(f"found {len(found)} notebooks; " + ("STOLEN " + stolen[:300] if "s-victim" in stolen or ROOT in
+                   stolen.replace(f"ROOT = {ROOT!r}", "") else "nothing of the class"))
+'''
+
+_NET = r'''import socket
+socket.create_connection(("127.0.0.1", PORT), timeout=3).sendall(b"a classmate's notebook")
+'''
+
+_DECODER_BOMB = r'''import json, os
+with open(os.environ["JACOBIANS_PROGRESS_LOG"], "a") as f:
+    f.write(json.dumps({"exercise": "ch02_ex3", "seed": SEED, "correct": True, "kind": "correct", "answer": {
+        "t": "sympy", "v": ["F", "Pow", [["Integer", "3"], ["Integer", "100000000"]]]}}) + "\n")
+'''
+
+_BOMBS = r'''import ctypes, os, time
+libc = ctypes.CDLL(None)  # posix_spawn through ctypes: no audit event, and no Python runs in a child
+
+
+def spawn(*argv):
+    pid = ctypes.c_int(0)
+    args = (ctypes.c_char_p * (len(argv) + 1))(*[a.encode() for a in argv], None)
+    env = (ctypes.c_char_p * 1)(None)
+    return pid.value if libc.posix_spawn(ctypes.byref(pid), args[0], None, None, args, env) == 0 else -1
+
+
+made = sum(spawn("/bin/sleep", "3") > 0 for _ in range(50))  # 50 at most: harmless even without a sandbox
+while True:  # wait for them, so that the memory test below has processes to spare
+    try:
+        os.wait()
+    except ChildProcessError:
+        break
+touch = "b = bytearray(200 << 20)\nfor i in range(0, len(b), 4096): b[i] = 1\nimport time; time.sleep(3)"
+kids = [spawn("/usr/bin/python3", "-c", touch) for _ in range(3)]  # 3 x 200 MB at most
+status = [os.waitpid(k, 0)[1] for k in kids if k > 0]
+print("forks made:", made, "killed:", sum(os.WIFSIGNALED(s) for s in status))
+'''
+
+_SHM = r'''import ctypes, os
+libc = ctypes.CDLL(None)
+for path in (b"/dev/shm/MARK", b"/tmp/MARK"):
+    fd = libc.open(path, os.O_WRONLY | os.O_CREAT, 0o644)
+    libc.write(fd, b"left behind", 11)
+    libc.close(fd)
+'''
+
+
+def _with_cell(nb, index: int, source: str):
+    import nbformat
+
+    code = [i for i, c in enumerate(nb.cells) if c.cell_type == "code"]
+    nb.cells.insert(code[index], nbformat.v4.new_code_cell(source))  # (index -1: before the progress cell)
+    return nb
+
+
+def _orphans() -> list[int]:
+    """Processes of a sandbox uid that no grader holds any more (other graders may run on this machine; a
+    uid in use is locked by its grader, see sandbox._take_uid), and cgroups of such uids."""
+    import fcntl
+
+    out = []
+    for pid in _uids_alive():
+        try:
+            uid = Path(f"/proc/{pid}").stat().st_uid
+        except OSError:
+            continue
+        fd = os.open(sandbox._uid_lock_dir() / str(uid), os.O_CREAT | os.O_RDWR, 0o600)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            out.append(pid)  # nobody holds its uid: left behind
+        except OSError:
+            pass  # another grader's sandbox, running
+        finally:
+            os.close(fd)
+    return out
+
+
+def _uids_alive() -> list[int]:
+    out = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                uid = entry.stat().st_uid
+            except OSError:
+                continue
+            if sandbox.UID_BASE <= uid < sandbox.UID_BASE + sandbox.UID_COUNT:
+                out.append(int(entry.name))
+    return out
+
+
+@pytest.fixture(scope="module")
+def hostile_class(tmp_path_factory):
+    import hashlib
+
+    import nbformat
+    from tools.bench_grade import BOOK, submission
+
+    from course.classroom.grade import grade_class
+
+    root = tmp_path_factory.mktemp("hostile") / "submissions"
+    (root / "dup").mkdir(parents=True)
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(5)
+    server.settimeout(0.2)
+    received: list[bytes] = []
+    stop = threading.Event()
+
+    def serve() -> None:
+        while not stop.is_set():
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                continue
+            received.append(conn.recv(4096))
+            conn.close()
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    port = server.getsockname()[1]
+    w = nbformat.write
+    w(_with_cell(submission(CH02, "s-survivor", "right"), 1, _SURVIVOR), root / "a_survivor.ipynb")
+    w(submission(CH02, "s-victim", BOOK), root / "b_victim.ipynb")
+    w(_with_cell(submission(CH02, "s-reader", "right"), 1, f"ROOT = {str(root)!r}\n" + _READER),
+      root / "c_reader.ipynb")
+    w(_with_cell(submission(CH02, "s-net", "right"), 1, _NET.replace("PORT", str(port))), root / "d_net.ipynb")
+    w(_with_cell(submission(CH02, "s-decoder", "half"), -1, _DECODER_BOMB), root / "e_decoder.ipynb")
+    w(_with_cell(submission(CH02, "s-bombs", "right"), 4, _BOMBS), root / "f_bombs.ipynb")
+    w(_with_cell(submission(CH02, "s-shm", "right"), 1, _SHM.replace("MARK", MARK)), root / "g_shm.ipynb")
+    w(submission(CH02, "s2401012", "wrong"), root / "dup" / "old.ipynb")
+    w(submission(CH02, " S2401012 ", "right"), root / "dup" / "new.ipynb")
+    os.utime(root / "dup" / "old.ipynb", (time.time() - 3600, time.time() - 3600))
+    w(submission(CH02, "student-id", "blank"), root / "h_placeholder1.ipynb")
+    w(submission(CH02, "student-id", "right"), root / "h_placeholder2.ipynb")
+    w(submission(CH02, "=2+3", "blank"), root / "i_injection.ipynb")
+    w(submission("01_twists", "s-book", BOOK), root / "j_book01.ipynb")
+    w(submission("03_body_jacobian", "s-book", BOOK), root / "j_book03.ipynb")
+    roster = root.parent / "roster.csv"
+    roster.write_text("ID,Name\ns-victim,Vic Tim\ns-book,Bo Ok\nS2401012,Dee Up\ns-absent,Ada Absent\n",
+                      encoding="utf-8")
+    before = {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in root.rglob("*") if p.is_file()}
+    try:
+        rows = grade_class(root, workers=2, roster=roster,
+                           limits=Limits(cell_timeout=60, notebook_timeout=200, memory=400 << 20, processes=48))
+    finally:
+        stop.set()
+        thread.join()
+        server.close()
+    after = {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in root.rglob("*") if p.is_file()
+             if p.name not in ("gradebook.csv", "grades.csv", "class.html") and not {"reports", "exports"} & set(p.parts)}
+    return root, rows, before, after, received
+
+
+def _of(rows, notebook):
+    return [r for r in rows if r.notebook == notebook]
+
+
+def _grades(rows, notebook):
+    return {r.exercise: r.correct for r in _of(rows, notebook) if r.correct in ("0", "1")}
+
+
+def _notes(rows, notebook):
+    return [r.message for r in _of(rows, notebook) if r.exercise == "(notebook)"]
+
+
+def test_nothing_of_the_submissions_changed_and_nothing_is_left_running(hostile_class):
+    root, rows, before, after, _ = hostile_class
+    assert after == before
+    assert not [r for r in rows if r.exercise == "(submissions)"]
+    deadline = time.monotonic() + 5
+    while _orphans() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert _orphans() == []
+    assert not [p for p in (*Path("/tmp").glob(f"{MARK}*"), *Path("/dev/shm").glob(f"{MARK}*"))]
+
+
+def test_the_survivor_cannot_touch_a_later_student_and_is_reported(hostile_class):
+    _, rows, *_ = hostile_class
+    assert _grades(rows, "b_victim.ipynb") == dict.fromkeys(IDS02, "1")  # the book's worked solutions
+    notes = _notes(rows, "a_survivor.ipynb")
+    assert any("process(es) running after its last cell" in m and "/bin/sh" in m for m in notes), notes
+
+
+def test_classmates_files_and_the_graders_command_line_are_out_of_reach(hostile_class):
+    root, rows, *_ = hostile_class
+    notes = _notes(rows, "c_reader.ipynb")
+    assert any("raised RuntimeError: found 0 notebooks; nothing of the class" in m for m in notes), notes
+    assert not [r for r in rows if r.student == "s-reader" and ("s-victim" in r.message or str(root) in r.message)]
+    assert _grades(rows, "c_reader.ipynb") == dict.fromkeys(IDS02, "1")
+
+
+def test_no_network_to_a_server_of_this_machine(hostile_class):
+    *_, received = hostile_class
+    _, rows, *_ = hostile_class
+    assert received == []
+    assert any("raised" in m and ("Network is unreachable" in m or "ConnectionRefusedError" in m)
+               for m in _notes(rows, "d_net.ipynb")), _notes(rows, "d_net.ipynb")
+
+
+def test_the_decoder_bomb_is_graded_wrong_cheaply(hostile_class):
+    _, rows, *_ = hostile_class
+    (row,) = [r for r in _of(rows, "e_decoder.ipynb") if r.exercise == "ch02_ex3"]
+    assert row.correct == "0" and "too large" in row.message, row
+
+
+def test_fork_and_memory_bombs_hit_the_whole_sandbox_limits(hostile_class):
+    _, rows, *_ = hostile_class
+    notes = _notes(rows, "f_bombs.ipynb")
+    assert any("more than 48 processes" in m for m in notes), notes
+    assert any("used all the memory a notebook may use (400 MB)" in m for m in notes), notes
+
+
+def test_files_in_shared_memory_and_tmp_are_reported_and_gone(hostile_class):
+    _, rows, *_ = hostile_class
+    notes = _notes(rows, "g_shm.ipynb")
+    assert any(f"/dev/shm/{MARK}" in m and f"/tmp/{MARK}" in m and "are gone" in m for m in notes), notes
+    assert _grades(rows, "g_shm.ipynb") == dict.fromkeys(IDS02, "1")
+
+
+def test_case_and_space_variants_are_one_student_and_the_latest_counts(hostile_class):
+    _, rows, *_ = hostile_class
+    assert {r.student for r in _of(rows, "dup/new.ipynb")} == {"s2401012"}
+    assert _grades(rows, "dup/new.ipynb") == dict.fromkeys(IDS02, "1")
+    (old,) = _of(rows, "dup/old.ipynb")
+    assert old.student == "s2401012" and old.correct == "" and "dup/new.ipynb is later and counts" in old.message
+    assert any("earlier submissions not counted: dup/old.ipynb" in m for m in _notes(rows, "dup/new.ipynb"))
+    right = [r for r in rows if r.student == "s2401012" and r.correct == "1"]
+    assert len(right) == 4  # not 8 of 8
+
+
+def test_placeholder_ids_are_flagged_and_never_merged(hostile_class):
+    _, rows, *_ = hostile_class
+    one, two = ({r.student for r in _of(rows, f"h_placeholder{k}.ipynb")} for k in (1, 2))
+    assert len(one) == len(two) == 1 and one != two
+    for k in (1, 2):
+        assert any("placeholder ID 'student-id'" in m for m in _notes(rows, f"h_placeholder{k}.ipynb"))
+    assert _grades(rows, "h_placeholder2.ipynb") == dict.fromkeys(IDS02, "1")
+
+
+def test_a_formula_id_is_defused_in_the_csv(hostile_class):
+    root, rows, *_ = hostile_class
+    text = (root / "gradebook.csv").read_text(encoding="utf-8")
+    assert "\n'=2+3," in text and "\n=2+3" not in text
+    from course.classroom.grade import read_gradebook
+
+    assert read_gradebook(root / "gradebook.csv") == rows
+
+
+def test_book_style_code_answers_are_graded_right(hostile_class):
+    _, rows, *_ = hostile_class
+    assert _grades(rows, "j_book01.ipynb") == dict.fromkeys([f"ch01_ex{k}" for k in range(1, 5)], "1")
+    assert _grades(rows, "j_book03.ipynb") == dict.fromkeys([f"ch03_ex{k}" for k in range(1, 5)], "1")
+
+
+def test_the_roster_flags_unknown_ids_and_missing_students(hostile_class):
+    _, rows, *_ = hostile_class
+    roster = {r.student: r.message for r in rows if r.exercise == "(roster)"}
+    assert "Ada Absent is on the roster, but no notebook" in roster["s-absent"]
+    assert "not on the roster" in roster["s-survivor"] and "=2+3" in roster
+    assert not {"s-victim", "s-book", "s2401012"} & set(roster)
+
+
+def _csv(path):
+    import csv
+
+    with open(path, newline="", encoding="utf-8") as f:
+        return list(csv.reader(f))
+
+
+def test_grades_csv_has_a_row_per_student_a_column_per_chapter_and_a_total(hostile_class):
+    from course.classroom.grade import points
+
+    root, *_ = hostile_class
+    table = _csv(root / "grades.csv")
+    head, body = table[0], {row[0]: row for row in table[1:]}
+    worth = points()
+    chapters = sorted({e.split("_")[0] for e in worth})
+    assert head[:2] == ["student", "name"] and [h.split(" ")[0] for h in head[2:-1]] == chapters
+    assert head[-1] == f"total (of {sum(worth.values()):g})"
+    col = {h.split(" ")[0]: k for k, h in enumerate(head)}
+    assert body["s-victim"][col["ch02"]] == "4" and body["s-victim"][1] == "Vic Tim"
+    assert body["s-book"][col["ch01"]] == body["s-book"][col["ch03"]] == "4" and body["s-book"][-1] == "8"
+    assert body["s2401012"][col["ch02"]] == "4"  # the later notebook only
+    assert body["s-absent"][-1] == "0" and body["'=2+3"][-1] == "0"  # (defused)
+    assert len([k for k in body if k.startswith("(placeholder")]) == 2
+
+
+def test_exports_follow_each_platforms_columns(hostile_class):
+    root, *_ = hostile_class
+    canvas, moodle, gradescope = (_csv(root / "exports" / f"{n}.csv") for n in ("canvas", "moodle", "gradescope"))
+    assert canvas[0][:5] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
+    assert canvas[0][5] == "Jacobians ch01" and canvas[1][0].strip() == "Points Possible"
+    victim = next(r for r in canvas if r[2] == "s-victim")
+    assert victim[0] == "Vic Tim" and victim[5 + 1] == "4"  # ch02
+    assert moodle[0][:2] == ["ID number", "Full name"] and "Total" not in moodle[0]
+    assert gradescope[0][:3] == ["Name", "SID", "Email"] and gradescope[0][-1] == "Total Score"
+    for table in (canvas, moodle, gradescope):
+        assert not [r for r in table if any(c.startswith("(placeholder") for c in r)]
+        assert all(len(r) == len(table[0]) for r in table)
+
+
+def test_the_class_page_counts_tried_right_and_names_mistakes(hostile_class):
+    root, rows, *_ = hostile_class
+    page = (root / "class.html").read_text(encoding="utf-8")
+    assert "<td><code>ch02_ex1</code></td>" in page and "http" not in page.replace('lang="en"', "")
+    import re
+
+    tried, right = map(int, re.search(r"<code>ch02_ex4</code></td><td class=\"n\">(\d+)</td><td class=\"n\">(\d+)",
+                                      page).groups())
+    counted = [r for r in rows if r.exercise == "ch02_ex4" and r.correct in ("0", "1")]
+    assert right == len({r.student for r in counted if r.correct == "1"})
+    assert tried == len({r.student for r in counted if not r.message.startswith("not attempted")})
+
+
+def test_zz_regrading_one_student_replaces_only_their_rows(hostile_class):
+    # (named to run last: it rewrites the gradebook of the class above)
+    from course.classroom.grade import ROSTER, grade_class, read_gradebook
+
+    root, rows, *_ = hostile_class
+    roster = root.parent / "roster.csv"
+    again = grade_class(root, workers=2, roster=roster, student=" S2401012",
+                        limits=Limits(cell_timeout=60, notebook_timeout=200, memory=400 << 20, processes=48))
+    assert read_gradebook(root / "gradebook.csv") == again
+    others = [r for r in rows if r.student != "s2401012" and r.exercise != ROSTER]
+    assert [r for r in again if r.student != "s2401012" and r.exercise != ROSTER] == others
+    mine = sorted((r.notebook, r.exercise, r.correct) for r in rows if r.student == "s2401012")
+    assert sorted((r.notebook, r.exercise, r.correct) for r in again if r.student == "s2401012") == mine
+    assert {r.student for r in again if r.exercise == ROSTER} == {r.student for r in rows if r.exercise == ROSTER}

@@ -143,8 +143,10 @@ def main(n: int = 200) -> None:
         dt = time.perf_counter() - t0
     right = sum(r.correct == "1" for r in rows)
     notes = [r for r in rows if r.exercise == "(notebook)"]
-    print(f"grading: {n} notebooks on {cores} cores in {dt:.1f} s: {n / dt:.2f} notebooks/s, "
-          f"{n / dt / cores:.2f} notebooks/s per core ({right} answers right, {len(notes)} notes on notebooks)")
+    print(f"grading (a bubblewrap sandbox per notebook): {n} notebooks on {cores} cores in {dt:.1f} s: "
+          f"{n / dt:.2f} notebooks/s, {n / dt / cores:.2f} notebooks/s per core "
+          f"(load average {os.getloadavg()[0]:.1f}; {right} answers right, {len(notes)} notes on notebooks)")
+
 
 
 if __name__ == "__main__":

@@ -4,7 +4,9 @@
 audit hook of :data:`course.classroom.sandbox.GUARD` first, then every code
 cell (nbgrader's settings: errors do not stop the run, a cell over its time is
 interrupted and the next one runs, history in memory), and writes RESULT:
-``{"errors": [{"cell", "ename", "evalue"}], "timeouts": [cell...], "status"}``
+``{"errors": [{"cell", "ename", "evalue"}], "timeouts": [cell...], "status", "strays", "left_files"}``
+(the last two in a sandbox only: processes still running after the last cell, files left in /tmp and
+/dev/shm)
 (cells numbered from 1 among the notebook's code cells). The answers are not
 here: ``exercises.check`` logs them itself (:mod:`course.exercises._progress`),
 so a kernel that dies keeps the checks it made.
@@ -13,6 +15,7 @@ so a kernel that dies keeps the checks it made.
 from __future__ import annotations
 
 import json
+import os
 import sys
 from typing import Any
 
@@ -44,8 +47,44 @@ def main(path: str, result: str, cell_timeout: float) -> None:
             else:
                 out["errors"].append({"cell": number, "ename": str(o.get("ename"))[:80],
                                       "evalue": str(o.get("evalue"))[:300]})
+    if _in_sandbox():
+        out["strays"], out["left_files"] = _strays(), _left_files()
     with open(result, "w", encoding="utf-8") as f:
         json.dump(out, f)
+
+
+def _in_sandbox() -> bool:
+    """Whether this runs in make grade's bubblewrap sandbox (its own PID namespace, bwrap as process 1)."""
+    try:
+        with open("/proc/1/cmdline", "rb") as f:
+            return f.read().split(b"\0")[0].endswith(b"bwrap")
+    except OSError:
+        return False
+
+
+def _strays() -> list[str]:
+    """Processes still running after the last cell, but this one and the sandbox's first (the kernel was shut
+    down): what the notebook left behind, each as its command line."""
+    out = []
+    for name in os.listdir("/proc"):
+        if name.isdigit() and int(name) not in (1, os.getpid()):
+            try:
+                with open(f"/proc/{name}/cmdline", "rb") as f:
+                    out.append(f.read(200).replace(b"\0", b" ").decode("utf-8", "replace").strip() or "?")
+            except OSError:
+                continue
+    return out[:5]
+
+
+def _left_files() -> list[str]:
+    """Files the notebook left in the sandbox's private /tmp and /dev/shm (they vanish with it)."""
+    out = []
+    for folder in ("/tmp", "/dev/shm"):
+        try:
+            out += [f"{folder}/{n}"[:100] for n in sorted(os.listdir(folder))]
+        except OSError:
+            continue
+    return out[:5]
 
 
 if __name__ == "__main__":

@@ -61,9 +61,11 @@ from .sandbox import (
 __all__ = ["COLUMNS", "NOTEBOOK", "Row", "exercises_of", "grade_class", "grade_notebook", "main", "student_id"]
 
 #: The columns of gradebook.csv.
-COLUMNS = ("student", "notebook", "exercise", "seed", "correct", "message")
+COLUMNS = ("student", "notebook", "exercise", "seed", "correct", "message", "mistake")
 #: The ``exercise`` of a row about the whole notebook (it could not be read, a cell raised, ...).
 NOTEBOOK = "(notebook)"
+#: The ``exercise`` of a row about the roster (an ID not on it, a student on it without a notebook).
+ROSTER = "(roster)"
 #: Start of every message when the class was graded without isolation (``UNSAFE=1``).
 UNSAFE_NOTE = "[UNSAFE: graded without isolation] "
 #: Most bytes of a notebook's answer log read, and longest line decoded (an answer of 200 000 numbers fits).
@@ -85,7 +87,8 @@ class Refused(RuntimeError):
 
 @dataclass(frozen=True)
 class Row:
-    """One line of the gradebook. ``correct`` is ``"1"``, ``"0"`` or ``""`` (a row about the notebook)."""
+    """One line of the gradebook. ``correct`` is ``"1"``, ``"0"`` or ``""`` (a row about the notebook);
+    ``mistake`` the name of the catalogued mistake the checker recognised in a wrong answer, if any."""
 
     student: str
     notebook: str
@@ -93,6 +96,7 @@ class Row:
     seed: str
     correct: str
     message: str
+    mistake: str = ""
 
 
 # --------------------------------------------------------------------------- reading a notebook (no execution)
@@ -158,6 +162,37 @@ def student_id(sources: Iterable[str]) -> str | int | None:
     return None
 
 
+#: IDs that students leave from the template (after :func:`normalise_id`).
+PLACEHOLDERS = frozenset({"student-id", "your-id", "your id", "id", ""})
+
+
+def normalise_id(sid: str | int) -> str:
+    """The gradebook's form of a student ID: surrounding whitespace removed, inner runs of whitespace made one
+    space, letters lower-cased (``casefold``). The variant is still the one of the ID as the notebook wrote it.
+
+    >>> normalise_id("  S2401012 "), normalise_id("s2401012"), normalise_id(7)
+    ('s2401012', 's2401012', '7')
+    """
+    return " ".join(str(sid).split()).casefold()
+
+
+def is_placeholder(sid: str | int) -> bool:
+    """Whether ``sid`` is the template's placeholder (e.g. ``"student-id"``), not a student's ID."""
+    return normalise_id(sid) in PLACEHOLDERS
+
+
+def student_key(sid: str | int, notebook: str) -> str:
+    """The gradebook's ``student`` of a notebook: the normalised ID, or for a placeholder ID a name of its
+    own made from the notebook's path (two students who both left ``"student-id"`` are never merged).
+
+    >>> student_key("student-id", "a/ch02.ipynb")
+    '(placeholder ID student-id) a/ch02.ipynb'
+    """
+    if is_placeholder(sid):
+        return f"(placeholder ID {normalise_id(sid) or 'empty'}) {notebook}"
+    return normalise_id(sid)
+
+
 def exercises_of(sources: Iterable[str]) -> list[str]:
     """The exercise ids a notebook loads, in order of first appearance."""
     seen: list[str] = []
@@ -206,9 +241,13 @@ def grade_notebook(path: Path, root: Path, limits: Limits, scratch_parent: Path)
     if sid is None:
         return [note('has no student ID: the set-up cell must set SEED = "your ID" (a plain string); '
                      "nothing was run")]
-    student, seed = str(sid), str(sid)
+    student, seed = student_key(sid, rel), str(sid)
     wanted = exercises_of(sources)
     rows: list[Row] = []
+    if is_placeholder(sid):
+        rows.append(note(f'keeps the placeholder ID {str(sid)!r} in SEED = "..." (the student did not put their '
+                         "own ID there): graded for that ID and listed on its own, never merged with others",
+                         student, seed))
     if not wanted:
         rows.append(note("loads no exercise (no exercises.load cell)", student, seed))
     if _calls_solution(sources):
@@ -229,7 +268,7 @@ def grade_notebook(path: Path, root: Path, limits: Limits, scratch_parent: Path)
 
 def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: list[str], scratch: Path,
                      limits: Limits, rel: str) -> list[Row]:
-    student, seed = str(sid), str(sid)
+    student, seed = student_key(sid, rel), str(sid)
     rows: list[Row] = []
 
     def note(message: str) -> None:
@@ -278,6 +317,14 @@ def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: li
             note(f"code cell {e.get('cell')} raised {e.get('ename')}: {e.get('evalue')}"[:400])
         if result.get("status", "ok") != "ok":
             note(f"the kernel stopped: {result.get('status')}"[:400])
+        strays = [str(x)[:100] for x in result.get("strays", [])][:5]
+        if strays:
+            note(f"left {len(strays)} process(es) running after its last cell ({'; '.join(strays)}); they were "
+                 "killed with its sandbox"[:400])
+        left = [str(x)[:100] for x in result.get("left_files", [])][:5]
+        if left:
+            note(f"wrote files outside its folder ({', '.join(left)}); they were in the sandbox's own memory and "
+                 "are gone"[:400])
     events = _read_lines(scratch / EVENTS, 5)
     for ev in events:
         note("tried something outside its scratch folder, which was refused: " + ev.removeprefix(
@@ -338,14 +385,19 @@ def _last_checks(log: Path, wanted: set[str]) -> dict[str, dict[str, Any]]:
 
 
 def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, scratch: Path,
-             limits: Limits) -> tuple[str, str]:
-    from .answers import CodeAnswer, decode
+             limits: Limits) -> tuple[str, str, str]:
+    from .answers import CodeAnswer, Opaque, decode
 
     extra = ""
     proxy = None
     try:
         with _cpu_limit(CHECK_CPU):
             answer = decode(entry["answer"])
+            if isinstance(answer, Opaque):
+                what = ("is too large to grade (a number of more than 4096 bits or an exponent above 64); it "
+                        "was not decoded" if answer.type_name == "too large" else
+                        f"could not be collected as data (an object of type {answer.type_name})")
+                return "0", f"invalid: the answer {what}", ""
             if isinstance(answer, CodeAnswer):
                 if answer.library:
                     extra += (f" (The answer is the library function {'.'.join(answer.library)}, not the "
@@ -354,7 +406,7 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
                 answer = proxy
             fb = exercises.check(eid, answer, seed=sid)
     except _OverTime:
-        return "0", f"not graded: checking this answer took more than {CHECK_CPU:g} s of the grader's time"
+        return "0", f"not graded: checking this answer took more than {CHECK_CPU:g} s of the grader's time", ""
     finally:
         if proxy is not None:
             proxy.close()
@@ -363,7 +415,8 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
     if entry.get("seed") != sid:
         extra += f" (Checked in the notebook with seed {str(entry.get('seed'))[:40]!r}; graded for the ID's variant.)"
     kind = "" if fb.correct else "not attempted: " if fb.kind == "empty" else f"{fb.kind}: "
-    return ("1" if fb.correct else "0"), (kind + str(fb.message) + extra).replace("\n", " ")
+    return (("1" if fb.correct else "0"), (kind + str(fb.message) + extra).replace("\n", " "),
+            str(fb.mistake or "")[:80])
 
 
 class _OverTime(Exception):
@@ -414,9 +467,18 @@ def _worker(args: tuple[str, str, Limits, str]) -> list[Row]:
                     f"the grader failed on this notebook ({type(exc).__name__}: {exc}); please report it"[:400])]
 
 
-def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None = None) -> list[Row]:
-    """Grade every notebook under ``root``; write ``gradebook.csv`` and ``reports/``; return the rows."""
-    from .report import write_reports
+def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None = None,
+                roster: Path | None = None, student: str | None = None) -> list[Row]:
+    """Grade every notebook under ``root``; write ``gradebook.csv`` and ``reports/``; return the rows.
+
+    With ``student``, only the notebooks whose ID is that student's (after :func:`normalise_id`) are graded
+    again, and their rows replace that student's rows of the existing ``gradebook.csv`` (which must exist);
+    the other rows are kept as they are, the roster rows and every file made from the gradebook are redone.
+
+    Duplicates (two notebooks of one chapter by one student, IDs compared after :func:`normalise_id`): the
+    latest file (modification time, then path) counts, the others get one row saying so. With a ``roster``
+    (:func:`read_roster`), IDs not on it and students on it without a notebook get a row each."""
+    from .report import class_page, write_reports
 
     root = Path(root).resolve()
     if not root.is_dir():
@@ -427,9 +489,20 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
         raise Refused(f"make grade refuses to grade: {how.reason}. Without isolation one student's code could "
                       "read or change another's work and grade. To grade anyway, at your own risk: UNSAFE=1")
     gradebook, reports = root / "gradebook.csv", root / "reports"
-    skip = {gradebook, reports}
+    skip = {gradebook, reports, root / GRADES, root / CLASS_PAGE, root / EXPORTS}
     before = _tree_digest(root, skip)
     paths = find_notebooks(root)
+    kept: list[Row] = []
+    if student is not None:
+        if not gradebook.exists():
+            raise ValueError(f"there is no {gradebook} to regrade {student!r} into: grade the class first")
+        key = normalise_id(student)
+        paths = [p for p in paths if _quick_key(p, root) == key]
+        mine = {str(p.relative_to(root)) for p in paths}
+        kept = [r for r in read_gradebook(gradebook) if r.student != key and r.notebook not in mine
+                and r.exercise not in (ROSTER, "(submissions)")]
+    mtimes = {str(p.relative_to(root)): p.stat().st_mtime_ns for p in paths}
+    names = read_roster(Path(roster)) if roster else None
     workers = max(1, min(workers or os.cpu_count() or 1, len(paths) or 1))
     with tempfile.TemporaryDirectory(prefix="jacobians-grade-") as tmp:
         Path(tmp).chmod(0o711)  # the sandbox user may enter its own scratch folder, and list nothing
@@ -439,17 +512,234 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
         else:
             with ProcessPoolExecutor(max_workers=workers) as pool:
                 results = list(pool.map(_worker, jobs))
-    rows = [r for rs in results for r in rs]
+    rows = [r for rs in _supersede(results, mtimes) for r in rs]
     if not how.ok:
         rows = [replace(r, message=UNSAFE_NOTE + r.message) for r in rows]
+    rows = kept + rows
+    if names is not None:
+        rows += _roster_rows(rows, names)
     after = _tree_digest(root, skip)
     for name in sorted(set(before) | set(after)):
         if before.get(name) != after.get(name):
             what = "appeared" if name not in before else "disappeared" if name not in after else "changed"
             rows.append(Row("", name, "(submissions)", "", "", f"this file {what} while the class was graded"))
     _write_csv(gradebook, rows)
+    write_grades(root / GRADES, rows, names or {})
+    write_exports(root / EXPORTS, rows, names or {})
     write_reports(reports, rows)
+    (root / CLASS_PAGE).write_text(class_page(rows), encoding="utf-8")
     return rows
+
+
+def _quick_key(path: Path, root: Path) -> str | None:
+    """The gradebook's student of a notebook, read without running it (None if it has no readable ID)."""
+    try:
+        raw = path.read_bytes()
+        sid = student_id(_code_sources(json.loads(raw))) if len(raw) <= MAX_BYTES else None
+    except (OSError, ValueError, RecursionError):
+        return None
+    return None if sid is None else student_key(sid, str(path.relative_to(root)))
+
+
+def _chapters(rows: list[Row]) -> tuple[str, ...]:
+    return tuple(sorted({r.exercise.split("_")[0] for r in rows if r.correct in ("0", "1")}))
+
+
+def _supersede(results: list[list[Row]], mtimes: dict[str, int]) -> list[list[Row]]:
+    """Keep the latest notebook of each (student, chapters); an earlier one becomes one row saying so."""
+    groups: dict[tuple[str, tuple[str, ...]], list[int]] = {}
+    for k, rs in enumerate(results):
+        student = next((r.student for r in rs if r.student), "")
+        chapters = _chapters(rs)
+        if student and chapters:
+            groups.setdefault((student, chapters), []).append(k)
+    out = list(results)
+    for (student, chapters), members in groups.items():
+        if len(members) < 2:
+            continue
+        members.sort(key=lambda k: (mtimes.get(results[k][0].notebook, 0), results[k][0].notebook))
+        latest = results[members[-1]][0].notebook
+        earlier = [results[k][0].notebook for k in members[:-1]]
+        seed = results[members[-1]][0].seed
+        for k in members[:-1]:
+            rs = results[k]
+            graded = [r for r in rs if r.correct in ("0", "1")]
+            out[k] = [Row(student, rs[0].notebook, NOTEBOOK, rs[0].seed, "",
+                          f"is an earlier submission of {', '.join(chapters)} by the same student: {latest} is "
+                          f"later and counts, this one does not (it had {sum(r.correct == '1' for r in graded)} "
+                          f"of {len(graded)} right)")]
+        out[members[-1]] = [*results[members[-1]], Row(
+            student, latest, NOTEBOOK, seed, "",
+            f"counts for {', '.join(chapters)}; earlier submissions not counted: {', '.join(earlier)}")]
+    return out
+
+
+def read_roster(path: Path) -> dict[str, str]:
+    """A roster CSV as ``{normalised ID: name}``.
+
+    The ID is the column headed ``id``, ``student``, ``student_id``, ``student id``, ``sis user id``,
+    ``username`` or ``login`` (any case), else the first column; the name is the column headed ``name``,
+    ``full name`` or ``student name``, else the second column, else empty. A first row that names no such
+    column is data.
+    """
+    with open(path, newline="", encoding="utf-8-sig") as f:
+        table = [row for row in csv.reader(f) if any(c.strip() for c in row)]
+    if not table:
+        raise ValueError(f"the roster {path} is empty")
+    head = [c.strip().casefold() for c in table[0]]
+    ids = [k for k, c in enumerate(head) if c in ("id", "student", "student_id", "student id", "sis user id",
+                                                  "username", "login")]
+    names = [k for k, c in enumerate(head) if c in ("name", "full name", "student name")]
+    if ids or names:
+        table = table[1:]
+    i = ids[0] if ids else 0
+    n = names[0] if names else (1 if i == 0 else 0)
+    out: dict[str, str] = {}
+    for row in table:
+        if i < len(row) and row[i].strip():
+            out[normalise_id(row[i])] = row[n].strip() if n < len(row) and n != i else ""
+    return out
+
+
+def _roster_rows(rows: list[Row], names: dict[str, str]) -> list[Row]:
+    seen = {r.student for r in rows if r.student}
+    out = [Row(s, "", ROSTER, "", "", "this ID is not on the roster (a typo in SEED, or a student who is not "
+                                     "enrolled?)") for s in sorted(seen) if s not in names and
+           not s.startswith("(placeholder")]
+    out += [Row(s, "", ROSTER, "", "", f"{names[s] or 'this student'} is on the roster, but no notebook with this "
+                                       "ID was found") for s in sorted(names) if s not in seen]
+    return out
+
+
+#: File names, in the submissions folder, of the table of grades and of the class page.
+GRADES = "grades.csv"
+CLASS_PAGE = "class.html"
+#: The course file of points per exercise (:func:`points`).
+POINTS_FILE = Path(__file__).with_name("points.toml")
+
+
+def points(path: Path = POINTS_FILE) -> dict[str, float]:
+    """Points of every exercise of the course: 1, or what the ``[points]`` table of ``path`` says.
+
+    >>> p = points()
+    >>> len(p) > 40 and all(v >= 0 for v in p.values())
+    True
+    """
+    import tomllib
+
+    from course import exercises
+
+    out = {eid: 1.0 for eid in exercises.exercise_ids()}
+    with open(path, "rb") as f:
+        table = tomllib.load(f).get("points", {})
+    for eid, value in table.items():
+        if eid not in out:
+            raise ValueError(f"{path}: {eid!r} is not an exercise of the course")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or value < 0:
+            raise ValueError(f"{path}: the points of {eid} must be a number >= 0, got {value!r}")
+        out[eid] = float(value)
+    return out
+
+
+def _number(x: float) -> str:
+    return f"{x:g}"
+
+
+def grades_table(rows: list[Row], names: dict[str, str], worth: dict[str, float] | None = None
+                 ) -> tuple[list[str], list[list[str]]]:
+    """``grades.csv`` as a header and rows: one row per student (``student``, ``name``, the points of each
+    chapter, ``total``); the header gives each column's maximum. A student's exercise counts once, from the
+    rows that count (an earlier copy of a later submission has none)."""
+    worth = worth or points()
+    chapters = sorted({eid.split("_")[0] for eid in worth})
+    right: dict[str, set[str]] = {}
+    for r in rows:
+        if r.student and r.exercise not in (NOTEBOOK, ROSTER, "(submissions)"):
+            right.setdefault(r.student, set())
+            if r.correct == "1" and r.exercise in worth:
+                right[r.student].add(r.exercise)
+    for sid in names:
+        right.setdefault(sid, set())
+    top = {c: sum(v for e, v in worth.items() if e.startswith(c + "_")) for c in chapters}
+    head = ["student", "name", *(f"{c} (of {_number(top[c])})" for c in chapters),
+            f"total (of {_number(sum(top.values()))})"]
+    table = []
+    for sid in sorted(right):
+        got = {c: sum(worth[e] for e in right[sid] if e.startswith(c + "_")) for c in chapters}
+        table.append([sid, names.get(sid, ""), *(_number(got[c]) for c in chapters), _number(sum(got.values()))])
+    return head, table
+
+
+def write_grades(path: Path, rows: list[Row], names: dict[str, str]) -> None:
+    """Write :func:`grades_table` to ``path`` (every field made :func:`spreadsheet_safe`)."""
+    head, table = grades_table(rows, names)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    for line in (head, *table):
+        w.writerow([spreadsheet_safe(v) for v in line])
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(buf.getvalue(), encoding="utf-8")
+    os.replace(tmp, path)
+
+
+#: Folder, in the submissions folder, of the exports for learning platforms (:func:`write_exports`).
+EXPORTS = "exports"
+
+
+def exports(rows: list[Row], names: dict[str, str], worth: dict[str, float] | None = None
+            ) -> dict[str, list[list[str]]]:
+    """The chapter grades as each platform's CSV import expects them (one table per file name).
+
+    * ``canvas.csv``: Canvas's gradebook import: the columns ``Student`` (name), ``ID``, ``SIS User ID`` (the
+      student ID here), ``SIS Login ID``, ``Section``, then one column per assignment, named
+      ``Jacobians chNN`` (a name Canvas does not know yet becomes a new assignment), and a second row
+      ``Points Possible`` with each assignment's maximum, as Canvas's own gradebook export writes it.
+    * ``moodle.csv``: Moodle's "Import grades from CSV": a column identifying the user (``ID number``, mapped
+      to the user's ID number in the import form), a name column for the eye, one column per grade item
+      (mapped to the course's items in the form). The course total is Moodle's to compute, so it is not
+      exported.
+    * ``gradescope.csv``: the columns of Gradescope's score export (``Name``, ``SID``, ``Email``,
+      ``Total Score``), one column per chapter before the total.
+
+    Placeholder IDs (no student to give the grade to) are left out.
+    """
+    head, table = grades_table(rows, names, worth)
+    chapters = [h.split(" ")[0] for h in head[2:-1]]
+    tops = [h.split("(of ")[1].rstrip(")") for h in head[2:]]
+    real = [t for t in table if not t[0].startswith("(placeholder")]
+    canvas = [["Student", "ID", "SIS User ID", "SIS Login ID", "Section", *(f"Jacobians {c}" for c in chapters)],
+              ["    Points Possible", "", "", "", "", *tops[:-1]]]
+    canvas += [[t[1] or t[0], "", t[0], "", "", *t[2:-1]] for t in real]
+    moodle = [["ID number", "Full name", *(f"Jacobians {c}" for c in chapters)]]
+    moodle += [[t[0], t[1], *t[2:-1]] for t in real]
+    gradescope = [["Name", "SID", "Email", *chapters, "Total Score"]]
+    gradescope += [[t[1], t[0], "", *t[2:]] for t in real]
+    return {"canvas.csv": canvas, "moodle.csv": moodle, "gradescope.csv": gradescope}
+
+
+def write_exports(folder: Path, rows: list[Row], names: dict[str, str]) -> None:
+    """Write :func:`exports` into ``folder`` (every field made :func:`spreadsheet_safe`)."""
+    folder.mkdir(exist_ok=True)
+    for name, table in exports(rows, names).items():
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        for line in table:
+            w.writerow([spreadsheet_safe(v) for v in line])
+        (folder / name).write_text(buf.getvalue(), encoding="utf-8")
+
+
+def spreadsheet_safe(text: str) -> str:
+    """``text`` as a CSV field that no spreadsheet runs as a formula: a leading ``= + - @``, tab or carriage
+    return (and a leading quote, so that it can be undone) gets a ``'`` in front (OWASP's rule).
+
+    >>> spreadsheet_safe("=2+3"), spreadsheet_safe("s1"), spreadsheet_safe("'x")
+    ("'=2+3", 's1', "''x")
+    """
+    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t", "\r", "'") else text
+
+
+def _unsafe_back(text: str) -> str:
+    return text[1:] if text.startswith("'") else text
 
 
 def _write_csv(path: Path, rows: list[Row]) -> None:
@@ -457,7 +747,7 @@ def _write_csv(path: Path, rows: list[Row]) -> None:
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(COLUMNS)
     for r in rows:
-        w.writerow(astuple(r))
+        w.writerow([spreadsheet_safe(str(v)) for v in astuple(r)])
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(buf.getvalue(), encoding="utf-8")
     os.replace(tmp, path)
@@ -470,7 +760,7 @@ def read_gradebook(path: Path) -> list[Row]:
         head = next(r)
         if tuple(head) != COLUMNS:
             raise ValueError(f"Expected the columns {COLUMNS}, got {head}")
-        return [Row(*row) for row in r]
+        return [Row(*(_unsafe_back(v) for v in row)) for row in r]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -482,6 +772,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--workers", type=int, default=None, help="processes (default: one per core)")
     p.add_argument("--cell-timeout", type=float, default=Limits.cell_timeout)
     p.add_argument("--notebook-timeout", type=float, default=Limits.notebook_timeout)
+    p.add_argument("--roster", type=Path, default=None, help="CSV of the class: ID (and name) per row")
+    p.add_argument("--student", default=None, help="regrade only this student into the existing gradebook")
     a = p.parse_args(argv)
     if not a.submissions.is_dir():
         print(f"make grade: {a.submissions} is not a folder (give SUBMISSIONS=<dir>)", file=sys.stderr)
@@ -491,11 +783,14 @@ def main(argv: list[str] | None = None) -> int:
     if not how.ok and unsafe_allowed():
         print(f"make grade: WARNING: grading WITHOUT isolation ({how.reason}); every row says so", file=sys.stderr)
     try:
-        rows = grade_class(a.submissions, workers=a.workers,
+        rows = grade_class(a.submissions, workers=a.workers, roster=a.roster, student=a.student,
                            limits=Limits(cell_timeout=a.cell_timeout, notebook_timeout=a.notebook_timeout))
     except Refused as exc:
         print(exc, file=sys.stderr)
         return 3
+    except ValueError as exc:  # no gradebook to regrade into, a bad roster or points file
+        print(f"make grade: {exc}", file=sys.stderr)
+        return 2
     n = len({r.notebook for r in rows if r.exercise != "(submissions)"})
     right = sum(r.correct == "1" for r in rows)
     graded = sum(r.correct in ("0", "1") for r in rows)

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["report_name", "student_page", "write_reports"]
+__all__ = ["class_page", "report_name", "student_page", "write_reports"]
 
 _CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;font-size:17px;line-height:1.5;color:#1a1a1a;
@@ -48,7 +48,10 @@ def student_page(student: str, rows: Sequence[Any]) -> str:
              f"<style>{_CSS}</style></head><body><h1>{e(title)}</h1>"
              f"<p><strong>{right} of {len(graded)} exercises right.</strong> Each answer was run again and "
              "graded with the course's reference for this ID.</p>"]
-    for nb in sorted({r.notebook for r in rows}):
+    for r in rows:
+        if r.exercise == "(roster)":
+            parts.append(f'<p class="note">{e(r.message)}</p>')
+    for nb in sorted({r.notebook for r in rows if r.exercise != "(roster)"}):
         mine = [r for r in rows if r.notebook == nb]
         parts.append(f"<h2>{e(nb)}</h2>")
         for r in mine:
@@ -86,3 +89,39 @@ def write_reports(folder: Path, rows: Sequence[Any]) -> list[Path]:
         path.write_text(student_page(student, mine), encoding="utf-8")
         out.append(path)
     return out
+
+
+def class_page(rows: Sequence[Any]) -> str:
+    """The class page: per exercise, how many students tried it, how many got it right, and the three
+    mistakes the checker named most often in wrong answers (rows that count only; one student once)."""
+    from collections import Counter
+
+    e = html.escape
+    by: dict[str, dict[str, Any]] = {}
+    for r in rows:
+        if r.correct not in ("0", "1") or not r.student:
+            continue
+        ex = by.setdefault(r.exercise, {"tried": set(), "right": set(), "mistakes": Counter()})
+        if not r.message.startswith("not attempted"):
+            ex["tried"].add(r.student)
+        if r.correct == "1":
+            ex["right"].add(r.student)
+        elif getattr(r, "mistake", ""):
+            ex["mistakes"][r.mistake] += 1
+    students = {r.student for r in rows if r.student and r.exercise != "(roster)"}
+    parts = ['<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">'
+             '<meta name="viewport" content="width=device-width,initial-scale=1"><title>The class, exercise by '
+             f'exercise</title><style>{_CSS}td.n{{text-align:right;font-variant-numeric:tabular-nums}}</style>'
+             '</head><body><h1>The class, exercise by exercise</h1>'
+             f"<p>{len(students)} students (or notebooks without a usable ID) were graded. <em>Tried</em>: "
+             "gave an answer to the exercise's check; <em>right</em>: the answer that counts is right; the "
+             "mistakes are the ones the checker named in wrong answers, most frequent first.</p>"
+             '<table><thead><tr><th scope="col">Exercise</th><th scope="col">Tried</th>'
+             '<th scope="col">Right</th><th scope="col">Most common named mistakes</th></tr></thead><tbody>']
+    for eid in sorted(by):
+        ex = by[eid]
+        top = ", ".join(f"{e(name)} ({n})" for name, n in ex["mistakes"].most_common(3)) or "&mdash;"
+        parts.append(f"<tr><td><code>{e(eid)}</code></td><td class=\"n\">{len(ex['tried'])}</td>"
+                     f"<td class=\"n\">{len(ex['right'])}</td><td>{top}</td></tr>")
+    parts.append("</tbody></table></body></html>")
+    return "\n".join(parts)
