@@ -128,7 +128,7 @@ def _ch11_ex4(rng: Generator) -> Exercise:
                 "is singular for a 2×3 J; the manipulability of a task Jacobian uses J Jᵀ (2×2)."),
     ]
     st = (f"A planar 3R arm with link lengths $L = {vec(ls, 1)}$ m is at $\\theta = {degs(th_deg)}$, with the tip "
-          "position as its task ($J$ is $2\\times3$). Give its manipulability $w = \\sqrt{\\det(JJ^T)}$, which is "
+          "position as its task ($J$ is $2\\times3$). Give its manipulability $\\mu_3 = \\sqrt{\\det(JJ^T)}$, which is "
           "also the length of the null vector $r_1\\times r_2$.")
     return numeric_exercise("Manipulability of a redundant arm", st, {"lengths": ls, "theta_deg": th_deg}, ref,
                             mistakes, what="manipulability",
