@@ -17,7 +17,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
 
-.PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides bench lab slides slides-pdf exercises clean distclean vendor browser grade
+.PHONY: help setup book test lint test-lib test-notebooks test-browser test-slides test-targets bench lab slides slides-pdf exercises clean distclean vendor browser grade
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -56,7 +56,6 @@ browser:
 
 # ------------------------------------------------------------------ the book
 book: vendor
-	$(PY) -m tools.cache_guard _build/.jupyter_cache
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
 	$(PY) -m tools.build_slides
@@ -70,6 +69,7 @@ test: setup
 	$(MAKE) book
 	$(MAKE) test-browser
 	$(MAKE) test-slides
+	$(MAKE) test-targets
 
 lint: setup
 	$(BIN)/ruff check lib tools _ext tests
@@ -77,7 +77,7 @@ lint: setup
 	$(BIN)/mypy _ext
 
 test-lib: setup
-	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/site --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
 
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
@@ -89,6 +89,11 @@ test-browser: setup browser
 
 test-slides: setup browser
 	$(BIN)/pytest tests/slides -q
+
+# After make book: make slides, exercises and vendor in turn, the site crawled for missing files after each
+# (SITE_TARGETS_PDF=1 adds slides-pdf). Rewrites the built site, so it runs after the tests that read it.
+test-targets: setup
+	$(BIN)/pytest tests/site -q -p no:xdist
 
 bench: setup
 	$(PY) -m tools.bench
