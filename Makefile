@@ -91,8 +91,8 @@ test-browser: setup browser
 test-slides: setup browser
 	$(BIN)/pytest tests/slides -q
 
-# After make book: make slides, exercises and vendor in turn, the site crawled for missing files after each
-# (SITE_TARGETS_PDF=1 adds slides-pdf). Rewrites the built site, so it runs after the tests that read it.
+# After make book: make slides, exercises, vendor and slides-pdf in turn, the site crawled for missing files after
+# each (SITE_TARGETS_PDF=0 leaves slides-pdf out). Rewrites the built site, so it runs after the tests that read it.
 test-targets: setup
 	$(BIN)/pytest tests/site -q -p no:xdist
 
