@@ -185,3 +185,35 @@ def planar_column(rng: Generator, frame: str, low: int, high: int
     home, own = jacobian[frame]
     axes_other, other = jacobian["body" if frame == "space" else "space"]
     return ls, th_deg, i, home, own(home, th), other(axes_other, th), own(home, th_deg)
+
+
+# ----------------------------------------------------------------- worked examples of code exercises
+
+def _py(a: Any, digits: int = 6) -> str:
+    """A number, vector or matrix as Python source a student can paste (at most ``digits`` decimals)."""
+    arr = np.asarray(a, dtype=float)
+    if arr.ndim == 0:
+        text = f"{float(arr):.{digits}f}".rstrip("0").rstrip(".")
+        return "0" if text in ("-0", "") else text
+    return "[" + ", ".join(_py(x, digits) for x in arr) + "]"
+
+
+def planar_example(rng: Generator, exact: bool = False) -> tuple[Array, Array, Array, Array]:
+    """A planar 2R arm for a worked example: lengths (one decimal), angles in rad (multiples of 0.1, printed
+    exactly; or, with ``exact``, angles of :func:`exact_angle`, whose pose has short exact decimals), its body
+    screw axes B (6 x 2, columns) and home pose M."""
+    ls = lengths(rng, 2)
+    if exact:
+        th = np.array([exact_angle(rng), exact_angle(rng)])
+    else:
+        th = rng.integers(-25, 26, size=2) / 10.0
+    arm = planar_chain(ls)
+    return ls, th, np.round(arm.body_axes, 12), np.round(arm.home, 12)
+
+
+def example_text(call: str, args: dict[str, Any], result: Any) -> str:
+    """The sentence of a worked example: the inputs as Python, and what the function must return (4 decimals)."""
+    inputs = "; ".join(f"`{k} = np.array({_py(v)})`" if np.ndim(v) else f"`{k} = {_py(v)}`"
+                       for k, v in args.items())
+    return (f"Try it first on this example (yours, from your ID): {inputs}; `{call}` must return "
+            f"{_py(result, 4)} (to 4 decimals).")

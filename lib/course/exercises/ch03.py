@@ -17,7 +17,7 @@ from ._latex import bmatrix, degs, num, vec
 from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
 from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, sym_arm, sym_catalogue, sym_names
-from ._variants import LAYOUT_TEXT, layout_cases, planar_column
+from ._variants import LAYOUT_TEXT, example_text, layout_cases, planar_column, planar_example
 
 
 @register("ch03_ex1")
@@ -115,10 +115,21 @@ def _body_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, lis
     return (B, th), ref, mistakes
 
 
+def _body_example(layout: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """A planar 2R arm at a pose of the seed, with the Jacobian the function must return: varies the statement
+    (lengths and angles), so that two IDs rarely share one."""
+    def example(rng: Generator) -> tuple[str, dict[str, Any]]:
+        _, th, B, _ = planar_example(rng)
+        given = B if layout == "columns" else B.T
+        text = example_text("my_body_jacobian(B, theta)", {"B": given, "theta": th}, body_jac(B, th))
+        return text, {"example_B": given, "example_theta": th}
+    return example
+
+
 register_code("ch03_ex4", "Code: the body Jacobian", [
     CodeVariant(f"Write `my_body_jacobian(B, theta)`: `B` is {LAYOUT_TEXT[layout].replace('screw', 'body screw')} "
                 "at home, `theta` a length-$n$ array; return $J_b(\\theta)$, $6\\times n$. Do not call "
                 "`jacobians.body_jacobian`. Set `answer = my_body_jacobian`.",
                 body_jac if layout == "columns" else (lambda B, th: body_jac(np.asarray(B).T, th)),
-                case, "my_body_jacobian", "body Jacobian", {"layout": layout})
+                case, "my_body_jacobian", "body Jacobian", {"layout": layout}, example=_body_example(layout))
     for layout, case in layout_cases(_body_case).items()])

@@ -17,7 +17,7 @@ from ._kinematics import DEG, Array, adj
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import angles_deg, lengths, spatial_5r_pose
+from ._variants import angles_deg, example_text, lengths, spatial_5r_pose
 
 
 @register("ch09_ex1")
@@ -155,18 +155,31 @@ def ref_dls_rates_mu(J: ArrayLike, V: ArrayLike, mu: float) -> Array:
     return ref_dls_rates(J, V, float(np.sqrt(mu)))
 
 
+def _dls_example(rng: Generator, damping: str) -> tuple[str, dict[str, Any]]:
+    """A 2 x 3 J and a V with one-decimal entries and a damping, with the rates the function must return."""
+    J = np.round(rng.uniform(-1.0, 1.0, size=(2, 3)), 1)
+    V = np.round(rng.uniform(-1.0, 1.0, size=2), 1)
+    if damping == "lambda":
+        lam = float(rng.choice([0.05, 0.1, 0.2, 0.3]))
+        text = example_text("my_dls_rates(J, V, lam)", {"J": J, "V": V, "lam": lam}, ref_dls_rates(J, V, lam))
+        return text, {"example_J": J, "example_V": V, "example_lam": lam}
+    mu = float(rng.choice([0.04, 0.09, 0.25, 0.49]))
+    text = example_text("my_dls_rates(J, V, mu)", {"J": J, "V": V, "mu": mu}, ref_dls_rates_mu(J, V, mu))
+    return text, {"example_J": J, "example_V": V, "example_mu": mu}
+
+
 register_code("ch09_ex4", "Code: damped least squares", [
     CodeVariant("Write `my_dls_rates(J, V, lam)` returning the damped least-squares joint rates "
                 "$\\dot\\theta = J^T(JJ^T + \\lambda^2 I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ "
                 "`V` and damping `lam` $= \\lambda > 0$. Set `answer = my_dls_rates`.",
                 ref_dls_rates, lambda rng: _dls_case(rng, "lambda"), "my_dls_rates", "joint rates",
-                {"damping": "lambda"}),
+                {"damping": "lambda"}, example=lambda rng: _dls_example(rng, "lambda")),
     CodeVariant("Write `my_dls_rates(J, V, mu)` returning the damped least-squares joint rates "
                 "$\\dot\\theta = J^T(JJ^T + \\mu I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ "
                 "`V` and damping `mu` $= \\mu = \\lambda^2 > 0$ (given already squared). "
                 "Set `answer = my_dls_rates`.",
                 ref_dls_rates_mu, lambda rng: _dls_case(rng, "mu"), "my_dls_rates", "joint rates",
-                {"damping": "mu"}),
+                {"damping": "mu"}, example=lambda rng: _dls_example(rng, "mu")),
 ])
 
 

@@ -22,7 +22,7 @@ from ._kinematics import DEG, Array, adj
 from ._latex import bmatrix, degs, num, vec
 from ._mistakes import IK_MESSAGES, degrees_mistake, ik_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import angles_deg, lengths, random_chain
+from ._variants import angles_deg, example_text, lengths, planar_example, random_chain
 
 # ----------------------------------------------------------------- exercise 1: the error twist
 
@@ -562,11 +562,30 @@ def _adapter(frame: str) -> Callable[[Any, tuple[Any, ...], Any], Any]:
     return adapt
 
 
+def _ik_example(frame: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """A planar 2R arm of the seed, a target at other angles and a start near it, with the θ the function must
+    return (eps 1e-3, at most 20 steps): varies the statement, so that two IDs rarely share one."""
+    def example(rng: Generator) -> tuple[str, dict[str, Any]]:
+        _, th, B, M = planar_example(rng, exact=True)
+        axes = B if frame == "body" else np.round(adj(M) @ B, 12)
+        T_sd = np.round(SerialChain(adj(M) @ B, M).fk(th), 10)  # exact short decimals: a pose as printed
+        th0 = np.round(th + rng.choice([-0.2, -0.1, 0.1, 0.2], size=2), 2)
+        ref = (ref_ik_body if frame == "body" else ref_ik_space)(axes, M, T_sd, th0, 1e-3, 1e-3, 20)
+        name = "Blist" if frame == "body" else "Slist"
+        args = {name: axes, "M": M, "T_sd": T_sd, "theta0": th0, "eps_omega": 1e-3, "eps_v": 1e-3,
+                "max_iterations": 20}
+        text = example_text(f"my_ik({name}, M, T_sd, theta0, eps_omega, eps_v, max_iterations)", args, ref)
+        return text, {"example": args}
+    return example
+
+
 NO_CAP = Mistake("no_iteration_cap", None, IK_MESSAGES["no_iteration_cap"])
 
 register_code("ch10_ex4", "Code: the Newton–Raphson loop", [
     CodeVariant(_loop_statement("body"), ref_ik_body, _case_maker("body"), "my_ik", "joint values",
-                {"frame": "body"}, more_cases=_more_cases("body"), on_timeout=NO_CAP, adapt=_adapter("body")),
+                {"frame": "body"}, more_cases=_more_cases("body"), on_timeout=NO_CAP, adapt=_adapter("body"),
+                example=_ik_example("body")),
     CodeVariant(_loop_statement("space"), ref_ik_space, _case_maker("space"), "my_ik", "joint values",
-                {"frame": "space"}, more_cases=_more_cases("space"), on_timeout=NO_CAP, adapt=_adapter("space")),
+                {"frame": "space"}, more_cases=_more_cases("space"), on_timeout=NO_CAP, adapt=_adapter("space"),
+                example=_ik_example("space")),
 ])
