@@ -148,7 +148,7 @@ def test_realistic_student_loops_are_graded_and_their_mistakes_named(frame):
         fb = ex.check(_student(frame, stop=stop))
         assert not fb.correct and fb.message.startswith("On test ")
         named.add(fb.mistake)
-    assert named <= {"stop_on_either", "stop_on_norm_eps_omega", "wrong_entries", "wrong_entry"}
+    assert named <= {"stop_on_either", "stop_on_norm_eps_omega", "ambiguous", "wrong_entries", "wrong_entry"}
     assert named & {"stop_on_either", "stop_on_norm_eps_omega"}, named
 
 
