@@ -63,10 +63,12 @@ def test_reference_rounded_coarser_is_asked_for_more_decimals(eid):
         ex = exercises.load(eid, seed=seed)
         ref = np.asarray(_right(ex), dtype=float)
         d = ex.decimals
+        # the stated rule: within ex.tol of the exact value is right, however many decimals it has
+        tol = ex.tol if ex.tol is not None else 0.5 * 10.0 ** -d
         for coarser in range(d - 1, 0, -1):
             rounded = np.round(ref, coarser)
             fb = ex.check(rounded)
-            if np.all(np.abs(rounded - ref) <= 0.5 * 10.0 ** -d):  # rounding changed nothing that matters
+            if np.all(np.abs(rounded - ref) <= tol):  # rounding changed nothing that matters
                 assert fb.correct, (seed, coarser, fb)
                 continue
             assert not fb.correct and fb.mistake == "too_few_decimals", (seed, coarser, fb)
@@ -76,8 +78,7 @@ def test_reference_rounded_coarser_is_asked_for_more_decimals(eid):
 # ------------------------------------------------------------------ catalogued mistakes
 
 def _replayed_cases(ex):
-    rng = ex._rng(1000)
-    return [ex.make_case(rng) for _ in range(ex.n_cases)]
+    return ex.cases()
 
 
 def _imitating(cases, name):
@@ -102,7 +103,8 @@ def test_each_catalogued_mistake_is_named(eid):
                 if np.shape(m.value) == ref0.shape and np.allclose(m.value, ref0):
                     continue
                 fb = ex.check(_imitating(cases, m.name))
-                assert fb.mistake == m.name and m.message in fb.message, (seed, m.name, fb)
+                # named, or offered among mistakes that no test tells apart (never another single name)
+                assert fb.mistake in (m.name, "ambiguous") and m.message in fb.message, (seed, m.name, fb)
                 named.add(m.name)
             continue
         for m in ex.mistakes:

@@ -113,8 +113,7 @@ def test_named_mistakes_of_the_issue_are_all_catalogued_somewhere():
 
 
 def _replayed_cases(ex):
-    rng = ex._rng(1000)
-    return [ex.make_case(rng) for _ in range(ex.n_cases)]
+    return ex.cases()
 
 
 def _imitating(cases, name):
@@ -139,7 +138,8 @@ def test_function_mistakes_rejected_with_their_message(eid):
             if np.asarray(m.value).shape == np.asarray(first_ref).shape and np.allclose(m.value, first_ref):
                 continue
             fb = ex.check(_imitating(cases, m.name))
-            assert not fb.correct and fb.mistake == m.name and m.message in fb.message, (m.name, fb)
+            # named, or offered among the mistakes no test tells apart (never another single name)
+            assert not fb.correct and fb.mistake in (m.name, "ambiguous") and m.message in fb.message, (m.name, fb)
             assert fb.message.startswith("On test ")
 
 

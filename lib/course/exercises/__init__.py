@@ -98,6 +98,8 @@ def check(exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Fe
     return fb
 
 
-def summary(chapter: str | None = None) -> Progress:
-    """This session's progress: which exercises (of ``chapter``, e.g. ``"ch02"``) are right, tried, untouched."""
-    return _summary(CATALOGUE.ids(), chapter)
+def summary(chapter: str | None = None, seed: int | str | None = None) -> Progress:
+    """This session's progress: which exercises (of ``chapter``, e.g. ``"ch02"``) are right, tried, practised or
+    untouched, by the last answer to each under the notebook's ID (``seed``, or the ID of the latest check), as
+    the grader counts them; checks under the placeholder ID ``"student-id"`` are practice, never right."""
+    return _summary(CATALOGUE.ids(), chapter, seed)

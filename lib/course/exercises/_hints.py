@@ -66,5 +66,5 @@ HINTS: dict[str, str] = {
                 "the wrong entry's joint.",
     "ch10_ex4": "Per iterate: T = FK(θ); V from the logarithm of the transform in the order of your form; stop when "
                 "‖ω‖ ≤ eps_omega and ‖v‖ ≤ eps_v; else θ += pinv(J) V with the Jacobian of the same frame; at most "
-                "20 steps.",
+                "max_iterations steps (the argument, not a fixed number).",
 }

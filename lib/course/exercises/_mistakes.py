@@ -93,6 +93,20 @@ IK_MESSAGES: dict[str, str] = {
                               "have different units and tolerances: test ‖ω‖ ≤ ε_ω and ‖v‖ ≤ ε_v separately.",
     "stop_on_norm_eps_v": "Your loop stops on the norm of the whole twist, ‖V‖ ≤ ε_v. ω (rad) and v (length) have "
                           "different units and tolerances: test ‖ω‖ ≤ ε_ω and ‖v‖ ≤ ε_v separately.",
+    "ignores_max_iterations": "Your loop takes up to 20 steps whatever max_iterations says (Modern Robotics' fixed "
+                              "number): use the argument, so that the caller decides how many steps are allowed.",
+    "fixed_steps": "Your loop always takes 20 steps: it must test the error before each step and stop as soon as "
+                   "‖ω‖ ≤ ε_ω and ‖v‖ ≤ ε_v, and take at most max_iterations steps.",
+    "one_step_short": "Your loop stops one step before the cap: with max_iterations = k it may take k steps "
+                      "(it tests the error k + 1 times, before each step and after the last). Check the loop's "
+                      "range.",
+    "one_step_over": "Your loop takes one step more than max_iterations allows: after k = max_iterations steps it "
+                     "must stop, even if the test has not passed. Check the loop's range.",
+    "no_iteration_cap": "Your loop does not stop when the target cannot be reached: it must stop after "
+                        "max_iterations steps even if the stop test never passes (cap the loop, e.g. "
+                        "for k in range(max_iterations + 1)).",
+    "wrong_success_flag": "Your θ is right, but the success flag is not: it must be true exactly when the stop test "
+                          "‖ω‖ ≤ ε_ω and ‖v‖ ≤ ε_v passed, and false when the loop stopped at the cap.",
 }
 
 

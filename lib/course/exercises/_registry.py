@@ -7,7 +7,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from jacobians.grading import Case, Catalogue, Exercise, function_exercise
+from jacobians.grading import Case, Catalogue, Exercise, Mistake, function_exercise
 from jacobians.grading.catalogue import Builder
 
 from ._hints import HINTS
@@ -36,7 +36,9 @@ def register(exercise_id: str) -> Callable[[Builder], Builder]:
 
 class CodeVariant(NamedTuple):
     """One variant of a function exercise: its statement, reference, test cases, the function's name,
-    what it returns, and the facts of the variant (its ``given``)."""
+    what it returns, and the facts of the variant (its ``given``); optionally the test cases after the random
+    ones, the mistake of a function that runs out of time, an adapter of the result (see
+    :func:`jacobians.grading.function_exercise`) and an example drawn per seed, added to the statement."""
 
     statement: str
     reference: Callable[..., Any]
@@ -44,6 +46,10 @@ class CodeVariant(NamedTuple):
     fn_name: str
     what: str
     given: dict[str, Any]
+    more_cases: Callable[[np.random.Generator], list[Case]] | None = None
+    on_timeout: Mistake | None = None
+    adapt: Callable[[Any, tuple[Any, ...], Any], Any] | None = None
+    example: Callable[[np.random.Generator], tuple[str, dict[str, Any]]] | None = None
 
 
 def register_code(exercise_id: str, title: str, variants: list[CodeVariant]) -> None:
@@ -51,9 +57,13 @@ def register_code(exercise_id: str, title: str, variants: list[CodeVariant]) -> 
     tested on the cases its ``make_case`` draws (from the variant's own stream)."""
     def build(rng: np.random.Generator) -> Exercise:
         v = variants[int(rng.integers(len(variants)))]
-        ex = function_exercise(title, v.statement, reference=v.reference, make_case=v.make_case, fn_name=v.fn_name,
-                               what=v.what)
-        ex.given = dict(v.given)
+        statement, given = v.statement, dict(v.given)
+        if v.example is not None:
+            text, facts = v.example(rng)
+            statement, given = statement + "\n\n" + text, {**given, **facts}
+        ex = function_exercise(title, statement, reference=v.reference, make_case=v.make_case, fn_name=v.fn_name,
+                               what=v.what, more_cases=v.more_cases, on_timeout=v.on_timeout, adapt=v.adapt)
+        ex.given = given
         ex.hint = HINTS.get(exercise_id, "")
         return ex
     CATALOGUE.register(exercise_id)(build)

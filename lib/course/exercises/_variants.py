@@ -9,7 +9,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.random import Generator
 
-from jacobians import lie, robots
+from jacobians import robots
 from jacobians.chain import SerialChain
 from jacobians.grading import Case, Mistake
 
@@ -30,22 +30,40 @@ def lengths(rng: Generator, n: int, low: float = 0.5, high: float = 1.5) -> Arra
     return np.round(rng.uniform(low, high, size=n), 1)
 
 
-def random_rotation(rng: Generator) -> Array:
-    """A rotation about a random coordinate-ish axis by a multiple of 30 degrees (nice numbers)."""
-    axes = [np.array(a, float) for a in ([1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [0, 1, 1], [1, 0, 1])]
+#: Cosine and sine pairs with one exact decimal (the 3-4-5 triangle and the quarter turn): a rotation about
+#: coordinate axes by such angles has entries that are short exact decimals, so a pose printed with them is a
+#: pose (Rᵀ R = I to the last bit), which the library's functions accept as given.
+EXACT_CS = [(0.6, 0.8), (0.8, 0.6), (-0.6, 0.8), (-0.8, 0.6)]
+
+
+def exact_angle(rng: Generator) -> float:
+    """An angle (rad) whose cosine and sine are in :data:`EXACT_CS` up to the sign of the sine: 36.87°, 53.13°,
+    126.87° or 143.13°, or their negatives."""
+    c, s = EXACT_CS[int(rng.integers(len(EXACT_CS)))]
+    return float(np.arctan2(s * float(rng.choice([-1.0, 1.0])), c))
+
+
+def axis_rotation(axis: int, angle: float) -> Array:
+    """The rotation about coordinate axis ``axis`` (0, 1, 2 = x, y, z) by ``angle``, entries rounded to 12
+    decimals (exact for the angles of :func:`exact_angle`: their cosines and sines are one-decimal numbers)."""
+    j, k = (axis + 1) % 3, (axis + 2) % 3
+    c, s = np.round(np.cos(angle), 12), np.round(np.sin(angle), 12)
     R = np.eye(3)
-    for _ in range(2):
-        a = axes[rng.integers(len(axes))]
-        a = a / np.linalg.norm(a)
-        ang = float(rng.choice([30, 45, 60, 90, 120, -30, -60, -90])) * DEG
-        R = R @ lie.exp_so3(a * ang)
+    R[j, j], R[j, k], R[k, j], R[k, k] = c, -s, s, c
     return R
 
 
-def random_transform(rng: Generator, digits: int = 4) -> Array:
-    """A transform with a nice rotation (rounded to ``digits``) and a position in halves."""
+def random_rotation(rng: Generator) -> Array:
+    """A rotation about two random coordinate axes in turn, by angles with exact one-decimal cosines and sines:
+    its entries are exact decimals of at most two digits (e.g. 0.48), so the printed matrix is a rotation."""
+    R = axis_rotation(int(rng.integers(3)), exact_angle(rng)) @ axis_rotation(int(rng.integers(3)), exact_angle(rng))
+    return np.round(R, 12)
+
+
+def random_transform(rng: Generator) -> Array:
+    """A transform with an exact rotation (:func:`random_rotation`) and a position in halves."""
     T = np.eye(4)
-    T[:3, :3] = np.round(random_rotation(rng), digits)
+    T[:3, :3] = random_rotation(rng)
     T[:3, 3] = rng.integers(-3, 4, size=3) * 0.5
     if not np.any(T[:3, 3]):
         T[0, 3] = 1.0
@@ -98,16 +116,27 @@ class SpatialPose(NamedTuple):
     J_s: Array
 
 
-def spatial_5r_pose(rng: Generator, digits: int = 4) -> SpatialPose:
-    """The spatial 5R arm with random dimensions at a random pose, numbers rounded to ``digits``."""
+def exact_angles(rng: Generator, n: int, rich: int = 2) -> Array:
+    """``n`` joint angles (rad): ``rich`` of them (at random places) from :func:`exact_angle`, the others quarter
+    or half turns, so that a pose of an arm with coordinate joint axes has short exact decimals."""
+    th = rng.choice([-0.5 * np.pi, 0.5 * np.pi, np.pi], size=n).astype(float)
+    for j in rng.choice(n, size=min(rich, n), replace=False):
+        th[int(j)] = exact_angle(rng)
+    return th
+
+
+def spatial_5r_pose(rng: Generator) -> SpatialPose:
+    """The spatial 5R arm (joint axes along coordinate axes) with random dimensions at a random pose whose
+    angles have exact one-decimal cosines and sines (:func:`exact_angles`): the pose and the Jacobians are
+    exact short decimals (at most 6 decimals; the rounding to 10 only removes binary noise), so printed with 6
+    decimals they are the data of the problem, and T_sb is a pose the library accepts."""
     vals = [float(v) for v in rng.choice([0.3, 0.5, 0.8, 1.0], size=5)]
     arm = robots.spatial_5r(*vals)
-    th = angles_deg(rng, 5, step=30, low=-120, high=120) * DEG
-    T = fk(arm.screw_axes, arm.home, th)
-    T[:3, :] = np.round(T[:3, :], digits)
-    J_b = np.round(body_jac(arm.body_axes, th), digits)
+    th = exact_angles(rng, 5)
+    T = np.round(fk(arm.screw_axes, arm.home, th), 10)
+    J_b = np.round(body_jac(arm.body_axes, th), 10)
     R = T[:3, :3]
-    return SpatialPose(T, J_b, blockdiag(R, R) @ J_b, adj(T) @ J_b)
+    return SpatialPose(T, J_b, np.round(blockdiag(R, R) @ J_b, 10), np.round(adj(T) @ J_b, 10))
 
 
 # ----------------------------------------------------------------- test cases of function exercises
@@ -156,3 +185,35 @@ def planar_column(rng: Generator, frame: str, low: int, high: int
     home, own = jacobian[frame]
     axes_other, other = jacobian["body" if frame == "space" else "space"]
     return ls, th_deg, i, home, own(home, th), other(axes_other, th), own(home, th_deg)
+
+
+# ----------------------------------------------------------------- worked examples of code exercises
+
+def _py(a: Any, digits: int = 6) -> str:
+    """A number, vector or matrix as Python source a student can paste (at most ``digits`` decimals)."""
+    arr = np.asarray(a, dtype=float)
+    if arr.ndim == 0:
+        text = f"{float(arr):.{digits}f}".rstrip("0").rstrip(".")
+        return "0" if text in ("-0", "") else text
+    return "[" + ", ".join(_py(x, digits) for x in arr) + "]"
+
+
+def planar_example(rng: Generator, exact: bool = False) -> tuple[Array, Array, Array, Array]:
+    """A planar 2R arm for a worked example: lengths (one decimal), angles in rad (multiples of 0.1, printed
+    exactly; or, with ``exact``, angles of :func:`exact_angle`, whose pose has short exact decimals), its body
+    screw axes B (6 x 2, columns) and home pose M."""
+    ls = lengths(rng, 2)
+    if exact:
+        th = np.array([exact_angle(rng), exact_angle(rng)])
+    else:
+        th = rng.integers(-25, 26, size=2) / 10.0
+    arm = planar_chain(ls)
+    return ls, th, np.round(arm.body_axes, 12), np.round(arm.home, 12)
+
+
+def example_text(call: str, args: dict[str, Any], result: Any) -> str:
+    """The sentence of a worked example: the inputs as Python, and what the function must return (4 decimals)."""
+    inputs = "; ".join(f"`{k} = np.array({_py(v)})`" if np.ndim(v) else f"`{k} = {_py(v)}`"
+                       for k, v in args.items())
+    return (f"Try it first on this example (yours, from your ID): {inputs}; `{call}` must return "
+            f"{_py(result, 4)} (to 4 decimals).")

@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 from numpy.random import Generator
 
 from jacobians import lie
 from jacobians.grading import Case, Exercise, Mistake, numeric_exercise
 
+from ._hand import adjoint_steps
 from ._kinematics import Array, adj, inv_T, swap
 from ._latex import bmatrix, vec
 from ._mistakes import swap_mistake
@@ -70,7 +74,7 @@ def _adj_mistakes(T: Array) -> list[Mistake]:
 def _ch01_ex2(rng: Generator) -> Exercise:
     T = random_transform(rng)
     ref = adj(T)
-    st = (f"Give the $6\\times 6$ adjoint matrix $[\\mathrm{{Ad}}_T]$ of \n\n$$T = {bmatrix(T, 4)},$$\n\n"
+    st = (f"Give the $6\\times 6$ adjoint matrix $[\\mathrm{{Ad}}_T]$ of \n\n$$T = {bmatrix(T, 6)},$$\n\n"
           "for twists ordered $(\\omega, v)$.")
     return numeric_exercise("The adjoint of a transform", st, {"T": T}, ref, _adj_mistakes(T), what="adjoint matrix",
                             hint="Compare block by block with [[R, 0], [[p]R, R]].")
@@ -96,8 +100,12 @@ def _ch01_ex3(rng: Generator) -> Exercise:
     ]
     st = (f"A body has the twist $\\mathcal V_b = {vec(V_b)}$ expressed in frame {{b}}, and "
           f"\n\n$$T_{{ab}} = {bmatrix(T_ab, 4)}.$$\n\nGive the same twist expressed in {{a}}, $\\mathcal V_a$.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """the block [p]R of the adjoint, then [Ad_T_ab] V_b."""
+        return adjoint_steps(r, T_ab) @ V_b
+
     return numeric_exercise("Changing the frame of a twist", st, {"T_ab": T_ab, "V_b": V_b}, ref, mistakes,
-                            what="twist")
+                            what="twist", method=method)
 
 
 def _adj_case(rng: Generator) -> Case:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -10,6 +11,7 @@ from numpy.random import Generator
 from jacobians import robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exercise
 
+from ._hand import planar_points, planar_trig
 from ._kinematics import DEG, Array, adj, body_jac, expS, space_jac
 from ._latex import degs, num, vec
 from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
@@ -40,10 +42,16 @@ def _ch02_ex1(rng: Generator) -> Exercise:
     st = (f"A planar 3R arm (joints about $z$, links along $x$ at home) has link lengths "
           f"$L = {vec(ls, 1)}$ and is at $\\theta = {degs(th_deg)}$. Give column {i} of its space Jacobian, "
           f"$J_{{s{i}}}(\\theta)$, as a 6-vector.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin, the joint positions q_i; the column (z, −z × q_i)."""
+        th = th_deg * DEG
+        Q = planar_points(r, ls, planar_trig(r, th))  # q_i, where joint i is now
+        return np.array([0.0, 0.0, 1.0, Q[i - 1][1], -Q[i - 1][0], 0.0])
+
     return numeric_exercise("One column of the space Jacobian", st,
                     {"lengths": ls, "theta_deg": th_deg, "column": i}, ref, mistakes,
                     what="column", hint=f"The column is (ω, -ω × q_{i}) with q_{i} where joint {i} "
-                    "is now.")
+                    "is now.", method=method)
 
 
 def _jac_catalogue(ref: Array, J_other: Array, other_name: str, other_msg: str, home_msg: str,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -10,12 +11,13 @@ from numpy.random import Generator
 from jacobians import robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exercise
 
-from ._kinematics import Array, adj, body_jac, inv_T, space_jac
+from ._hand import inverse_adjoint_steps, planar_points, planar_trig
+from ._kinematics import DEG, Array, adj, body_jac, inv_T, space_jac
 from ._latex import bmatrix, degs, num, vec
 from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
 from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, sym_arm, sym_catalogue, sym_names
-from ._variants import LAYOUT_TEXT, layout_cases, planar_column
+from ._variants import LAYOUT_TEXT, example_text, layout_cases, planar_column, planar_example
 
 
 @register("ch03_ex1")
@@ -38,8 +40,17 @@ def _ch03_ex1(rng: Generator) -> Exercise:
     ]
     st = (f"A planar 3R arm has link lengths $L = {vec(ls, 1)}$ (tool at the end of link 3) and is at "
           f"$\\theta = {degs(th_deg)}$. Give column {i} of its body Jacobian, $J_{{b{i}}}(\\theta)$, as a 6-vector.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin, the joint positions, joint i seen from the tool in {s}, then in {b}; (z, −z × r_b)."""
+        trig = planar_trig(r, th_deg * DEG)
+        Q = planar_points(r, ls, trig)
+        d = np.asarray(r(Q[i - 1] - Q[-1]))  # joint i seen from the tool, in {s}
+        C, S = trig
+        rb = np.asarray(r(np.array([C[-1] * d[0] + S[-1] * d[1], -S[-1] * d[0] + C[-1] * d[1]])))  # in {b}
+        return np.array([0.0, 0.0, 1.0, rb[1], -rb[0], 0.0])
+
     return numeric_exercise("One column of the body Jacobian", st, {"lengths": ls, "theta_deg": th_deg, "column": i},
-                            ref, mistakes, what="column")
+                            ref, mistakes, what="column", method=method)
 
 
 @register("ch03_ex2")
@@ -60,8 +71,12 @@ def _ch03_ex2(rng: Generator) -> Exercise:
           f"$l_3 = {num(vals[3])}$, $l_4 = {num(vals[4])}$; its space screw axes and home pose are "
           f"\n\n$$S = {bmatrix(S)},$$\n\n\n\n$$M = {bmatrix(M)}.$$\n\n"
           "Give its body screw axes $B$ ($6\\times5$, one column per joint).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """−Rᵀp and [−Rᵀp]Rᵀ of M⁻¹, then [Ad_M⁻¹] S."""
+        return inverse_adjoint_steps(r, M) @ S
+
     return numeric_exercise("Body screw axes from space screw axes", st, {"S": S, "M": M}, ref, mistakes,
-                            what="matrix of body screw axes")
+                            what="matrix of body screw axes", method=method)
 
 
 @register("ch03_ex3")
@@ -100,10 +115,21 @@ def _body_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, lis
     return (B, th), ref, mistakes
 
 
+def _body_example(layout: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """A planar 2R arm at a pose of the seed, with the Jacobian the function must return: varies the statement
+    (lengths and angles), so that two IDs rarely share one."""
+    def example(rng: Generator) -> tuple[str, dict[str, Any]]:
+        _, th, B, _ = planar_example(rng)
+        given = B if layout == "columns" else B.T
+        text = example_text("my_body_jacobian(B, theta)", {"B": given, "theta": th}, body_jac(B, th))
+        return text, {"example_B": given, "example_theta": th}
+    return example
+
+
 register_code("ch03_ex4", "Code: the body Jacobian", [
     CodeVariant(f"Write `my_body_jacobian(B, theta)`: `B` is {LAYOUT_TEXT[layout].replace('screw', 'body screw')} "
                 "at home, `theta` a length-$n$ array; return $J_b(\\theta)$, $6\\times n$. Do not call "
                 "`jacobians.body_jacobian`. Set `answer = my_body_jacobian`.",
                 body_jac if layout == "columns" else (lambda B, th: body_jac(np.asarray(B).T, th)),
-                case, "my_body_jacobian", "body Jacobian", {"layout": layout})
+                case, "my_body_jacobian", "body Jacobian", {"layout": layout}, example=_body_example(layout))
     for layout, case in layout_cases(_body_case).items()])

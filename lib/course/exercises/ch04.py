@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -12,22 +13,24 @@ from jacobians import robots
 from jacobians.chain import SerialChain
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
-from ._kinematics import DEG, Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
+from ._hand import adjoint_steps, inverse_adjoint_steps
+from ._kinematics import Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import chain_case, planar_pose
+from ._variants import chain_case, exact_angle, planar_pose
 
 
-def _rrp_state(rng: Generator, digits: int = 4) -> tuple[SerialChain, Array, Array, Array, Array]:
+def _rrp_state(rng: Generator) -> tuple[SerialChain, Array, Array, Array, Array]:
+    """The spatial RRP arm at angles with exact one-decimal cosines and sines: J_s, J_b and T_sb are exact short
+    decimals (the rounding to 10 only removes binary noise), so the printed T_sb is a pose and the printed
+    Jacobians are the data of the problem."""
     h, reach = float(rng.choice([0.5, 1.0])), float(rng.choice([1.0, 1.5]))
     arm = robots.spatial_rrp(h, reach)
-    th = np.array([float(rng.choice([-60, -30, 30, 60, 120])) * DEG, float(rng.choice([-45, 30, 60])) * DEG,
-                   float(rng.choice([0.2, 0.4, 0.6]))])
-    J_s = np.round(space_jac(arm.screw_axes, th), digits)
-    T = fk(arm.screw_axes, arm.home, th)
-    T[:3, :] = np.round(T[:3, :], digits)
-    J_b = np.round(adj(inv_T(T)) @ J_s, digits)
+    th = np.array([exact_angle(rng), exact_angle(rng), float(rng.choice([0.2, 0.4, 0.6]))])
+    J_s = np.round(space_jac(arm.screw_axes, th), 10)
+    T = np.round(fk(arm.screw_axes, arm.home, th), 10)
+    J_b = np.round(adj(inv_T(T)) @ J_s, 10)
     return arm, th, J_s, J_b, T
 
 
@@ -36,13 +39,18 @@ def _rotonly(R: Array, J: Array) -> Array:
 
 
 def _frame_change(given: str, J: Array, T: Array, ref: Array, mistakes: list[Mistake]) -> Exercise:
-    """From J_s to J_b (``given="s"``) or back, at the pose T_sb; (v, omega) swapped is added to the mistakes."""
+    """From J_s to J_b (``given="s"``) or back, at the pose T_sb; (v, omega) swapped is added to the mistakes.
+    The method writes down the adjoint's lower-left block (and −Rᵀp for the inverse), then multiplies."""
+
+    def method(r: Callable[[Any], Any]) -> Any:
+        return (inverse_adjoint_steps(r, T) if given == "s" else adjoint_steps(r, T)) @ J
+
     target = "b" if given == "s" else "s"
     name = {"s": "space", "b": "body"}
-    st = (f"At some configuration an arm has \n\n$$J_{given} = {bmatrix(J, 4)}$$\n\nand "
-          f"\n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\nGive its {name[target]} Jacobian $J_{target}$.")
+    st = (f"At some configuration an arm has \n\n$$J_{given} = {bmatrix(J, 6)}$$\n\nand "
+          f"\n\n$$T_{{sb}} = {bmatrix(T, 6)}.$$\n\nGive its {name[target]} Jacobian $J_{target}$.")
     return numeric_exercise(f"From the {name[given]} to the {name[target]} Jacobian", st, {f"J_{given}": J, "T_sb": T},
-                            ref, [*mistakes, swap_mistake(ref)], what=f"{name[target]} Jacobian")
+                            ref, [*mistakes, swap_mistake(ref)], what=f"{name[target]} Jacobian", method=method)
 
 
 @register("ch04_ex1")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -10,7 +11,8 @@ from numpy.typing import ArrayLike
 
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
-from ._kinematics import Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
+from ._hand import planar_jv
+from ._kinematics import DEG, Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
@@ -48,16 +50,26 @@ def _ch05_ex1(rng: Generator) -> Exercise:
     mistakes = _geo_catalogue(ref, J_b, R, J_s) + [degrees_mistake(deg_ref)] + sign_mistakes(ref)
     st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Give its geometric "
           "Jacobian $J(\\theta)$ ($6\\times2$, rows $(\\omega_s, \\dot p)$, $p$ the tool point).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin, the position Jacobian's entries (z × (p − q_i)); ω = z."""
+        th = th_deg * DEG
+        Jv = planar_jv(r, ls, th)
+        out = np.zeros((6, len(ls)))
+        out[2] = 1.0
+        out[3:5] = Jv
+        return out
+
     return numeric_exercise("Geometric Jacobian of a planar 2R arm", st, {"lengths": ls, "theta_deg": th_deg}, ref,
                             mistakes, what="geometric Jacobian",
-                            hint="Column i is (z_i, z_i × (p - p_i)) with p_i the current position of joint i.")
+                            hint="Column i is (z_i, z_i × (p - p_i)) with p_i the current position of joint i.",
+                            method=method)
 
 @register("ch05_ex2")
 def _ch05_ex2(rng: Generator) -> Exercise:
     T, J_b, ref, J_s = spatial_5r_pose(rng)
     mistakes = _geo_catalogue(ref, J_b, T[:3, :3], J_s)
-    st = (f"A 5-joint arm has body Jacobian \n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nat a pose with "
-          f"\n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\nGive its geometric Jacobian $J$ (rows $(\\omega_s, \\dot p)$).")
+    st = (f"A 5-joint arm has body Jacobian \n\n$$J_b = {bmatrix(J_b, 6)}$$\n\nat a pose with "
+          f"\n\n$$T_{{sb}} = {bmatrix(T, 6)}.$$\n\nGive its geometric Jacobian $J$ (rows $(\\omega_s, \\dot p)$).")
     return numeric_exercise("From the body to the geometric Jacobian", st, {"J_b": J_b, "T_sb": T}, ref, mistakes,
                             what="geometric Jacobian")
 

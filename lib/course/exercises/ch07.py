@@ -29,7 +29,7 @@ def _p_cross(p: Array, J: Array) -> Array:
 @register("ch07_ex1")
 def _ch07_ex1(rng: Generator) -> Exercise:
     T, J_b, J, J_s = spatial_5r_pose(rng)
-    J_sic = np.round(swap(J), 4)
+    J_sic = np.round(swap(J), 6)
     ref = swap(J_sic)
     mistakes = [
         Mistake("unchanged", J_sic, "You copied Siciliano's matrix unchanged; its rows are (ṗ, ω). " + V_FIRST),
@@ -38,7 +38,7 @@ def _ch07_ex1(rng: Generator) -> Exercise:
                 "asks for the geometric Jacobian, which keeps ṗ of the tool point."),
     ]
     st = (f"Siciliano's book writes the geometric Jacobian with rows $(\\dot p, \\omega)$. For a 5-joint arm it "
-          f"is \n\n$$J_{{Sic}} = {bmatrix(J_sic, 4)}.$$\n\nGive the same Jacobian in this course's convention, rows "
+          f"is \n\n$$J_{{Sic}} = {bmatrix(J_sic, 6)}.$$\n\nGive the same Jacobian in this course's convention, rows "
           "$(\\omega_s, \\dot p)$.")
     return numeric_exercise("Siciliano's geometric Jacobian", st, {"J_sic": J_sic}, ref, mistakes,
                             what="geometric Jacobian")
@@ -47,7 +47,7 @@ def _ch07_ex1(rng: Generator) -> Exercise:
 @register("ch07_ex2")
 def _ch07_ex2(rng: Generator) -> Exercise:
     T, J_b, J, J_s = spatial_5r_pose(rng)
-    J0 = np.round(swap(J), 4)          # Corke's jacob0: (v of the tool point, omega) in the world frame
+    J0 = np.round(swap(J), 6)          # Corke's jacob0: (v of the tool point, omega) in the world frame
     Jg = swap(J0)
     p = T[:3, 3]
     ref = _p_cross(p, Jg)
@@ -62,8 +62,8 @@ def _ch07_ex2(rng: Generator) -> Exercise:
                 "The point shift is right but the rows are (v, ω). " + V_FIRST),
     ]
     st = (f"Robotics Toolbox's `jacob0` returns, for a 5-joint arm, the world-frame Jacobian of the tool point "
-          f"with rows $(v, \\omega)$: \n\n$$J_0 = {bmatrix(J0, 4)}.$$\n\n"
-          f"The tool pose is \n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\n"
+          f"with rows $(v, \\omega)$: \n\n$$J_0 = {bmatrix(J0, 6)}.$$\n\n"
+          f"The tool pose is \n\n$$T_{{sb}} = {bmatrix(T, 6)}.$$\n\n"
           "Give the space Jacobian $J_s$ of Modern Robotics.")
     return numeric_exercise("From Corke's jacob0 to the space Jacobian", st, {"J0": J0, "T_sb": T}, ref, mistakes,
                             what="space Jacobian")
@@ -72,7 +72,7 @@ def _ch07_ex2(rng: Generator) -> Exercise:
 @register("ch07_ex3")
 def _ch07_ex3(rng: Generator) -> Exercise:
     T, J_b, J, J_s = spatial_5r_pose(rng)
-    J_lwa = np.round(swap(J), 4)       # Pinocchio LOCAL_WORLD_ALIGNED: (v of the frame origin, omega) in world axes
+    J_lwa = np.round(swap(J), 6)       # Pinocchio LOCAL_WORLD_ALIGNED: (v of the frame origin, omega) in world axes
     R = T[:3, :3]
     Jg = swap(J_lwa)
     ref = blockdiag(R.T, R.T) @ Jg
@@ -88,8 +88,8 @@ def _ch07_ex3(rng: Generator) -> Exercise:
                 + V_FIRST),
     ]
     st = (f"Pinocchio's `getFrameJacobian(..., LOCAL_WORLD_ALIGNED)` gives, for the tool frame of a 5-joint arm, "
-          f"rows $(v, \\omega)$ of the frame's origin in world axes: \n\n$$J_{{LWA}} = {bmatrix(J_lwa, 4)},$$\n\nat "
-          f"\n\n$$T_{{sb}} = {bmatrix(T, 4)}.$$\n\nGive the body Jacobian $J_b$ of Modern Robotics.")
+          f"rows $(v, \\omega)$ of the frame's origin in world axes: \n\n$$J_{{LWA}} = {bmatrix(J_lwa, 6)},$$\n\nat "
+          f"\n\n$$T_{{sb}} = {bmatrix(T, 6)}.$$\n\nGive the body Jacobian $J_b$ of Modern Robotics.")
     return numeric_exercise("From Pinocchio's LOCAL_WORLD_ALIGNED to the body Jacobian", st,
                             {"J_lwa": J_lwa, "T_sb": T}, ref, mistakes, what="body Jacobian")
 

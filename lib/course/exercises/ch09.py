@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 from numpy.random import Generator
 from numpy.typing import ArrayLike
@@ -9,18 +12,19 @@ from numpy.typing import ArrayLike
 from jacobians.grading import Case, Exercise, Mistake, numeric_exercise, scalar_exercise
 from jacobians.grading.exercise import Interval
 
+from ._hand import pinv_steps, planar_jv
 from ._kinematics import DEG, Array, adj
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import angles_deg, lengths, spatial_5r_pose
+from ._variants import angles_deg, example_text, lengths, spatial_5r_pose
 
 
 @register("ch09_ex1")
 def _ch09_ex1(rng: Generator) -> Exercise:
     T, J_b, J, J_s = spatial_5r_pose(rng)
     J_b = J_b[:, :3].copy()
-    J_s = np.round(adj(T) @ J_b, 4)
+    J_s = np.round(adj(T) @ J_b, 6)
     F_b = rng.integers(-3, 4, size=6).astype(float)
     F_b[3:] = F_b[3:] if np.any(F_b[3:]) else np.array([0, 0, 1.0])
     ref = J_b.T @ F_b
@@ -34,7 +38,7 @@ def _ch09_ex1(rng: Generator) -> Exercise:
                 "apply the wrench F."),
     ]
     st = (f"The first three joints of an arm have, at the current pose, the body Jacobian "
-          f"\n\n$$J_b = {bmatrix(J_b, 4)}$$\n\nand the space Jacobian \n\n$$J_s = {bmatrix(J_s, 4)}.$$\n\n"
+          f"\n\n$$J_b = {bmatrix(J_b, 6)}$$\n\nand the space Jacobian \n\n$$J_s = {bmatrix(J_s, 6)}.$$\n\n"
           "The tool must apply the "
           f"wrench $\\mathcal F_b = {vec(F_b)}$ (moment first, in the tool frame {{b}}). Give the joint torques "
           "$\\tau$ (3-vector).")
@@ -70,8 +74,13 @@ def _ch09_ex2(rng: Generator) -> Exercise:
     st = (f"A planar 3R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Its tool point must move at "
           f"$\\dot p = {vec(v)}$ (x and y, m/s). Give the joint rates of least norm that do it, "
           "$\\dot\\theta = J_v^{+}\\dot p$, with $J_v$ the $2\\times3$ position Jacobian.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """J_v, J_v J_vᵀ, its inverse, J_v⁺; then J_v⁺ ṗ."""
+        Jv = planar_jv(r, ls, th_deg * DEG)
+        return pinv_steps(r, Jv) @ v
+
     return numeric_exercise("Least-norm joint rates", st, {"lengths": ls, "theta_deg": th_deg, "p_dot": v}, ref,
-                            mistakes, what="joint rates")
+                            mistakes, what="joint rates", method=method)
 
 
 def _regular_2r(rng: Generator) -> tuple[Array, Array, Array]:
@@ -99,8 +108,13 @@ def _ch09_ex3(rng: Generator) -> Exercise:
     ]
     st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Give Yoshikawa's "
           "manipulability $w = \\sqrt{\\det(J_v J_v^T)}$ of its $2\\times2$ position Jacobian $J_v$.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """J_v, then |det J_v| (= sqrt(det(J_v J_vᵀ)) for a square J_v)."""
+        J = planar_jv(r, ls, th_deg * DEG)
+        return abs(J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0])
+
     return numeric_exercise("Manipulability of a 2R arm", st, {"lengths": ls, "theta_deg": th_deg}, ref, mistakes,
-                            what="manipulability")
+                            what="manipulability", method=method)
 
 
 def ref_dls_rates(J: ArrayLike, V: ArrayLike, lam: float) -> Array:
@@ -141,18 +155,31 @@ def ref_dls_rates_mu(J: ArrayLike, V: ArrayLike, mu: float) -> Array:
     return ref_dls_rates(J, V, float(np.sqrt(mu)))
 
 
+def _dls_example(rng: Generator, damping: str) -> tuple[str, dict[str, Any]]:
+    """A 2 x 3 J and a V with one-decimal entries and a damping, with the rates the function must return."""
+    J = np.round(rng.uniform(-1.0, 1.0, size=(2, 3)), 1)
+    V = np.round(rng.uniform(-1.0, 1.0, size=2), 1)
+    if damping == "lambda":
+        lam = float(rng.choice([0.05, 0.1, 0.2, 0.3]))
+        text = example_text("my_dls_rates(J, V, lam)", {"J": J, "V": V, "lam": lam}, ref_dls_rates(J, V, lam))
+        return text, {"example_J": J, "example_V": V, "example_lam": lam}
+    mu = float(rng.choice([0.04, 0.09, 0.25, 0.49]))
+    text = example_text("my_dls_rates(J, V, mu)", {"J": J, "V": V, "mu": mu}, ref_dls_rates_mu(J, V, mu))
+    return text, {"example_J": J, "example_V": V, "example_mu": mu}
+
+
 register_code("ch09_ex4", "Code: damped least squares", [
     CodeVariant("Write `my_dls_rates(J, V, lam)` returning the damped least-squares joint rates "
                 "$\\dot\\theta = J^T(JJ^T + \\lambda^2 I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ "
                 "`V` and damping `lam` $= \\lambda > 0$. Set `answer = my_dls_rates`.",
                 ref_dls_rates, lambda rng: _dls_case(rng, "lambda"), "my_dls_rates", "joint rates",
-                {"damping": "lambda"}),
+                {"damping": "lambda"}, example=lambda rng: _dls_example(rng, "lambda")),
     CodeVariant("Write `my_dls_rates(J, V, mu)` returning the damped least-squares joint rates "
                 "$\\dot\\theta = J^T(JJ^T + \\mu I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ "
                 "`V` and damping `mu` $= \\mu = \\lambda^2 > 0$ (given already squared). "
                 "Set `answer = my_dls_rates`.",
                 ref_dls_rates_mu, lambda rng: _dls_case(rng, "mu"), "my_dls_rates", "joint rates",
-                {"damping": "mu"}),
+                {"damping": "mu"}, example=lambda rng: _dls_example(rng, "mu")),
 ])
 
 
@@ -170,8 +197,14 @@ def _ch09_ex5(rng: Generator) -> Exercise:
     ]
     st = (f"A planar 2R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Unit-norm joint rates map to "
           "an ellipse of tool velocities. Give its two semi-axis lengths, longest first (a 2-vector).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """J_v, J_v J_vᵀ, its eigenvalues (largest first), their square roots."""
+        Jv = planar_jv(r, ls, th_deg * DEG)
+        eig = np.asarray(r(np.linalg.eigvalsh(np.asarray(r(Jv @ Jv.T)))[::-1]))
+        return np.sqrt(np.maximum(eig, 0.0))
+
     return numeric_exercise("The velocity ellipse", st, {"lengths": ls, "theta_deg": th_deg}, ref, mistakes,
-                            what="semi-axes")
+                            what="semi-axes", method=method)
 
 
 @register("ch09_ex6")

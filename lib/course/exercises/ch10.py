@@ -4,6 +4,7 @@ Newton–Raphson loop)."""
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.random import Generator
@@ -12,14 +13,16 @@ from numpy.typing import ArrayLike
 from jacobians import body_jacobian, geometric_jacobian, lie, robots, space_jacobian
 from jacobians.chain import SerialChain
 from jacobians.grading import Case, Exercise, Mistake, numeric_exercise
+from jacobians.grading.feedback import verdict
 from jacobians.ik import ik
 from jacobians.velocity import dls_rates, pinv_rates
 
+from ._hand import planar_jv, planar_tip, planar_trig
 from ._kinematics import DEG, Array, adj
 from ._latex import bmatrix, degs, num, vec
-from ._mistakes import degrees_mistake, ik_mistake, swap_mistake
+from ._mistakes import IK_MESSAGES, degrees_mistake, ik_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import angles_deg, lengths, random_chain
+from ._variants import angles_deg, example_text, lengths, planar_example, random_chain
 
 # ----------------------------------------------------------------- exercise 1: the error twist
 
@@ -138,8 +141,15 @@ def _ch10_ex2(rng: Generator) -> Exercise:
           f"$p_d = {vec(p_d, 2)}$ m ($x$, $y$ in {{s}}). Take one Newton–Raphson step on the position error, "
           "$\\theta_{k+1} = \\theta_k + J_v(\\theta_k)^{-1}\\big(p_d - p(\\theta_k)\\big)$, with $J_v$ the "
           "$2\\times2$ Jacobian of the tool point's $(x, y)$. Give $\\theta_{k+1}$ in radians (a 2-vector).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """θ_k in radians, cos and sin, p(θ_k), J_v, the error e, the step Δθ, then θ_k + Δθ."""
+        t = r(th)
+        trig = planar_trig(r, th)
+        e = r(p_d - planar_tip(r, ls, th, trig))
+        return t + r(np.linalg.solve(planar_jv(r, ls, th, trig), e))
+
     return numeric_exercise("One Newton–Raphson step", st, {"lengths": ls, "theta_deg": th_deg, "p_d": p_d}, ref,
-                            mistakes, what="joint values")
+                            mistakes, what="joint values", method=method)
 
 
 # ----------------------------------------------------------------- exercise 3: one damped step near a singularity
@@ -172,9 +182,17 @@ def _ch10_ex3(rng: Generator) -> Exercise:
           f"Take one damped least-squares step with $\\lambda = {num(lam)}$: give "
           "$\\Delta\\theta = (J_v^TJ_v + \\lambda^2I)^{-1}J_v^T\\big(p_d - p(\\theta_k)\\big)$ in radians "
           f"(a {n}-vector), with $J_v$ the $2\\times{n}$ Jacobian of the tool point's $(x, y)$.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin, p(θ_k), e, J_v, J_vᵀJ_v + λ²I, J_vᵀe; then solve."""
+        trig = planar_trig(r, th)
+        e = np.asarray(r(p_d - planar_tip(r, ls, th, trig)))
+        Jv = planar_jv(r, ls, th, trig)
+        A = np.asarray(r(Jv.T @ Jv + lam ** 2 * np.eye(n)))
+        return np.linalg.solve(A, np.asarray(r(Jv.T @ e)))
+
     return numeric_exercise("A damped step near a singularity", st,
                             {"lengths": ls, "theta_deg": th_deg, "p_d": p_d, "lam": lam}, ref, mistakes,
-                            what="joint step")
+                            what="joint step", method=method)
 
 
 # ----------------------------------------------------------------- exercise 4: code the Newton–Raphson loop
@@ -206,7 +224,8 @@ def newton_loop(chain: SerialChain, T_sd: Array, theta0: Array, eps_omega: float
     """The Newton–Raphson loop written out, with switches that make the chapter's mistakes: the Jacobian
     (``"body"``/``"space"``), the error twist (``"body"``, ``"space"``, ``"reversed"`` = minus the twist of
     ``jacobian``'s frame, ``"log_T_sd"``), the step (``"pinv"``, ``"transpose"``) and the stopping test
-    (``"both"``, ``"either"``, ``"norm_omega"``, ``"norm_v"``). Returns θ and the (‖ω‖, ‖v‖) of every iterate."""
+    (``"both"``, ``"either"``, ``"norm_omega"``, ``"norm_v"``, ``"never"``: always ``max_iterations`` steps).
+    Returns θ and the (‖ω‖, ‖v‖) of every iterate."""
     th = np.array(theta0, dtype=float)
     seen: list[tuple[float, float]] = []
     log_T_sd = lie.log_se3(T_sd)
@@ -220,7 +239,7 @@ def newton_loop(chain: SerialChain, T_sd: Array, theta0: Array, eps_omega: float
         seen.append((w, v))
         nrm = float(np.linalg.norm(V))
         done = {"both": w <= eps_omega and v <= eps_v, "either": w <= eps_omega or v <= eps_v,
-                "norm_omega": nrm <= eps_omega, "norm_v": nrm <= eps_v}[stop]
+                "norm_omega": nrm <= eps_omega, "norm_v": nrm <= eps_v, "never": False}[stop]
         if done or k == max_iterations:
             break
         J = body_jacobian(chain, th) if jacobian == "body" else space_jacobian(chain, th)
@@ -230,27 +249,18 @@ def newton_loop(chain: SerialChain, T_sd: Array, theta0: Array, eps_omega: float
     return th, seen
 
 
-#: The mistakes of the code exercise: name -> the loop's switches, for each form (body, space).
-_LOOP_MISTAKES: dict[str, dict[str, dict[str, str]]] = {
-    "body": {
-        "space_twist_for_body": {"error": "space"},
-        "reversed_error": {"error": "reversed"},
-        "log_of_T_sd": {"error": "log_T_sd"},
-        "transpose_step": {"step": "transpose"},
-        "stop_on_either": {"stop": "either"},
-        "stop_on_norm_eps_omega": {"stop": "norm_omega"},
-        "stop_on_norm_eps_v": {"stop": "norm_v"},
-    },
-    "space": {
-        "body_twist_for_space": {"error": "body"},
-        "reversed_error": {"error": "reversed"},
-        "log_of_T_sd": {"error": "log_T_sd"},
-        "transpose_step": {"step": "transpose"},
-        "stop_on_either": {"stop": "either"},
-        "stop_on_norm_eps_omega": {"stop": "norm_omega"},
-        "stop_on_norm_eps_v": {"stop": "norm_v"},
-    },
+#: The mistakes of the code exercise that change the iterates (error twist, step): name -> newton_loop's switches,
+#: for each form (body, space). The mistakes of the stop test and of the step budget leave the iterates as they are
+#: and only stop elsewhere: :data:`_STOP_MISTAKES`.
+_ITERATE_MISTAKES: dict[str, dict[str, dict[str, str]]] = {
+    "body": {"space_twist_for_body": {"error": "space"}, "reversed_error": {"error": "reversed"},
+             "log_of_T_sd": {"error": "log_T_sd"}, "transpose_step": {"step": "transpose"}},
+    "space": {"body_twist_for_space": {"error": "body"}, "reversed_error": {"error": "reversed"},
+              "log_of_T_sd": {"error": "log_T_sd"}, "transpose_step": {"step": "transpose"}},
 }
+
+#: Modern Robotics' fixed number of steps (IKinBody, IKinSpace), which a loop that ignores max_iterations uses.
+MR_STEPS = 20
 
 
 def _close(a: Array, b: Array, scale: float = 1.0) -> bool:
@@ -258,45 +268,248 @@ def _close(a: Array, b: Array, scale: float = 1.0) -> bool:
     return a.shape == b.shape and bool(np.all(np.abs(a - b) <= scale * (1e-8 + 1e-6 * np.abs(b))))
 
 
-def _loop_case(rng: Generator, frame: str) -> Case:
-    """A random chain (2 to 6 joints), a reachable target, a start 0.05-0.3 rad away, tolerances, and a step
-    budget of 0 to 3 more than the loop needs. The mistakes kept are those that differ from the reference and
-    from each other, and that come out the same from a start moved by 1e-11 (a loop that wanders is not
-    reproducible, so it names nothing)."""
-    while True:
-        S, M, th_star = random_chain(rng)
-        n = S.shape[1]
-        chain = SerialChain(S, M)
-        T_sd = chain.fk(th_star)
-        th0 = th_star + rng.uniform(0.05, 0.3) * rng.normal(size=n) / np.sqrt(n)
-        eps_w = float(rng.choice([1e-2, 1e-3, 1e-6]))
-        eps_v = float(rng.choice([1e-2, 1e-4, 1e-6]))
-        _, seen = newton_loop(chain, T_sd, th0, eps_w, eps_v, 30, jacobian=frame, error=frame)
-        ratios = np.maximum(np.array([[w / eps_w, v / eps_v] for w, v in seen]), 1e-300)
-        converged = seen[-1][0] <= eps_w and seen[-1][1] <= eps_v
-        if converged and 2 <= len(seen) <= 10 and not np.any(np.abs(np.log(ratios)) < 0.05):
+class _Trail(NamedTuple):
+    """The iterates θ_0 .. θ_K of the right loop run without a stop test (K = :data:`MR_STEPS` at most), and the
+    (‖ω‖, ‖v‖, ‖V‖) of the error twist at each."""
+
+    thetas: list[Array]
+    norms: list[tuple[float, float, float]]
+
+
+def _trail(chain: SerialChain, T_sd: Array, th0: Array, frame: str, steps: int = MR_STEPS) -> _Trail:
+    th = np.array(th0, dtype=float)
+    thetas: list[Array] = []
+    norms: list[tuple[float, float, float]] = []
+    for k in range(steps + 1):
+        T = chain.fk(th)
+        V = lie.log_se3(lie.inverse_transform(T) @ T_sd)
+        if frame == "space":
+            V = adj(T) @ V
+        thetas.append(th)
+        norms.append((float(np.linalg.norm(V[:3])), float(np.linalg.norm(V[3:])), float(np.linalg.norm(V))))
+        if k == steps:
             break
-    k_max = len(seen) - 1 + int(rng.integers(0, 4))
-    axes = S if frame == "space" else adj(lie.inverse_transform(M)) @ S
-    ref = (ref_ik_space if frame == "space" else ref_ik_body)(axes, M, T_sd, th0, eps_w, eps_v, k_max)
-    nudge = 1e-11 * rng.normal(size=n)
+        J = body_jacobian(chain, th) if frame == "body" else space_jacobian(chain, th)
+        th = th + pinv_rates(J, V, rcond=1e-15)
+        if not np.all(np.isfinite(th)) or np.abs(th).max() > 1e3:
+            break
+    return _Trail(thetas, norms)
+
+
+def _stop_at(trail: _Trail, rule: str, eps_w: float, eps_v: float, budget: int) -> Array | None:
+    """θ where a loop with stop test ``rule`` and at most ``budget`` steps stops on the trail (None if the trail
+    is too short: the iterates blew up before)."""
+    tests = {"both": lambda w, v, n: w <= eps_w and v <= eps_v, "either": lambda w, v, n: w <= eps_w or v <= eps_v,
+             "norm_omega": lambda w, v, n: n <= eps_w, "norm_v": lambda w, v, n: n <= eps_v,
+             "never": lambda w, v, n: False}
+    for k, (w, v, n) in enumerate(trail.norms):
+        if tests[rule](w, v, n) or k == budget:
+            return trail.thetas[k]
+    return None
+
+
+#: The mistakes of the stop test and of the step budget: name -> (stop rule, budget from max_iterations k).
+_STOP_MISTAKES: dict[str, tuple[str, Callable[[int], int]]] = {
+    "stop_on_either": ("either", lambda k: k),
+    "stop_on_norm_eps_omega": ("norm_omega", lambda k: k),
+    "stop_on_norm_eps_v": ("norm_v", lambda k: k),
+    "ignores_max_iterations": ("both", lambda k: MR_STEPS),
+    "fixed_steps": ("never", lambda k: MR_STEPS),
+    "one_step_short": ("both", lambda k: k - 1),
+    "one_step_over": ("both", lambda k: k + 1),
+}
+
+
+def _mistakes_of(chain: SerialChain, T_sd: Array, th0: Array, eps_w: float, eps_v: float, k_max: int, frame: str,
+                 ref: Array, rng: Generator) -> list[Mistake] | None:
+    """The catalogued mistakes on one test: every named loop's result that differs from the reference and comes
+    out the same from a start moved by 1e-11 (a loop that wanders is not reproducible, so it names nothing).
+    Two mistakes may give the same result on one test: both are kept, and the checker names one only where the
+    tests tell them apart. None if the reference itself is not reproducible (the test is then drawn again)."""
+    nudge = 1e-11 * rng.normal(size=len(th0))
+    trail, moved = _trail(chain, T_sd, th0, frame), _trail(chain, T_sd, th0 + nudge, frame)
+    again = _stop_at(moved, "both", eps_w, eps_v, k_max)
+    if again is None or not _close(again, ref, 0.01):
+        return None
     mistakes: list[Mistake] = []
-    for name, switches in _LOOP_MISTAKES[frame].items():
-        kw = {"jacobian": frame, "error": frame, "step": "pinv", "stop": "both", **switches}
-        val, trail = newton_loop(chain, T_sd, th0, eps_w, eps_v, k_max, **kw)
-        if not np.all(np.isfinite(val)):
-            continue
-        if len(trail) > k_max:  # it used the whole budget: keep it only if it is reproducible
-            again, _ = newton_loop(chain, T_sd, th0 + nudge, eps_w, eps_v, k_max, **kw)
-            if not _close(again, val, 0.01):
-                continue
-        # (a value the checker would accept names nothing; one too near an earlier mistake would be named as that)
-        if _close(val, ref) or any(_close(val, np.asarray(m.value), 2.0) for m in mistakes):
-            continue
+
+    def keep(name: str, val: Array | None, val_moved: Array | None) -> None:
+        if val is None or val_moved is None or not np.all(np.isfinite(val)) or np.abs(val).max() > 1e3:
+            return
+        if not _close(val_moved, val, 0.01) or _close(val, ref, 3.0):  # wanders, or the checker would accept it
+            return
         mistakes.append(ik_mistake(name, val))
-    label = (f"a random {n}-joint chain, eps_omega = {eps_w:g}, eps_v = {eps_v:g}, "
+
+    for name, switches in _ITERATE_MISTAKES[frame].items():
+        kw = {"jacobian": frame, "error": frame, "step": "pinv", "stop": "both", **switches}
+        val, _ = newton_loop(chain, T_sd, th0, eps_w, eps_v, k_max, **kw)
+        keep(name, val, newton_loop(chain, T_sd, th0 + nudge, eps_w, eps_v, k_max, **kw)[0])
+    for name, (rule, budget) in _STOP_MISTAKES.items():
+        if budget(k_max) >= 0:
+            keep(name, _stop_at(trail, rule, eps_w, eps_v, budget(k_max)),
+                 _stop_at(moved, rule, eps_w, eps_v, budget(k_max)))
+    return mistakes
+
+
+def _axes_of(S: Array, M: Array, frame: str) -> Array:
+    return S if frame == "space" else adj(lie.inverse_transform(M)) @ S
+
+
+def _reference_case(S: Array, M: Array, T_sd: Array, th0: Array, eps_w: float, eps_v: float, k_max: int,
+                    frame: str, rng: Generator, what: str) -> Case | None:
+    chain = SerialChain(S, M)
+    axes = _axes_of(S, M, frame)
+    ref = (ref_ik_space if frame == "space" else ref_ik_body)(axes, M, T_sd, th0, eps_w, eps_v, k_max)
+    mistakes = _mistakes_of(chain, T_sd, th0, eps_w, eps_v, k_max, frame, ref, rng)
+    if mistakes is None:
+        return None
+    label = (f"{what}, a random {S.shape[1]}-joint chain, eps_omega = {eps_w:g}, eps_v = {eps_v:g}, "
              f"max_iterations = {k_max}")
     return Case((axes, M, T_sd, th0, eps_w, eps_v, k_max), ref, mistakes, label)
+
+
+def _draw_start(rng: Generator, frame: str, prismatic: bool = True, eps: tuple[float, float] | None = None
+                ) -> tuple[Array, Array, Array, Array, _Trail, int, float, float]:
+    """A random chain, a reachable target, a start 0.05-0.3 rad away and tolerances, whose loop converges in 1 to
+    9 steps with no iterate within 5 % of a tolerance (so rounding cannot flip a stop test); the trail and the
+    number of steps the loop needs."""
+    while True:
+        S, M, th_star = random_chain(rng, prismatic=prismatic)
+        n = S.shape[1]
+        T_sd = SerialChain(S, M).fk(th_star)
+        th0 = th_star + rng.uniform(0.05, 0.3) * rng.normal(size=n) / np.sqrt(n)
+        eps_w = float(rng.choice([1e-2, 1e-3, 1e-6])) if eps is None else eps[0]
+        eps_v = float(rng.choice([1e-2, 1e-4, 1e-6])) if eps is None else eps[1]
+        trail = _trail(SerialChain(S, M), T_sd, th0, frame, 10)
+        stops = [k for k, (w, v, _) in enumerate(trail.norms) if w <= eps_w and v <= eps_v]
+        ratios = np.maximum(np.array([[w / eps_w, v / eps_v, x / eps_w, x / eps_v] for w, v, x in trail.norms]),
+                            1e-300)
+        if stops and 1 <= stops[0] <= 9 and not np.any(np.abs(np.log(ratios[:stops[0] + 1])) < 0.05):
+            return S, M, T_sd, th0, trail, stops[0], eps_w, eps_v
+
+
+def _loop_case(rng: Generator, frame: str) -> Case:
+    """A reachable target and a step budget of 0 to 3 more than the loop needs (the loop converges)."""
+    while True:
+        S, M, T_sd, th0, _, needed, eps_w, eps_v = _draw_start(rng, frame)
+        k_max = needed + int(rng.integers(0, 4))
+        case = _reference_case(S, M, T_sd, th0, eps_w, eps_v, k_max, frame, rng, "a reachable target")
+        if case is not None:
+            return case
+
+
+#: The tolerances a stop-test case may choose from.
+_EPS_GRID = [10.0 ** -k * m for k in range(1, 11) for m in (1.0, 2.0, 5.0)]
+
+
+def _pick_eps(trail: _Trail, rng: Generator) -> tuple[float, float, int, bool] | None:
+    """Tolerances under which the right stop test and the three wrong ones stop at four different iterates of
+    the trail (the right one after 1 to 9 steps, no norm within 5 % of a tolerance), one of them at random, or
+    else tolerances under which each wrong test stops elsewhere than the right one; with the number of steps
+    the right loop needs and whether the four are apart. None if there are none."""
+    norms = np.array(trail.norms)
+    found: list[tuple[float, float, int]] = []
+    apart: list[tuple[float, float, int]] = []  # second best: each wrong test stops elsewhere than the right one
+    for eps_w in _EPS_GRID:
+        for eps_v in _EPS_GRID:
+            stops = [_first(trail, rule, eps_w, eps_v) for rule in ("both", "either", "norm_omega", "norm_v")]
+            if -1 in stops or stops[0] in stops[1:] or not 1 <= stops[0] <= 9:
+                continue
+            thetas = [trail.thetas[k] for k in stops]  # the θ each test stops at must differ, not only the step
+            if any(_close(thetas[i], thetas[0], 3.0) for i in (1, 2, 3)):
+                continue
+            if any(_close(thetas[i], thetas[j], 3.0) for i in (1, 2, 3) for j in (1, 2, 3) if i < j):
+                stops = stops[:2] + stops[:2]  # apart from the right one only
+            upto = norms[:max(stops) + 1]
+            ratios = np.concatenate([upto[:, 0] / eps_w, upto[:, 1] / eps_v, upto[:, 2] / eps_w, upto[:, 2] / eps_v])
+            if not np.any(np.abs(np.log(np.maximum(ratios, 1e-300))) < 0.05):
+                (found if len(set(stops)) == 4 else apart).append((eps_w, eps_v, stops[0]))
+    best = found or apart
+    if not best:
+        return None
+    eps_w, eps_v, needed = best[int(rng.integers(len(best)))]
+    return eps_w, eps_v, needed, bool(found)
+
+
+def _stop_rules_case(rng: Generator, frame: str) -> Case:
+    """A reachable target with tolerances under which the right stop test and the three wrong ones stop at four
+    different iterates, so each wrong test gives its own θ (tried on 60 starts 0.15-0.7 rad away; else one on
+    which each wrong test stops elsewhere than the right one), with a budget that does not bind."""
+    fallback: Case | None = None
+    for _ in range(60):
+        S, M, T_sd, th0, _, _, _, _ = _draw_start(rng, frame)
+        th0 = th0 + rng.uniform(0.1, 0.4) * rng.normal(size=len(th0)) / np.sqrt(len(th0))
+        trail = _trail(SerialChain(S, M), T_sd, th0, frame, 12)
+        picked = _pick_eps(trail, rng)
+        if picked is None or (fallback is not None and not picked[3]):
+            continue
+        eps_w, eps_v, needed, four = picked
+        case = _reference_case(S, M, T_sd, th0, eps_w, eps_v, len(trail.norms) - 1, frame, rng,
+                               "a reachable target")
+        if case is not None and four:
+            return case
+        fallback = fallback or case
+    return fallback if fallback is not None else _loop_case(rng, frame)
+
+
+def _first(trail: _Trail, rule: str, eps_w: float, eps_v: float) -> int:
+    """The first iterate at which the stop test ``rule`` passes (-1 if none)."""
+    theta = _stop_at(trail, rule, eps_w, eps_v, len(trail.norms) + 1)
+    return next((k for k, t in enumerate(trail.thetas) if t is theta), -1)
+
+
+def _short_budget_case(rng: Generator, frame: str) -> Case:
+    """A reachable target with a step budget short of what the loop needs: it must stop at the cap. Drawn until
+    the loop needs 3 or more steps and one step fewer, one step more, no cap (20 steps with the stop test) and
+    20 steps without it give four different θ with a budget two short (tried 40 times; else the first draw that
+    needs 2 or more steps, with a budget one short)."""
+    wanted = ("one_step_short", "one_step_over", "ignores_max_iterations", "fixed_steps")
+    fallback: Case | None = None
+    attempt = 0
+    while attempt < 40 or fallback is None:
+        attempt += 1
+        S, M, T_sd, th0, _, _, eps_w, eps_v = _draw_start(rng, frame, eps=(1e-3, 1e-3))
+        th0 = th0 + rng.uniform(0.1, 0.3) * rng.normal(size=len(th0)) / np.sqrt(len(th0))
+        stops = [k for k, (w, v, _) in enumerate(_trail(SerialChain(S, M), T_sd, th0, frame, 10).norms)
+                 if w <= eps_w and v <= eps_v]
+        needed = stops[0] if stops else 0
+        if needed < 2 or (needed < 3 and fallback is not None):
+            continue
+        case = _reference_case(S, M, T_sd, th0, eps_w, eps_v, needed - 2 if needed >= 3 else 1, frame, rng,
+                               "too few steps to converge")
+        if case is None:
+            continue
+        values = {m.name: np.asarray(m.value) for m in case.mistakes if m.name in wanted}
+        if len(values) == 4 and not any(_close(values[a], values[b], 3.0) for a in wanted for b in wanted if a < b):
+            return case
+        fallback = fallback or case
+    return fallback
+
+
+def _unreachable_case(rng: Generator, frame: str) -> Case:
+    """A chain of revolute joints only and a target 30 m away, out of its reach (a revolute chain keeps its tool
+    within |p_M| + 2 Σ|q_i| <= 23 m of the origin, its joint points q_i and home position p_M being in the unit
+    cube): the stop test never passes, and the loop must stop after max_iterations = 2 to 5 steps."""
+    while True:
+        S, M, T_sd, th0, _, _, eps_w, eps_v = _draw_start(rng, frame, prismatic=False)
+        far = T_sd.copy()
+        far[:3, 3] = 30.0 * far[:3, 3] / max(float(np.linalg.norm(far[:3, 3])), 1e-9)
+        k_max = int(rng.integers(2, 6))
+        case = _reference_case(S, M, far, th0, eps_w, eps_v, k_max, frame, rng, "an unreachable target")
+        if case is not None and np.all(np.abs(case.reference) < 1e3):
+            return case
+
+
+def converged(args: tuple[object, ...], theta: Array, frame: str) -> bool:
+    """Whether the stop test passes at ``theta`` for the test ``args`` (the success a (θ, success) form returns)."""
+    axes, M, T_sd, _, eps_w, eps_v, _ = (np.asarray(a, dtype=float) for a in args)
+    S = adj(np.asarray(M, float)) @ np.asarray(axes, float) if frame == "body" else np.asarray(axes, float)
+    chain = SerialChain(S, np.asarray(M, float))
+    T = chain.fk(theta)
+    V = lie.log_se3(lie.inverse_transform(T) @ np.asarray(T_sd, float))
+    if frame == "space":
+        V = adj(T) @ V
+    return bool(np.linalg.norm(V[:3]) <= float(eps_w) and np.linalg.norm(V[3:]) <= float(eps_v))
 
 
 def _loop_statement(frame: str) -> str:
@@ -310,9 +523,12 @@ def _loop_statement(frame: str) -> str:
             f"`T_sd` the target. Start at `theta0`; at each iterate compute the error twist ${err} = (\\omega, v)$; "
             "stop if $\\|\\omega\\| \\le$ `eps_omega` **and** $\\|v\\| \\le$ `eps_v`; otherwise step "
             f"$\\theta \\leftarrow \\theta + {J}(\\theta)^\\dagger\\,\\mathcal V$ and test again. Take at most "
-            "`max_iterations` steps (*Modern Robotics* uses 20). Return $\\theta$ (a length-$n$ array, not a "
-            "tuple). It is graded on random chains of 2 to 6 joints (some prismatic) with reachable targets, "
-            "against the library's `jac.ik.ik`. Set `answer = my_ik`.")
+            "`max_iterations` steps (*Modern Robotics* fixes 20; here the caller says how many): if the test has "
+            "not passed after `max_iterations` steps (too few steps, or a target out of reach), stop and return the "
+            "last $\\theta$. Return $\\theta$ (a length-$n$ array), or the pair `(theta, success)` as "
+            f"`{mr}` does, with `success` true exactly when the stop test passed. It is graded against the "
+            "library's `jac.ik.ik` on random chains of 2 to 6 joints (some prismatic): reachable targets with enough "
+            "steps, a reachable target with too few steps, and an unreachable target. Set `answer = my_ik`.")
 
 
 def _case_maker(frame: str) -> Callable[[Generator], Case]:
@@ -321,9 +537,55 @@ def _case_maker(frame: str) -> Callable[[Generator], Case]:
     return make_case
 
 
+def _more_cases(frame: str) -> Callable[[Generator], list[Case]]:
+    def more(rng: Generator) -> list[Case]:
+        return [_stop_rules_case(rng, frame), _unreachable_case(rng, frame), _short_budget_case(rng, frame)]
+    return more
+
+
+def _adapter(frame: str) -> Callable[[Any, tuple[Any, ...], Any], Any]:
+    """θ as it is, or MR's (θ, success): the flag must say whether the stop test passed at the θ returned."""
+    def adapt(out: Any, args: tuple[Any, ...], ref: Any) -> Any:
+        if not (isinstance(out, (tuple, list)) and len(out) == 2 and isinstance(out[1], (bool, np.bool_))):
+            return out
+        theta, flag = out
+        try:
+            th = np.asarray(theta, dtype=float)
+        except (TypeError, ValueError):
+            return theta
+        if th.shape != np.shape(ref) or not np.all(np.isfinite(th)):
+            return theta
+        want = converged(args, np.asarray(ref, dtype=float), frame)
+        if bool(flag) != want:
+            return verdict(False, IK_MESSAGES["wrong_success_flag"], mistake="wrong_success_flag")
+        return theta
+    return adapt
+
+
+def _ik_example(frame: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """A planar 2R arm of the seed, a target at other angles and a start near it, with the θ the function must
+    return (eps 1e-3, at most 20 steps): varies the statement, so that two IDs rarely share one."""
+    def example(rng: Generator) -> tuple[str, dict[str, Any]]:
+        _, th, B, M = planar_example(rng, exact=True)
+        axes = B if frame == "body" else np.round(adj(M) @ B, 12)
+        T_sd = np.round(SerialChain(adj(M) @ B, M).fk(th), 10)  # exact short decimals: a pose as printed
+        th0 = np.round(th + rng.choice([-0.2, -0.1, 0.1, 0.2], size=2), 2)
+        ref = (ref_ik_body if frame == "body" else ref_ik_space)(axes, M, T_sd, th0, 1e-3, 1e-3, 20)
+        name = "Blist" if frame == "body" else "Slist"
+        args = {name: axes, "M": M, "T_sd": T_sd, "theta0": th0, "eps_omega": 1e-3, "eps_v": 1e-3,
+                "max_iterations": 20}
+        text = example_text(f"my_ik({name}, M, T_sd, theta0, eps_omega, eps_v, max_iterations)", args, ref)
+        return text, {"example": args}
+    return example
+
+
+NO_CAP = Mistake("no_iteration_cap", None, IK_MESSAGES["no_iteration_cap"])
+
 register_code("ch10_ex4", "Code: the Newton–Raphson loop", [
     CodeVariant(_loop_statement("body"), ref_ik_body, _case_maker("body"), "my_ik", "joint values",
-                {"frame": "body"}),
+                {"frame": "body"}, more_cases=_more_cases("body"), on_timeout=NO_CAP, adapt=_adapter("body"),
+                example=_ik_example("body")),
     CodeVariant(_loop_statement("space"), ref_ik_space, _case_maker("space"), "my_ik", "joint values",
-                {"frame": "space"}),
+                {"frame": "space"}, more_cases=_more_cases("space"), on_timeout=NO_CAP, adapt=_adapter("space"),
+                example=_ik_example("space")),
 ])

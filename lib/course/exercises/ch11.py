@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 from numpy.random import Generator
 
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
+from ._hand import pinv_steps, planar_jv
 from ._kinematics import DEG, Array
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake
@@ -49,11 +53,16 @@ def _ch11_ex1(rng: Generator) -> Exercise:
           "the position of the tip, with the $2\\times3$ Jacobian $J$ whose rows $r_1, r_2$ give $\\dot x$ and "
           "$\\dot y$. Give the null vector $\\nu = r_1\\times r_2$ (a 3-vector of joint rates that does not "
           "move the tip).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin, J's entries; then r₁ × r₂."""
+        J = planar_jv(r, ls, th_deg * DEG)
+        return np.cross(J[0], J[1])
+
     return numeric_exercise("The null vector of a planar 3R arm", st, {"lengths": ls, "theta_deg": th_deg}, ref,
                             mistakes, what="null vector",
                             hint="J's columns are z × (p − q_i): row 1 holds −(y − y_i), row 2 holds x − x_i, with "
                                  "q_i joint i's position; check them, the angles in radians, then r₁ × r₂ entry by "
-                                 "entry.")
+                                 "entry.", method=method)
 
 
 @register("ch11_ex2")
@@ -82,10 +91,16 @@ def _ch11_ex2(rng: Generator) -> Exercise:
           f"$\\dot x = {vec(xdot, 2)}$, and a secondary objective asks for the joint rates $z = {vec(z, 0)}$. "
           "Give the joint rates $\\dot\\theta = J^\\dagger\\dot x + (I - J^\\dagger J)z$, which produce "
           "$\\dot x$ exactly and follow $z$ as far as the task allows.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """J Jᵀ, its inverse, J⁺, the projector I − J⁺J; then J⁺ẋ + Pz."""
+        Jp = pinv_steps(r, J)
+        P = np.asarray(r(np.eye(3) - Jp @ J))
+        return Jp @ xdot + P @ z
+
     return numeric_exercise("The general solution", st, {"J": J, "x_dot": xdot, "z": z}, ref, mistakes,
                             what="joint rates",
                             hint="Compute J⁺ = Jᵀ(JJᵀ)⁻¹, then P = I − J⁺J, then J⁺ẋ + Pz; check that J times your "
-                                 "answer gives ẋ.")
+                                 "answer gives ẋ.", method=method)
 
 
 @register("ch11_ex3")
@@ -100,6 +115,8 @@ def _ch11_ex3(rng: Generator) -> Exercise:
                 f"every entry of J_v, is {c:.4g} times larger."),
         Mistake("squared", ref * c, "You scaled by the square of the unit factor: J_v is linear in lengths, "
                 "so its singular values scale by the factor itself."),
+        Mistake("ascending", ref[::-1], "These are the right singular values in the wrong order, smallest first: "
+                "the statement asks for them largest first."),
         Mistake("six_d", np.linalg.svd(np.diag([1, 1, 1, c, c, c]) @ J, compute_uv=False),
                 "These are singular values of the whole 6×3 Jacobian, which mix rad/s and length/s; the exercise "
                 "asks for the linear rows J_v alone."),
@@ -107,10 +124,16 @@ def _ch11_ex3(rng: Generator) -> Exercise:
     st = (f"An arm has, in metres, the $6\\times3$ Jacobian with rows $(\\omega, v)$ "
           f"$J = {bmatrix(J, 3)}$. Lengths are now measured in {unit}. Give the singular values of the linear "
           "rows $J_v$ (the last three) in the new unit, largest first (a 3-vector).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """J_vᵀJ_v, its eigenvalues (largest first), their square roots times the unit factor."""
+        Jv = J[3:]
+        eig = np.asarray(r(np.linalg.eigvalsh(np.asarray(r(Jv.T @ Jv)))[::-1]))
+        return c * np.sqrt(np.maximum(eig, 0.0))
+
     return numeric_exercise("Singular values in another unit", st, {"J": J, "unit": unit, "factor": c}, ref,
                             mistakes, what="singular values",
                             hint="Take the last three rows J_v, compute their singular values in metres, then "
-                                 "multiply each by the number of new units in a metre.")
+                                 "multiply each by the number of new units in a metre.", method=method)
 
 
 @register("ch11_ex4")
@@ -130,7 +153,13 @@ def _ch11_ex4(rng: Generator) -> Exercise:
     st = (f"A planar 3R arm with link lengths $L = {vec(ls, 1)}$ m is at $\\theta = {degs(th_deg)}$, with the tip "
           "position as its task ($J$ is $2\\times3$). Give its manipulability $\\mu_3 = \\sqrt{\\det(JJ^T)}$, which is "
           "also the length of the null vector $r_1\\times r_2$.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """J (from rounded cos, sin), its three 2×2 minors, the sum of their squares, its square root."""
+        J = planar_jv(r, ls, th_deg * DEG)
+        minors = r(np.array([J[0, a] * J[1, b] - J[0, b] * J[1, a] for a, b in ((0, 1), (0, 2), (1, 2))]))
+        return np.sqrt(r(np.sum(minors ** 2)))
+
     return numeric_exercise("Manipulability of a redundant arm", st, {"lengths": ls, "theta_deg": th_deg}, ref,
-                            mistakes, what="manipulability",
+                            mistakes, what="manipulability", method=method,
                             hint="Build the 2×3 position Jacobian (angles in radians), then det(J Jᵀ) = the sum "
                                  "of the squares of its three 2×2 minors, and take the square root.")

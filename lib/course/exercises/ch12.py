@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 from numpy.random import Generator
 
@@ -10,6 +13,7 @@ from jacobians.acceleration import acceleration, jacobian_derivative
 from jacobians.dynamics import gravity_torques
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
+from ._hand import ad_twist, planar_jv, planar_jv_dot, planar_trig
 from ._kinematics import DEG, Array
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake
@@ -50,16 +54,21 @@ def _ch12_ex1(rng: Generator) -> Exercise:
     st = (f"A planar 2R arm has link lengths $L = {vec(ls, 2)}$ m and is at $\\theta = {degs(th_deg)}$, moving "
           f"with $\\dot\\theta = {vec(thd, 1)}$ rad/s and $\\ddot\\theta = {vec(thdd, 1)}$ rad/s². Give the "
           "acceleration $\\ddot p = (\\ddot x, \\ddot y)$ of its tool point, in m/s².")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin, J_v and J̇_v; then J_v θ̈ + J̇_v θ̇."""
+        trig = planar_trig(r, th)
+        return planar_jv(r, ls, th, trig) @ thdd + planar_jv_dot(r, ls, thd, trig) @ thd
+
     return numeric_exercise("Tool acceleration of the 2R arm", st,
                             {"lengths": ls, "theta_deg": th_deg, "theta_dot": thd, "theta_ddot": thdd}, ref,
                             mistakes, what="tool acceleration",
-                            hint="Differentiate ṗ = J_v θ̇ with the product rule: p̈ = J_v θ̈ + J̇_v θ̇.")
+                            hint="Differentiate ṗ = J_v θ̇ with the product rule: p̈ = J_v θ̈ + J̇_v θ̇.", method=method)
 
 
 @register("ch12_ex2")
 def _ch12_ex2(rng: Generator) -> Exercise:
     pose = spatial_5r_pose(rng)
-    J_s = np.round(pose.J_s[:, :3], 4)
+    J_s = np.round(pose.J_s[:, :3], 6)
     thd = _rates(rng, 3)
     n = 3
 
@@ -84,12 +93,20 @@ def _ch12_ex2(rng: Generator) -> Exercise:
                 "sum runs over the joints before i, with a plus sign."),
     ]
     st = (f"The first three joints of a spatial arm have, at the current pose, the space Jacobian "
-          f"\n\n$$J_s = {bmatrix(J_s, 4)}$$\n\nand move at $\\dot\\theta = {vec(thd, 1)}$ rad/s. "
+          f"\n\n$$J_s = {bmatrix(J_s, 6)}$$\n\nand move at $\\dot\\theta = {vec(thd, 1)}$ rad/s. "
           "Give $\\dot J_s$ (a $6\\times3$ matrix), the rate of change of these three columns.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """the twist of the joints before i, then its bracket with column i."""
+        out = np.zeros((6, n))
+        for i in range(n):
+            V = np.asarray(r(sum((J_s[:, j] * thd[j] for j in range(i)), np.zeros(6))))
+            out[:, i] = ad_twist(V) @ J_s[:, i]
+        return out
+
     return numeric_exercise("The derivative of a space Jacobian", st, {"J_s": J_s, "theta_dot": thd}, ref,
                             mistakes, what="matrix J̇_s",
                             hint="Column i changes by the bracket of the twist of the joints before it: "
-                                 "J̇_si = [ad of Σ_{j<i} J_sj θ̇_j] J_si; the first column is constant.")
+                                 "J̇_si = [ad of Σ_{j<i} J_sj θ̇_j] J_si; the first column is constant.", method=method)
 
 
 @register("ch12_ex3")
@@ -120,9 +137,15 @@ def _ch12_ex3(rng: Generator) -> Exercise:
           f"$L = {vec(ls, 2)}$ m and masses $m = {vec(m, 1)}$ kg, each with its centre of mass at the middle of "
           f"the link. At $\\theta = {degs(th_deg)}$, give the joint torques $\\tau_g$ (N·m) that the motors must "
           "supply to hold the arm still.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos θ1 and cos(θ1 + θ2), the lever arms of the two centres about the joints, then g m times them."""
+        C, _ = planar_trig(r, th)
+        arms = r(np.array([ls[0] / 2 * C[0], ls[0] * C[0] + ls[1] / 2 * C[1], ls[1] / 2 * C[1]]))
+        return g * np.array([m[0] * arms[0] + m[1] * arms[1], m[1] * arms[2]])
+
     return numeric_exercise("Gravity torques of the 2R arm", st,
                             {"lengths": ls, "masses": m, "theta_deg": th_deg}, ref, mistakes,
-                            what="torque vector",
+                            what="torque vector", method=method,
                             hint="τ_g = −Σ_i J_{v,c_i}ᵀ m_i g, with J_{v,c_i} the position Jacobian of link i's centre "
                                  "of mass (zero column after joint i).")
 
@@ -130,7 +153,7 @@ def _ch12_ex3(rng: Generator) -> Exercise:
 @register("ch12_ex4")
 def _ch12_ex4(rng: Generator) -> Exercise:
     pose = spatial_5r_pose(rng)
-    J_b = np.round(pose.J_b[:, 2:], 4)
+    J_b = np.round(pose.J_b[:, 2:], 6)
     thd = _rates(rng, 3)
     n = 3
 
@@ -155,10 +178,18 @@ def _ch12_ex4(rng: Generator) -> Exercise:
                 "column i; the last column is constant."),
     ]
     st = (f"The last three joints of a spatial arm have, at the current pose, the body Jacobian columns "
-          f"\n\n$$\\begin{{bmatrix}}J_{{b3}} & J_{{b4}} & J_{{b5}}\\end{{bmatrix}} = {bmatrix(J_b, 4)}$$\n\n"
+          f"\n\n$$\\begin{{bmatrix}}J_{{b3}} & J_{{b4}} & J_{{b5}}\\end{{bmatrix}} = {bmatrix(J_b, 6)}$$\n\n"
           f"and move at $(\\dot\\theta_3, \\dot\\theta_4, \\dot\\theta_5) = {vec(thd, 1)}$ rad/s (joints 1 and 2 "
           "are still). Give the rate of change of these three columns (a $6\\times3$ matrix).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """the twist of the joints after i, then minus its bracket with column i."""
+        out = np.zeros((6, n))
+        for i in range(n):
+            V = np.asarray(r(sum((J_b[:, j] * thd[j] for j in range(i + 1, n)), np.zeros(6))))
+            out[:, i] = -ad_twist(V) @ J_b[:, i]
+        return out
+
     return numeric_exercise("The derivative of a body Jacobian", st, {"J_b": J_b, "theta_dot": thd}, ref,
                             mistakes, what="matrix J̇_b",
                             hint="Column i changes by minus the bracket of the twist of the joints after it: "
-                                 "J̇_bi = −[ad of Σ_{j>i} J_bj θ̇_j] J_bi; the last column is constant.")
+                                 "J̇_bi = −[ad of Σ_{j>i} J_bj θ̇_j] J_bi; the last column is constant.", method=method)

@@ -129,7 +129,7 @@ class Catalogue:
         ex.seed = s
         ex.entropy = entropy
         if ex.kind == "numeric":
-            ex.mistakes = distinct_mistakes(ex.reference, ex.mistakes, ex.rtol, ex.atol, ex.decimals)
+            ex.mistakes = distinct_mistakes(ex.reference, ex.mistakes, ex.rtol, ex.atol, ex.decimals, ex.tol)
         return ex
 
     def check(self, exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Feedback:

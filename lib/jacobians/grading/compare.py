@@ -3,7 +3,8 @@
 :func:`compare` grades a float array against the reference and a catalogue of
 :class:`Mistake` s (wrong answers computed from the same variant, each with the
 message that says what to look at). If none matches, the generic mistakes are
-tried: wrong shape, transposed, columns in the wrong order, one wrong entry
+tried: wrong shape, transposed, columns in the wrong order, the entries of a vector in the wrong order, one
+wrong entry
 (located by row and column), several wrong entries (named by column).
 
 >>> ref = np.array([[1.0, 2.0], [3.0, 4.0]])
@@ -23,9 +24,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .feedback import Feedback, verdict
+from .feedback import Feedback, agrees, verdict
 
-__all__ = ["Mistake", "compare", "distinct_mistakes", "given_decimals", "precision_message", "tolerance"]
+__all__ = ["NEAR", "Mistake", "compare", "distinct_mistakes", "given_decimals", "near_message", "precision_message",
+           "tolerance"]
 
 
 @dataclass
@@ -56,6 +58,13 @@ def _shape_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], tol: NDA
                   else ": check how many rows and columns the statement asks for.")
         return verdict(False, f"Your answer has shape {ans.shape}, but this {what} has shape {ref.shape}" + layout,
                        mistake="wrong_shape")
+    if ref.ndim == 1 and ref.size > 1:
+        # Entries in the wrong order: the sorted answer matches the sorted reference, the answer does not.
+        order = np.argsort(ref)
+        if _close_tol(np.sort(ans), ref[order], tol[order] if tol.ndim else tol):
+            return verdict(False, "Every value you gave is right, but they are in the wrong order: check the order "
+                           "the statement asks for (entry i belongs to joint i, or the order it names, such as "
+                           "largest first).", mistake="wrong_order")
     if ref.ndim == 2 and ref.shape[0] == ref.shape[1] and _close_tol(ans.T, ref, tol):
         return verdict(False, _TRANSPOSED, mistake="transposed")
     if ref.ndim == 2 and ref.shape[1] > 1:
@@ -86,7 +95,7 @@ def _entries_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], tol: N
     if ref.ndim == 0:
         side = "too large" if ans > ref else "too small"
         hint = entry_hint or f"Redo the computation step by step and check each quantity that enters your {what}."
-        return verdict(False, f"Your {what} is {side}. {hint}", mistake="wrong_value")
+        return verdict(False, f"Your {what} {agrees(what, 'is', 'are')} {side}. {hint}", mistake="wrong_value")
     if not entry_hint:
         entry_hint = "Check the wrong entries' joint, frame and sign against the definition."
     if nbad == 1:
@@ -139,6 +148,11 @@ def tolerance(ref: NDArray[np.float64], decimals: int | None, rtol: float, atol:
     return 0.5 * 10.0 ** (-decimals) * (1 + 1e-6) + 1e-5 * np.abs(ref)
 
 
+def _stated(tol: float, ref: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The stated tolerance as an entry-wise array, with room for the binary noise of the comparison."""
+    return np.full(np.shape(ref), tol * (1 + 1e-9) + 1e-12 * (1 + np.max(np.abs(ref), initial=0.0)))
+
+
 def _within(a: NDArray[np.float64], b: NDArray[np.float64], tol: NDArray[np.float64] | float) -> bool:
     return a.shape == b.shape and bool(np.all(np.abs(a - b) <= tol))
 
@@ -146,20 +160,39 @@ def _within(a: NDArray[np.float64], b: NDArray[np.float64], tol: NDArray[np.floa
 def precision_message(what: str, given: int, asked: int) -> str:
     """The message for an answer right to the decimals it was given in, but fewer than asked."""
     dec = "decimal" if given == 1 else "decimals"
-    return (f"Your {what} agrees with the reference to the {given} {dec} you gave, but this exercise asks "
-            f"for {asked} decimals: give more decimals (keep the digits your computation gives, or round "
+    verb = agrees(what, "agrees", "agree")
+    return (f"Your {what} {verb} with the reference to the {given} {dec} you gave, but this exercise "
+            f"asks for {asked} decimals: give more decimals (keep the digits your computation gives, or round "
             f"to {asked}).")
 
 
+def near_message(what: str, tol: float, worst: float, carry: int | None) -> str:
+    """The message for an answer just outside the accepted tolerance: about precision, never the method."""
+    steps = f"rounding every step to {carry} decimals" if carry is not None else "rounding the answer"
+    verb = agrees(what, "is", "are")
+    return (f"Close: your {what} {verb} off by up to {worst:.2g}, a little more than the ±{tol:g} that {steps} "
+            "can give. Your method looks right; carry more decimals through the steps (keep 4 or 5, or let Python "
+            "keep them all) and round only the final answer.")
+
+
+#: How many tolerances from the reference an answer may be and still get the message about precision
+#: (farther, it is wrong; a catalogued mistake that near is not told apart, see :func:`distinct_mistakes`).
+NEAR = 3.0
+
+
 def compare(ans: NDArray[np.float64], ref: Any, mistakes: list[Mistake], rtol: float, atol: float,
-            what: str, entry_hint: str = "", decimals: int | None = None) -> Feedback:
+            what: str, entry_hint: str = "", decimals: int | None = None, tol: float | None = None,
+            carry: int | None = None) -> Feedback:
     """Grade a float array against the reference and the catalogue of mistakes.
 
     With ``decimals`` (the precision the statement asks for), an answer within
     half a unit of that decimal is right, and an answer given to fewer
     decimals that agrees with the reference to the decimals it has is told to
-    give more decimals. Without it, ``rtol`` and ``atol`` decide (code and
-    symbolic answers, compared tightly). Vectors are accepted as ``(n,)``,
+    give more decimals. With ``tol`` (the exercise's stated rule, see :mod:`~jacobians.grading.rounding`) an
+    answer within ``tol`` of the reference (entry by entry) is right, one within ``tol`` of a catalogued mistake
+    is named as that mistake, and one within :data:`NEAR` times ``tol`` is told to carry more decimals
+    (``carry`` is the number of decimals the statement asks to carry). Without them, ``rtol`` and ``atol``
+    decide (code and symbolic answers, compared tightly). Vectors are accepted as ``(n,)``,
     ``(n, 1)`` or ``(1, n)`` alike; a catalogued mistake wins over the generic
     ones; NaN or inf is never right.
     """
@@ -171,12 +204,15 @@ def compare(ans: NDArray[np.float64], ref: Any, mistakes: list[Mistake], rtol: f
     if not np.all(np.isfinite(ans)):
         return verdict(False, "Your answer contains NaN or inf: check for a division by zero or an unset entry.",
                        mistake="not_finite")
-    tol = tolerance(ref, decimals, rtol, atol)
-    if _within(ans, ref, tol):
-        return verdict(True, f"Your {what} matches the reference.")
+    stated = tol
+    tolv = tolerance(ref, decimals, rtol, atol) if stated is None else _stated(stated, ref)
+    if _within(ans, ref, tolv):
+        return verdict(True, f"Your {what} {agrees(what, 'matches', 'match')} the reference" +
+                       (f" (within ±{stated:g})." if stated is not None else "."))
     values = [(m, np.asarray(m.value, dtype=float)) for m in mistakes]
     for m, mv in values:  # a catalogued mistake, to the precision asked
-        if mv.shape == ans.shape and _within(ans, mv, tolerance(mv, decimals, rtol, atol)):
+        mtol = tolerance(mv, decimals, rtol, atol) if stated is None else _stated(stated, mv)
+        if mv.shape == ans.shape and _within(ans, mv, mtol):
             return verdict(False, m.message, mistake=m.name)
     k = given_decimals(ans, decimals) if decimals is not None and ans.shape == ref.shape else None
     if k is not None and decimals is not None and (k > 0 or np.any(ans != 0)):
@@ -186,21 +222,27 @@ def compare(ans: NDArray[np.float64], ref: Any, mistakes: list[Mistake], rtol: f
         for m, mv in values:  # a catalogued mistake, to the decimals given
             if mv.shape == ans.shape and _within(ans, mv, half + 1e-5 * np.abs(mv)):
                 return verdict(False, m.message, mistake=m.name)
-    by_shape = _shape_feedback(ans, ref, tol, what)  # (a Feedback is falsy when wrong: test for None)
-    return by_shape if by_shape is not None else _entries_feedback(ans, ref, tol, what, entry_hint)
+    if stated is not None and ans.shape == ref.shape and _within(ans, ref, NEAR * tolv):
+        worst = float(np.max(np.abs(ans - ref)))
+        return verdict(False, near_message(what, stated, worst, carry), mistake="imprecise")
+    by_shape = _shape_feedback(ans, ref, tolv, what)  # (a Feedback is falsy when wrong: test for None)
+    return by_shape if by_shape is not None else _entries_feedback(ans, ref, tolv, what, entry_hint)
 
 
 def distinct_mistakes(reference: Any, mistakes: list[Mistake], rtol: float, atol: float,
-                      decimals: int | None = None) -> list[Mistake]:
+                      decimals: int | None = None, tol: float | None = None) -> list[Mistake]:
     """The mistakes a variant can tell apart: not equal to the reference (e.g. a sign error in a zero
     column), not equal to an earlier mistake, and finite. "Equal" is within a few tolerances (those of
-    ``decimals`` if given), so an answer rounded to the asked precision never matches two of them."""
+    ``decimals`` if given, or :data:`NEAR` times the stated ``tol``), so an answer within the rule never matches
+    two of them, and an answer that gets the message about precision is never a catalogued mistake."""
     ref = np.asarray(reference, dtype=float)
     kept: list[Mistake] = []
 
     def near(a: NDArray[np.float64], b: NDArray[np.float64]) -> bool:
         if a.shape != b.shape:
             return False
+        if tol is not None:
+            return bool(np.all(np.abs(a - b) <= (NEAR + 1) * tol))
         if decimals is None:
             return bool(np.allclose(a, b, rtol=5 * rtol, atol=5 * atol))
         return bool(np.all(np.abs(a - b) <= 3 * tolerance(b, decimals, rtol, atol)))

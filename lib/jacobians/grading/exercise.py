@@ -25,7 +25,8 @@ from numpy.typing import NDArray
 
 from .answers import Refused, as_array, describe, is_sympy, sympy
 from .compare import Mistake, compare, given_decimals, precision_message
-from .feedback import Feedback, verdict
+from .feedback import Feedback, agrees, verdict
+from .rounding import Method, Rule, derive_rule, direct_rule, rule_sentence
 from .sandbox import run_guarded
 
 __all__ = ["Case", "Exercise", "Interval", "function_exercise", "numeric_exercise", "predicate_exercise",
@@ -45,8 +46,11 @@ class Interval(NamedTuple):
 
 def precision_sentence(decimals: int, scalar: bool) -> str:
     """What the statement says about precision."""
-    what = "your value" if scalar else "every entry"
-    return f"Give {what} to {decimals} decimals (or more)."
+    return rule_sentence(direct_rule(decimals), scalar)
+
+
+#: The test cases of function exercises already drawn in this process, by (id, entropy): at most 64.
+_CASES: dict[tuple[str, tuple[int, int]], list[Case]] = {}
 
 
 class Case(NamedTuple):
@@ -78,6 +82,14 @@ class Exercise:
         The stable hashes of the seed and the id that seeded this variant's stream.
     decimals : int or None
         The precision the statement asks for (numeric and scalar exercises).
+    tol : float or None
+        The accepted tolerance the statement prints (numeric exercises): an answer within ``tol`` of the
+        reference, entry by entry, is right. It is derived from the exercise's ``method`` (see
+        :mod:`jacobians.grading.rounding`).
+    carry : int or None
+        The decimals the statement asks the student to carry through the steps.
+    method : callable or None
+        The intended computation, with every written-down intermediate passed through ``r`` (``method(r)``).
     """
 
     id: str
@@ -96,6 +108,11 @@ class Exercise:
     make_case: Callable[[np.random.Generator], Case] | None = None
     n_cases: int = 6
     fn_name: str = "your function"
+    # more test cases after the random ones (e.g. the edge cases a statement promises), a mistake to name when the
+    # function runs out of time, and an adapter of the function's result (the value to compare, or a verdict)
+    more_cases: Callable[[np.random.Generator], list[Case]] | None = None
+    on_timeout: Mistake | None = None
+    adapt: Callable[[Any, tuple[Any, ...], Any], Any] | None = None
     # predicate exercises: float array -> Feedback
     predicate: Callable[[NDArray[np.float64]], Feedback] | None = None
     # scalar exercises: the right values inside the range, right values outside it, the range
@@ -103,6 +120,9 @@ class Exercise:
     outside: list[float] = field(default_factory=list)
     interval: Interval | None = None
     decimals: int | None = None
+    tol: float | None = None
+    carry: int | None = None
+    method: Method | None = None
     seed: str = "0"
     entropy: tuple[int, int] = (0, 0)
 
@@ -156,7 +176,8 @@ class Exercise:
                 raise ValueError(f"Exercise {self.id!r} is a predicate exercise without a predicate")
             return self.predicate(arr)
         return compare(arr, self.reference, self.mistakes, self.rtol, self.atol, self.what, self.hint,
-                       decimals=self.decimals)
+                       decimals=self.decimals, tol=self.tol,
+                       carry=self.carry if self.method is not None else None)
 
     def _check_scalar(self, arr: NDArray[np.float64]) -> Feedback:
         d = self.decimals if self.decimals is not None else DECIMALS
@@ -174,7 +195,8 @@ class Exercise:
             return any(abs(x - v) <= within for v in values)
 
         if near(self.accepted, tol):
-            return verdict(True, f"Your {self.what} is right (to the {d} decimals asked).")
+            verb = agrees(self.what, "is", "are")
+            return verdict(True, f"Your {self.what} {verb} right (to the {d} decimals asked).")
         for m in self.mistakes:
             if near([float(m.value)], max(tol, coarse if k is not None and k > 0 else tol)):
                 return verdict(False, m.message, mistake=m.name)
@@ -187,7 +209,8 @@ class Exercise:
             return verdict(False, msg + " " + (self.hint or ""), mistake="outside_range")
         if k is not None and k > 0 and near(self.accepted, coarse):
             return verdict(False, precision_message(self.what, k, d), mistake="too_few_decimals")
-        return verdict(False, f"Your {self.what} is not right. {self.hint}".strip(), mistake="wrong_value")
+        verb = agrees(self.what, "is", "are")
+        return verdict(False, f"Your {self.what} {verb} not right. {self.hint}".strip(), mistake="wrong_value")
 
     def _check_function(self, fn: Any) -> Feedback:
         if isinstance(fn, (str, bytes)):
@@ -197,12 +220,27 @@ class Exercise:
                           f"`answer = {self.fn_name}`), but you gave {describe(fn)}.")
         if self.make_case is None:
             raise ValueError(f"Exercise {self.id!r} is a function exercise without test cases")
-        rng = self._rng(1000)
-        for case in range(self.n_cases):
-            args, ref, mistakes, label = self.make_case(rng)
+        cases = self.cases()
+        # A wrong result that several catalogued mistakes produce on one test names none of them there; the
+        # tests after it may tell them apart (the names left are those that fit every test some of them fit).
+        # A test no catalogued mistake explains is passed over in that search; if no test names one mistake,
+        # the first wrong test is reported.
+        first: Feedback | None = None
+        where = ""
+        candidates: set[str] | None = None
+        for case, (args, ref, mistakes, label) in enumerate(cases):
             ok, out = run_guarded(fn, copy.deepcopy(args))
             if not ok:
+                if out.startswith("your function did not finish") and self.on_timeout is not None:
+                    return verdict(False, f"On test {case + 1} ({label}) {out}. {self.on_timeout.message}",
+                                   mistake=self.on_timeout.name)
                 return verdict(False, f"On test {case + 1} ({label}) {out}.", mistake="raised")
+            if self.adapt is not None:
+                adapted = self.adapt(out, args, ref)
+                if isinstance(adapted, Feedback):
+                    adapted.message = f"On test {case + 1} ({label}): {adapted.message}"
+                    return adapted
+                out = adapted
             try:
                 arr = as_array(out)
             except Refused as r:
@@ -213,10 +251,48 @@ class Exercise:
                                + r.message, mistake="bad_return")
             # Code is compared tightly: the same computation agrees to rounding error.
             fb = compare(arr, ref, mistakes, 1e-6, 1e-8, self.what, self.hint)
-            if not fb.correct:
-                fb.message = f"On test {case + 1} ({label}): {fb.message}"
-                return fb
-        return verdict(True, f"Your function matches the reference on all {self.n_cases} random tests.")
+            if fb.correct:
+                continue
+            fb.message = f"On test {case + 1} ({label}): {fb.message}"
+            if first is None:
+                first, where = fb, f"On test {case + 1} ({label})"
+            names = {m.name for m in mistakes if _matches(arr, m.value)}
+            if not names:
+                continue
+            candidates = names if candidates is None else (candidates & names or names)
+            if len(candidates) == 1:
+                name = next(iter(candidates))
+                msg = next(m.message for m in mistakes if m.name == name)
+                return verdict(False, f"On test {case + 1} ({label}): {msg}", mistake=name)
+        if first is None:
+            return verdict(True, f"Your function matches the reference on all {len(cases)} tests.")
+        if candidates:
+            known = {m.name: m.message for c in cases for m in c.mistakes}
+            options = " Or: ".join(known[n] for n in sorted(candidates))
+            return verdict(False, f"{where} your result differs from the reference. On every test it fails, it is "
+                           f"what more than one mistake gives, so either of these: {options}",
+                           mistake="ambiguous")
+        return first
+
+    def cases(self) -> list[Case]:
+        """The test cases of a function exercise, in the order they are run: ``n_cases`` drawn by
+        ``make_case``, then those of ``more_cases`` (each from this variant's own stream). They depend on the
+        exercise and the seed only, so they are drawn once per process (:data:`_CASES`); the checker passes
+        copies of their arguments to the student's function."""
+        if self.make_case is None:
+            return []
+        key = (self.id, self.entropy)
+        if key in _CASES and self.id:
+            return _CASES[key]
+        rng = self._rng(1000)
+        out = [self.make_case(rng) for _ in range(self.n_cases)]
+        if self.more_cases is not None:
+            out += self.more_cases(self._rng(2000))
+        if self.id:
+            if len(_CASES) >= 64:
+                _CASES.pop(next(iter(_CASES)))
+            _CASES[key] = out
+        return out
 
     def _check_symbolic(self, answer: Any) -> Feedback:
         sp = sympy()
@@ -254,11 +330,20 @@ class Exercise:
                 sub = {s: names[str(s)] for s in A.free_symbols if str(s) in names}
                 diff = sp.Matrix(A).xreplace(sub).reshape(*ref.shape) - ref
                 if all(e == 0 for e in diff) or all(e == 0 for e in diff.applyfunc(sp.simplify)):
-                    return verdict(True, f"Your {self.what} simplifies to the reference.")
+                    verb = agrees(self.what, "simplifies", "simplify")
+                    return verdict(True, f"Your {self.what} {verb} to the reference.")
             except Exception:
                 pass
-        return verdict(True, f"Your {self.what} agrees with the reference at random values of "
+        verb = agrees(self.what, "agrees", "agree")
+        return verdict(True, f"Your {self.what} {verb} with the reference at random values of "
                        f"{', '.join(sorted(names))}.")
+
+
+def _matches(arr: NDArray[np.float64], value: Any) -> bool:
+    """Whether a function's result is a catalogued mistake's value, to the tolerance code is graded to."""
+    v = np.asarray(value, dtype=float)
+    a = arr.reshape(v.shape) if arr.size == v.size and v.ndim == 1 else arr
+    return a.shape == v.shape and bool(np.all(np.abs(a - v) <= 1e-8 + 1e-6 * np.abs(v)))
 
 
 def _sympy_array_as_matrix(answer: Any, ref: Any) -> Any:
@@ -329,11 +414,25 @@ def _with_precision(statement: str, decimals: int, scalar: bool) -> str:
 
 def numeric_exercise(title: str, statement: str, given: dict[str, Any], reference: Any,
                      mistakes: list[Mistake], *, what: str = "answer", hint: str = "",
-                     decimals: int = DECIMALS) -> Exercise:
-    """A number, vector or matrix, right to ``decimals`` decimals; the statement gets a sentence saying so."""
+                     decimals: int = DECIMALS, method: Method | None = None) -> Exercise:
+    """A number, vector or matrix, asked to ``decimals`` decimals; the statement gets a sentence saying what is
+    accepted. ``method(r)`` is the intended computation (every intermediate a student writes down passed
+    through ``r``): the accepted tolerance is derived from how rounding those intermediates propagates
+    (:func:`~jacobians.grading.rounding.derive_rule`). Without it, the answer is taken to be a formula of
+    the exact data, and the tolerance is half a unit of the last decimal asked.
+
+    Raises ValueError if the method does not give the reference (it must be the reference's computation)."""
     scalar = np.ndim(reference) == 0
-    return Exercise("", title, _with_precision(statement, decimals, scalar), given, "numeric", reference, mistakes,
-                    what=what, hint=hint, decimals=decimals)
+    rule: Rule = direct_rule(decimals)
+    if method is not None:
+        out = np.asarray(method(lambda x: x), dtype=float)
+        ref = np.asarray(reference, dtype=float)
+        if out.shape != ref.shape or not np.allclose(out, ref, rtol=1e-9, atol=1e-9):
+            raise ValueError(f"Expected the method of {title!r} to give the reference, got {out} for {ref}")
+        rule = derive_rule(method, decimals)
+    st = statement.rstrip() + " " + rule_sentence(rule, scalar)
+    return Exercise("", title, st, given, "numeric", reference, mistakes, what=what, hint=hint, decimals=decimals,
+                    tol=rule.tol, carry=rule.carry, method=method)
 
 
 def scalar_exercise(title: str, statement: str, given: dict[str, Any], accepted: list[float],
@@ -356,10 +455,15 @@ def symbolic_exercise(title: str, statement: str, symbols: dict[str, Any], refer
 
 
 def function_exercise(title: str, statement: str, *, reference: Callable[..., Any],
-                      make_case: Callable[[np.random.Generator], Case], fn_name: str, what: str) -> Exercise:
-    """A student's function named ``fn_name``, run on the cases ``make_case`` draws."""
+                      make_case: Callable[[np.random.Generator], Case], fn_name: str, what: str,
+                      more_cases: Callable[[np.random.Generator], list[Case]] | None = None,
+                      on_timeout: Mistake | None = None,
+                      adapt: Callable[[Any, tuple[Any, ...], Any], Any] | None = None) -> Exercise:
+    """A student's function named ``fn_name``, run on the cases ``make_case`` draws, then on ``more_cases``.
+    ``on_timeout`` names the mistake of a function that runs out of time; ``adapt(result, args, reference)``
+    turns a result in another accepted form into the value compared (or returns a verdict)."""
     return Exercise("", title, statement, {}, "function", reference=reference, make_case=make_case,
-                    fn_name=fn_name, what=what)
+                    fn_name=fn_name, what=what, more_cases=more_cases, on_timeout=on_timeout, adapt=adapt)
 
 
 def predicate_exercise(title: str, statement: str, given: dict[str, Any], reference: Any,

@@ -14,7 +14,7 @@ import html
 import re
 from dataclasses import dataclass
 
-__all__ = ["Feedback", "statement_html", "verdict"]
+__all__ = ["Feedback", "agrees", "statement_html", "verdict"]
 
 #: Heading of the text form, by kind.
 _HEADS = {"correct": "Correct", "empty": "No answer yet", "invalid": "Cannot grade this"}
@@ -98,6 +98,18 @@ class Feedback:
             f'padding:0.6em 0.9em;margin:0.4em 0;border-radius:4px;font-family:sans-serif">'
             f'<strong>{head}</strong> <span style="color:#555">({ident})</span><br>{msg}{variant}</div>'
         )
+
+
+def agrees(what: str, singular: str, plural: str) -> str:
+    """The verb that agrees with ``what``: ``plural`` for a plural noun phrase ("joint values", "semi-axes"),
+    ``singular`` otherwise ("torque vector", "manipulability", "matrix of body screw axes").
+
+    >>> agrees("joint values", "matches", "match"), agrees("error twist", "is", "are")
+    ('match', 'is')
+    """
+    head = what.split(" of ")[0].split()  # "matrix of body screw axes" agrees with "matrix"
+    last = head[-1] if head else what
+    return plural if last.endswith("s") and not last.endswith(("ss", "is", "us")) else singular
 
 
 def verdict(ok: bool, message: str, kind: str | None = None, mistake: str | None = None) -> Feedback:

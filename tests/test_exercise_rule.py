@@ -1,0 +1,214 @@
+"""The checker a student can trust, over every exercise and 50 IDs.
+
+For every numeric exercise and every ID: the reference is accepted; the exercise's own method worked by hand,
+every intermediate rounded to the decimals the statement asks to carry and the answer to the decimals asked, is
+accepted; an answer just inside the stated tolerance is accepted and one just outside gets the message about
+precision (never a catalogued mistake, never a hint about the method); every catalogued mistake is named; a
+vector with its entries in the wrong order is named as such. The printed data is the exercise's data (a printed
+pose is a pose: the library's functions take it as given, and they solve the exercise). For the code exercise of
+inverse kinematics, the faulty loops of the catalogue get their names and the right ones (returning θ, or MR's
+(θ, success)) are accepted.
+
+The number of (exercise, ID) pairs covered is printed by ``test_pairs_covered``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import jacobians as jac
+from course import exercises
+from jacobians.grading import rounding
+from jacobians.grading.compare import NEAR
+
+IDS = [f"s{2417000 + 37 * k}" for k in range(50)]
+ALL = exercises.exercise_ids()
+NUMERIC = [e for e in ALL if exercises.load(e, seed=IDS[0]).kind == "numeric"]
+SCALAR = [e for e in ALL if exercises.load(e, seed=IDS[0]).kind == "scalar"]
+
+#: Exercises answered from printed data by one library call: the call, on the variant's given.
+LIBRARY = {
+    "ch01_ex2": lambda g: jac.adjoint(g["T"]),
+    "ch01_ex3": lambda g: jac.adjoint(g["T_ab"]) @ g["V_b"],
+    "ch03_ex2": lambda g: jac.adjoint(jac.lie.inverse_transform(g["M"])) @ g["S"],
+    "ch04_ex1": lambda g: jac.space_to_body(g["J_s"], g["T_sb"]),
+    "ch04_ex2": lambda g: jac.body_to_space(g["J_b"], g["T_sb"]),
+    "ch05_ex2": lambda g: jac.body_to_geometric(g["J_b"], g["T_sb"]),
+}
+
+
+def _pose_keys(given):
+    return [k for k, v in given.items() if isinstance(v, np.ndarray) and v.shape == (4, 4)]
+
+
+@pytest.mark.parametrize("eid", NUMERIC)
+def test_numeric_exercise_accepts_right_work_and_names_every_wrong_answer(eid):
+    for seed in IDS:
+        ex = exercises.load(eid, seed=seed)
+        ref = np.asarray(ex.reference, dtype=float)
+        assert ex.tol is not None and ex.tol > 0
+        tol_text = f"{ex.tol:.10f}".rstrip("0").rstrip(".")
+        assert f"±{tol_text} of the exact value is accepted" in ex.statement, (seed, ex.statement[-300:])
+        assert ex.check(ref).correct, seed
+        # Right hand-work: the method with every step rounded as the statement says.
+        if ex.method is not None:
+            hand = rounding.hand_answer(ex.method, ex.carry, ex.decimals)
+            fb = ex.check(hand)
+            assert fb.correct, (seed, np.max(np.abs(hand - ref)), ex.tol, fb)
+        # The stated rule: just inside is right, just outside is told to carry more decimals.
+        e0 = np.zeros_like(ref)
+        e0.flat[0] = 1.0
+        assert ex.check(ref + 0.9 * ex.tol * e0).correct, seed
+        fb = ex.check(ref + 0.5 * (1 + NEAR) * ex.tol * e0)
+        assert not fb.correct and fb.mistake == "imprecise", (seed, fb)
+        assert "carry more decimals" in fb.message and "method looks right" in fb.message
+        # Every catalogued mistake is named, by its own name.
+        for m in ex.mistakes:
+            fb = ex.check(np.asarray(m.value, dtype=float))
+            assert not fb.correct and fb.mistake == m.name, (seed, m.name, fb)
+        # Values in the wrong order, where the order matters.
+        if ref.ndim == 1 and ref.size > 1 and np.max(np.abs(ref - ref[::-1])) > (1 + NEAR) * ex.tol:
+            fb = ex.check(ref[::-1])
+            named = {"wrong_order"} | {m.name for m in ex.mistakes}
+            assert not fb.correct and fb.mistake in named, (seed, fb)
+        # Printed data is the data: poses are poses to the last bit, and what is printed is what is given.
+        for key in _pose_keys(ex.given):
+            R = ex.given[key][:3, :3]
+            assert np.abs(R.T @ R - np.eye(3)).max() < 1e-12, (seed, key)
+            jac.lie.inverse_transform(ex.given[key])  # the library takes it as given
+        for key, v in ex.given.items():
+            if isinstance(v, np.ndarray) and v.dtype.kind == "f" and v.ndim == 2:
+                assert np.allclose(np.round(v, 6), v, rtol=0, atol=1e-12), (seed, key)  # printed with 6 decimals
+        if eid in LIBRARY:
+            fb = ex.check(LIBRARY[eid](ex.given))
+            assert fb.correct, (seed, fb)
+
+
+@pytest.mark.parametrize("eid", SCALAR)
+def test_scalar_exercise_states_its_rule_and_accepts_the_reference(eid):
+    for seed in IDS:
+        ex = exercises.load(eid, seed=seed)
+        assert "of the exact value is accepted" in ex.statement
+        assert ex.check(ex.solution()).correct
+        for m in ex.mistakes:
+            assert ex.check(float(m.value)).mistake == m.name, (seed, m.name)
+
+
+def test_issue_cases_are_accepted():
+    """The hand-worked answers a student gave with the ID s2417093, each 1-2 units of the last decimal off."""
+    seed = "s2417093"
+    assert exercises.load("ch11_ex4", seed=seed).check(2.628).correct
+    assert exercises.load("ch10_ex2", seed=seed).check([1.520, -1.736]).correct
+    ex = exercises.load("ch12_ex3", seed=seed)
+    assert ex.check(rounding.hand_answer(ex.method, 3, 3)).correct
+
+
+def test_right_singular_values_in_the_wrong_order_are_named_as_an_order_mistake():
+    for seed in IDS[:10]:
+        ex = exercises.load("ch11_ex3", seed=seed)
+        ref = np.asarray(ex.reference)
+        for perm in ([2, 1, 0], [1, 0, 2], [0, 2, 1]):
+            if np.max(np.abs(ref - ref[perm])) > 2 * (1 + NEAR) * ex.tol:
+                fb = ex.check(ref[perm])
+                assert fb.mistake in ("ascending", "wrong_order") and "order" in fb.message + fb.mistake, fb
+
+
+def test_messages_agree_with_their_subject():
+    ex = exercises.load("ch10_ex2", seed="s2417093")
+    assert "joint values match the reference" in ex.check(ex.reference).message
+    assert "matches" in exercises.load("ch11_ex4", seed="s2417093").check(2.6288).message
+
+
+# ----------------------------------------------------------------------------------- the code exercise of IK
+
+def _loop(frame, *, stop="both", cap="arg", shift=0, ret="theta", error="right", sign=1.0, transpose=False,
+          flag="right"):
+    """A student's Newton–Raphson loop, written with Modern Robotics' functions (not the checker's)."""
+    mr = pytest.importorskip("modern_robotics")
+
+    def my_ik(axes, M, T_sd, theta0, eps_omega, eps_v, max_iterations):
+        th = np.array(theta0, dtype=float)
+        steps = {"arg": max_iterations + shift, "mr": 20, "none": 10 ** 9}[cap]
+        k = 0
+        while True:
+            T = mr.FKinBody(M, axes, th) if frame == "body" else mr.FKinSpace(M, axes, th)
+            body = mr.TransInv(T) @ T_sd
+            space = T_sd @ mr.TransInv(T)
+            X = {"right": body if frame == "body" else space, "other": space if frame == "body" else body}[error]
+            V = mr.se3ToVec(mr.MatrixLog6(X))
+            w, v = np.linalg.norm(V[:3]), np.linalg.norm(V[3:])
+            done = {"both": w <= eps_omega and v <= eps_v, "either": w <= eps_omega or v <= eps_v,
+                    "norm_omega": np.linalg.norm(V) <= eps_omega, "norm_v": np.linalg.norm(V) <= eps_v,
+                    "never": False}[stop]
+            if done or k >= steps:
+                break
+            J = mr.JacobianBody(axes, th) if frame == "body" else mr.JacobianSpace(axes, th)
+            th = th + sign * (J.T @ V if transpose else np.linalg.pinv(J) @ V)
+            k += 1
+        if ret == "pair":
+            return th, (bool(done) if flag == "right" else True)
+        return th
+
+    return my_ik
+
+
+FAULTY = {
+    "stop_on_either": {"stop": "either"},
+    "stop_on_norm_eps_omega": {"stop": "norm_omega"},
+    "no_iteration_cap": {"cap": "none"},
+    "ignores_max_iterations": {"cap": "mr"},
+    "fixed_steps": {"stop": "never", "cap": "mr"},
+    "one_step_short": {"shift": -1},
+    "one_step_over": {"shift": +1},
+    "reversed_error": {"sign": -1.0},
+    "transpose_step": {"transpose": True},
+    "wrong_success_flag": {"ret": "pair", "flag": "always_true"},
+}
+
+IK_IDS = ["s2417093", "alice01", "bob02", "s2417000"]
+
+
+@pytest.mark.parametrize("seed", IK_IDS)
+def test_ik_loop_right_forms_accepted_and_faulty_loops_named(seed):
+    ex = exercises.load("ch10_ex4", seed=seed)
+    frame = ex.given["frame"]
+    assert "at most 20 steps" not in ex.hint and "max_iterations" in ex.hint
+    assert ex.check(_loop(frame)).correct
+    assert ex.check(_loop(frame, ret="pair")).correct
+    other = "space_twist_for_body" if frame == "body" else "body_twist_for_space"
+    named = {other: ex.check(_loop(frame, error="other"))}
+    for name, kw in FAULTY.items():
+        named[name] = ex.check(_loop(frame, **kw))
+    # Each faulty loop gets its own name; where no test tells two mistakes apart (the search for tolerances that
+    # separate the stop tests can fail), the message offers both, the right one among them, and names neither.
+    messages = {c.name: c.message for case in ex.cases() for c in case.mistakes}
+    wrong = {name: fb.mistake for name, fb in named.items()
+             if fb.correct or (fb.mistake != name and not (fb.mistake == "ambiguous" and name in messages
+                                                           and messages[name] in fb.message))}
+    assert not wrong, wrong
+    exact = sum(fb.mistake == name for name, fb in named.items())
+    assert exact >= len(named) - 1, {name: fb.mistake for name, fb in named.items()}
+
+
+def test_pairs_covered(capsys):
+    pairs = len(NUMERIC) * len(IDS) + len(SCALAR) * len(IDS) + len(IK_IDS)
+    with capsys.disabled():
+        print(f"\n(exercise, ID) pairs covered: {len(NUMERIC)} numeric and {len(SCALAR)} scalar exercises x "
+              f"{len(IDS)} IDs + {len(IK_IDS)} IDs of the IK code exercise = {pairs}")
+    assert pairs >= 50 * 30
+
+
+# ----------------------------------------------------------------------------------- enough variants
+
+#: Exercises that still have fewer than 20 statements: code exercises whose two variants differ in a convention
+#: (axes as rows or columns, the direction of a frame change) and symbolic ones over the arms of a small table.
+#: They want a worked example drawn per ID in the statement (as ch03_ex4, ch09_ex4 and ch10_ex4 have).
+FEW_YET = {"ch01_ex4", "ch02_ex4", "ch04_ex3", "ch05_ex4", "ch07_ex4", "ch08_ex4", "ch02_ex3", "ch03_ex3",
+           "ch06_ex1"}
+
+
+@pytest.mark.parametrize("eid", [e for e in ALL if e not in FEW_YET])
+def test_every_exercise_has_at_least_20_distinct_statements(eid):
+    statements = {exercises.load(eid, seed=f"student{k:03d}").statement for k in range(40)}
+    assert len(statements) >= 20, (eid, len(statements))
