@@ -1,4 +1,4 @@
-"""Sphinx extension: live views (issue #13) mounted on the static book page, no kernel.
+"""Sphinx extension: live views mounted on the static book page, no kernel.
 
 A MyST page writes::
 

@@ -1,4 +1,4 @@
-"""The two 3-D live views (issue #13) for the ``{live-view}`` directive of ``live_views.py``.
+"""The two 3-D live views for the ``{live-view}`` directive of ``live_views.py``.
 
 * ``columns_explorer`` (chapter 4): the spatial 5R arm; which joints move which
   column of J_s and J_b. Options ``:robot:`` (``spatial_5r``), ``:theta:`` (rad),

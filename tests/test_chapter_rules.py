@@ -1,4 +1,4 @@
-"""Source-level rules every chapter follows (issue #11), checked without building or running anything.
+"""Source-level rules every chapter follows, checked without building or running anything.
 
 The chapters are read as notebooks with jupytext and their Markdown cells cut into ``##`` sections
 with markdown-it (so a ``##`` inside a code fence is not a heading). The rules:
@@ -13,7 +13,7 @@ with markdown-it (so a ``##`` inside a code fence is not a heading). The rules:
 * every code cell with a ``mystnb: figure:`` option gives both ``name`` and ``caption`` (the name
   ``chNN-fig-...`` in chapter NN), and the text refers to the figure with {numref};
 * the first code cell (the page's set-up) is at most 15 lines, imports ``course.chapter`` and has no
-  ``try`` / ``except`` (issue #12: no fallbacks);
+  ``try`` / ``except`` (no fallbacks: a check that cannot fail is no check);
 * no chapter defines its own copy of a helper the library or ``course.chapter`` provides: no function
   named like a public name of ``jacobians.symbolic``, ``jacobians.lie`` or ``course.chapter``, none
   named ``s_...`` or ``s<library name>`` (``sskew``, ``sadjoint``: the old local sympy helpers), and
@@ -307,7 +307,7 @@ def test_every_figure_cell_has_a_name_and_a_caption_and_is_referenced(path):
     assert not problems, f"{path.name}:\n  " + "\n  ".join(problems)
 
 
-# ------------------------------------------------------------------ set-up cells and helpers (issue #12)
+# ------------------------------------------------------------------ set-up cells and helpers
 
 SETUP_MAX_LINES = 15
 _RETIRED = {"fmt", "shorthand", "short_trig", "is_zero_trig", "sinv"}

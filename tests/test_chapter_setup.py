@@ -1,4 +1,4 @@
-"""Tests of course.chapter, the set-up every chapter imports (issue #12)."""
+"""Tests of course.chapter, the set-up every chapter imports."""
 
 from __future__ import annotations
 

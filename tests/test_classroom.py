@@ -273,7 +273,7 @@ def test_the_teaching_page_counts_the_exercises_of_each_chapter_right():
     text = (Path(__file__).resolve().parent.parent / "chapters" / "teaching.md").read_text(encoding="utf-8")
     rows = re.findall(r"^\| \d+ \| .*?exercises/(\d\d)_\w+` \((\d+): (.*?)\) \|$", text, re.M)
     assert [r[0] for r in rows] == [f"{k:02d}" for k in range(1, 13)]
-    # a number checked by a rule ("predicate"; "scalar" once issue #15's part A is in) is a numeric exercise
+    # a number checked by a rule ("predicate" or "scalar") is a numeric exercise
     names = {"numeric": "numeric", "predicate": "numeric", "scalar": "numeric", "symbolic": "symbolic",
              "function": "code"}
     for chapter, total, kinds in rows:

@@ -1,4 +1,4 @@
-"""Regression checks for the errata of chapters 2 and 3 fixed in issue #11 (and the appendix page).
+"""Regression checks for the errata of chapters 2 and 3 (and the appendix page).
 
 Each test reads the chapter source and checks that the old wrong text is gone
 and the new text is there, and computes with the library (or sympy) the value

@@ -1,4 +1,4 @@
-"""Regression checks for the errata of chapters 4 and 5 (issue #11).
+"""Regression checks for the errata of chapters 4 and 5.
 
 Each test reads the chapter source and asserts that the old, wrong or repeated
 text is gone, and computes with the library the value that shows why it was

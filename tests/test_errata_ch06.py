@@ -1,4 +1,4 @@
-"""Regression checks for the errors fixed in chapter 6 (issue #11).
+"""Regression checks for the errors fixed in chapter 6.
 
 Each test fails on the old text or value: it reads the chapter source and asserts the old
 wrong statement is gone, and it computes the right value with the library (or sympy) and

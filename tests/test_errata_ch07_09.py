@@ -1,4 +1,4 @@
-"""Regression checks for the errors fixed in chapters 7, 8 and 9 (issue #11).
+"""Regression checks for the errors fixed in chapters 7, 8 and 9.
 
 Each test fails on the old text or the old value: it reads the chapter source
 and asserts that the wrong statement is gone (or that the missing warning is

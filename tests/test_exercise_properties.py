@@ -1,4 +1,4 @@
-"""Properties of every exercise over many seeds (issue #15): the reference is accepted, so is the reference
+"""Properties of every exercise over many seeds: the reference is accepted, so is the reference
 rounded to the precision the statement asks for, a coarser rounding is asked for more decimals, each
 catalogued mistake is named, every wrong message carries a hint and never repeats the student's value,
 and students with different IDs get different variants of every exercise.

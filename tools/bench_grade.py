@@ -37,7 +37,7 @@ def string_ids_supported() -> bool:
     """Whether ``exercises.load`` takes a string seed (a student ID) in this tree, not only an int."""
     from course import exercises
 
-    seed: Any = "s1"  # (typed Any: the signature says int before the string IDs of issue #15 are merged)
+    seed: Any = "s1"  # any text: a student ID
     try:
         exercises.load("ch01_ex1", seed=seed)
     except (TypeError, ValueError):

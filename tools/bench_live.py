@@ -9,7 +9,7 @@ is cross-origin isolated, so the clock is fine-grained), in two forms:
 * compute only;
 * compute plus a stand-in redraw: an SVG with the three links and the ellipse,
   and the 6×3 matrix written as text, then a forced layout
-  (``getBoundingClientRect``). The real views (issue #13) will draw more.
+  (``getBoundingClientRect``). The real views draw more.
 
 Then the real views, mounted on ``tests/browser/live_view_harness.html`` from
 the directive's models, one update at a time, each followed by a forced layout
@@ -20,7 +20,7 @@ whole 160-step run again), the story views of chapters 1, 3 and 7 on a time
 slider input (one frame of the replay).
 
 Also prints the size of every module under ``lib/jacobians/widgets/static/live/`` and the modules
-each view's page loads (its import graph). Budgets (issue #13): one update,
+each view's page loads (its import graph). Budgets: one update,
 compute plus redraw with forced layout, median <= 4 ms and worst <= 16 ms;
 live modules <= 150 KB per page.
 
@@ -241,7 +241,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  {label:18s} median {statistics.median(t):.4f} ms   mean {statistics.fmean(t):.4f} ms   "
               f"p99 {sorted(t)[int(0.99 * len(t))]:.3f} ms   worst {max(t):.3f} ms   "
               f"over 4 ms: {sum(x > 4 for x in t)}, over 16 ms: {sum(x > 16 for x in t)}")
-    print("Live views, one update with forced layout (issue #13 budget: median <= 4 ms, worst <= 16 ms):")
+    print("Live views, one update with forced layout (budget: median <= 4 ms, worst <= 16 ms):")
     for label, t in out["views"].items():
         ok = statistics.median(t) <= 4 and max(t) <= 16
         print(f"  {label:34s} n {len(t):5d}  median {statistics.median(t):.3f} ms   "
@@ -254,7 +254,7 @@ def main(argv: list[str] | None = None) -> int:
     total = sum(out["sizes"].values())
     sizes = ", ".join(f"{k} {v / 1024:.1f} KB" for k, v in out["sizes"].items())
     print(f"  modules under lib/jacobians/widgets/static/live/: {sizes}; total {total / 1024:.1f} KB")
-    print("  budgets (issue #13): median <= 4 ms, worst <= 16 ms with redraw; <= 150 KB of live modules per page")
+    print("  budgets: median <= 4 ms, worst <= 16 ms with redraw; <= 150 KB of live modules per page")
     return 0
 
 

@@ -13,7 +13,7 @@ served cross-origin isolated, so the clock is fine-grained). Kinds of update:
 * gimbal θ₃: the chart's 121 points are recomputed too (the worst case; θ₁ leaves the chart as it is);
 * a turn of the camera (drag or arrow key): every item projected again.
 
-Budget (issue #13): median <= 4 ms, worst <= 16 ms. Also prints the bytes of
+Budget: median <= 4 ms, worst <= 16 ms. Also prints the bytes of
 the modules each page loads.
 
     .venv/bin/python -m tools.bench_live_spatial [--n 500]

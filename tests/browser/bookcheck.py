@@ -194,7 +194,7 @@ def raw_tex_in(text: str) -> list[str]:
     return found
 
 
-# ---------------------------------------------------------------- page-quality probes (issue #11)
+# ---------------------------------------------------------------- page-quality probes
 # Shared JS: the main content, and a short "where" (the heading of the section an element is in).
 _JS_COMMON = """
   const ROOT = document.querySelector('article.bd-article') || document.querySelector('main') || document.body;

@@ -47,7 +47,7 @@ BREAKAGES = {
                        '</div>', "animations", "did not change the frame"),
     "solution_never_opens": ("insert", '<details class="sd-dropdown"><summary onclick="event.preventDefault()">'
                              'Solution</summary><p>hidden forever</p></details>', "solutions", "does not open"),
-    # ---- page quality (issue #11)
+    # ---- page quality
     "overflowing_output": ("insert", '<div class="cell docutils container"><div class="cell_output docutils container">'
                            '<div style="width:1600px">an output wider than its box, broken on purpose</div></div></div>',
                            "overflow", "cell output is"),

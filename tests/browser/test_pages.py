@@ -85,7 +85,7 @@ def test_page_weight_under_3_mb(page_reports, path):
     _assert_clean(report, "weight")
 
 
-# ---------------------------------------------------------------- page quality (issue #11)
+# ---------------------------------------------------------------- page quality
 @pytest.mark.parametrize("path", PAGES)
 def test_no_box_overflows(page_reports, path):
     """At 1280 px and 390 px, no output, admonition (a "Verified by code" box too) or display-math box has

@@ -11,7 +11,7 @@ Two widgets, each a function returning an ``ipywidgets.VBox`` subclass:
   the pseudo-inverse or damped least squares; joint rates plotted; what happens
   near a singularity.
 
-Live versions (issue #13): :mod:`jacobians.widgets.live` wraps the book's ES
+Live versions: :mod:`jacobians.widgets.live` wraps the book's ES
 modules ``lib/jacobians/widgets/static/live/<view>.js`` as anywidgets, the same code the static
 book runs without a kernel: :class:`~jacobians.widgets.live.PlanarExplorer`
 (``w.theta`` settable, ``w.J`` from the library) and

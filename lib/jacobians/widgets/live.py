@@ -1,4 +1,4 @@
-r"""Live views in JupyterLab: anywidget wrappers of the book's ES modules (issue #13).
+r"""Live views in JupyterLab: anywidget wrappers of the book's ES modules.
 
 One front-end module per view lives in ``lib/jacobians/widgets/static/live/<view>.js``. The static
 book mounts it with the ``{live-view}`` directive (``_ext/live_views.py``) from

@@ -1,4 +1,4 @@
-r"""The two 3-D live views (issue #13) in JupyterLab, and their models for the book page.
+r"""The two 3-D live views in JupyterLab, and their models for the book page.
 
 * ``columns_explorer`` (chapter 4): the spatial 5R arm; which joints move which
   column of :math:`J_s` and :math:`J_b`. :func:`columns_model` and the widget

@@ -1,4 +1,4 @@
-// The columns explorer, live (issue #13, view 2): which joints move which
+// The columns explorer, live: which joints move which
 // column of J_s and of J_b, on the spatial 5R arm of the notes. One slider per
 // joint; the arm and its joint (screw) axes in a 3-D view the reader turns;
 // J_s and J_b with their current numbers. After a joint moves, the columns whose

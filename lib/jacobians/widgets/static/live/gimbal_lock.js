@@ -1,4 +1,4 @@
-// Gimbal lock, live (issue #13, view 3): a spherical wrist, the coordinates φ
+// Gimbal lock, live: a spherical wrist, the coordinates φ
 // of its tool orientation (ZYX or ZYZ), B(φ) with ω_s = B(φ) φ̇, det B, and the
 // analytic Jacobian J_a = diag(B(φ)⁻¹, I) J blowing up next to the geometric J
 // as φ nears the lock, while σ_min of J's angular rows says whether the wrist

@@ -1,4 +1,4 @@
-// Mount a live view on a static page (issue #13): the model stand-in of an
+// Mount a live view on a static page: the model stand-in of an
 // anywidget model (get/set/on/off/save_changes) built from the host element's
 // data-model JSON, written at build time by _ext/live_views.py. With no kernel,
 // save_changes does nothing; set fires "change:<key>" handlers as Backbone does.

@@ -1,4 +1,4 @@
-// Front-end kinematics of the live views (issue #13): a plain ES module, no
+// Front-end kinematics of the live views: a plain ES module, no
 // dependencies, no build step. It mirrors the course library `jacobians`
 // (Modern Robotics conventions: twists (ω, v), angular rows first, screw axes
 // as the columns of a 6×n matrix). The library is the reference:

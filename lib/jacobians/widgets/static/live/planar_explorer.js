@@ -1,4 +1,4 @@
-// The planar arm explorer, live (issue #13): a 2R or 3R arm the reader moves
+// The planar arm explorer, live: a 2R or 3R arm the reader moves
 // with one slider per joint, by dragging a joint (it turns the joint before
 // it) or the tool (mouse, pen or touch: damped least squares on J_v), or with
 // Play, which sweeps one joint; the chosen Jacobian's numbers (space, body,

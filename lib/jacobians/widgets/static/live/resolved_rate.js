@@ -1,4 +1,4 @@
-// Resolved-rate motion of a planar arm, live (issue #13): the tool follows a
+// Resolved-rate motion of a planar arm, live: the tool follows a
 // path the reader picks (the presets of jacobians.widgets.path_following) or
 // draws with the pointer, by θ̇ = J_v^# (ṗ_d + K (p_d − p)) with the
 // pseudo-inverse or damped least squares (λ on a slider); the joint rates are

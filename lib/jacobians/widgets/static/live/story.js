@@ -1,4 +1,4 @@
-// Story animations as a live view (issue #13): a motion replayed with a Play /
+// Story animations as a live view: a motion replayed with a Play /
 // Pause button and a time slider (a labelled <input>, one frame per arrow
 // key), drawn in SVG from the chain and the motion embedded at build time by
 // the {live-view} directive (jacobians.widgets.live.story_model). The view

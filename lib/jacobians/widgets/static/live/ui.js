@@ -1,4 +1,4 @@
-// Drawing helpers shared by the planar live views (issue #13): the Okabe–Ito
+// Drawing helpers shared by the planar live views: the Okabe–Ito
 // palette of jacobians.plotting.style, one style sheet (text >= 14 px), SVG and
 // HTML element factories, arrows, and number formatting that never shows NaN.
 

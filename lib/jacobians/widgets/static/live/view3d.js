@@ -1,5 +1,5 @@
 // A small orthographic 3-D view in SVG, shared by the spatial live views
-// (columns_explorer.js, gimbal_lock.js; issue #13). No dependencies.
+// (columns_explorer.js, gimbal_lock.js). No dependencies.
 //
 // The camera looks at `center` from the direction (cos e cos a, cos e sin a, sin e)
 // (a = azimuth, e = elevation, world z up). A point p goes to the screen by
