@@ -23,8 +23,8 @@ help:
 	@echo "make book       build the book into _build/html"
 	@echo "make test       run every test (static checks, library, notebooks, book build, browser, decks)"
 	@echo "make lab        JupyterLab on the chapters, live widgets"
-	@echo "make slides     reveal.js decks into _build/html/slides (after make book)"
-	@echo "make slides-pdf one PDF handout per deck into _build/slides-pdf"
+	@echo "make slides     reveal.js decks, their PDFs and handouts into _build/html/slides (after make book)"
+	@echo "make slides-pdf the decks again from the last revealjs build, with their PDFs and handouts"
 	@echo "make exercises  student notebooks into _build/exercises"
 	@echo "make bench      speed benchmark against modern_robotics and Pinocchio"
 	@echo "make test-install  a student's install from a wheel in a fresh venv: notebooks, a live view, size"
@@ -64,7 +64,7 @@ sandbox:
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq bubblewrap >/dev/null; }
 
 # ------------------------------------------------------------------ the book
-book: vendor
+book: vendor browser
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
 	$(PY) -m tools.build_slides
@@ -90,7 +90,7 @@ lint: setup
 	node_modules/.bin/tsc -p jsconfig.json
 
 test-lib: setup sandbox
-	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/install --ignore=tests/site --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/install --ignore=tests/site --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --ignore=tests/slides/test_deck_keys.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
 
 # the live views' numeric modules under Node, against values the library writes (no browser)
 test-js: setup
@@ -164,11 +164,11 @@ grade: setup sandbox
 exercises: setup
 	$(PY) -m tools.make_exercises _build/exercises
 
-slides: vendor
+slides: vendor browser
 	$(PY) -m tools.build_slides
 
-# PDF handouts of the decks (one page per slide) with Debian's Chromium, into _build/slides-pdf
+# the decks' PDFs (a page a slide) and handouts (with the speaker notes), with Debian's Chromium, into
+# _build/html/slides/pdf (make book and make slides print them too)
 slides-pdf: setup browser
 	@test -f _build/html/slides/decks.json || $(MAKE) book
-	$(PY) -m tools.slides_pdf _build/slides-pdf
 	$(PY) -m tools.build_slides --no-build

@@ -33,7 +33,9 @@ Cross-references on a slide point to the book's page (the deck sits in
 
 from __future__ import annotations
 
+import os
 import posixpath
+import re
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -189,6 +191,12 @@ def _short_statement(statement: nodes.Element) -> nodes.Element:
     short = statement.deepcopy()
     for content in list(short.findall(nodes.section)):
         equations = [m.deepcopy() for m in content.findall(nodes.math_block)]
+        if not equations:
+            # no display equation: the statement's formulas are inline; its first block that holds one
+            # shows them, each list item's with its label (its bold or italic words)
+            first = next((c for c in content.children
+                          if not isinstance(c, nodes.title) and any(True for _ in c.findall(nodes.math))), None)
+            equations = _formulas_of(first) if first is not None else []
         del content[:]
         if equations:
             content += equations
@@ -196,6 +204,66 @@ def _short_statement(statement: nodes.Element) -> nodes.Element:
             content.parent.remove(content)
     short["classes"] = [*short.get("classes", []), "statement-short"]
     return short
+
+
+_RELATION = re.compile(r"=|<|>|\\(?:in|iff|ne|neq|le|leq|ge|geq|to|mapsto|subset|approx|equiv|Rightarrow)\b")
+#: the words of a statement's first clause that its short form shows (more: its formulas instead)
+CLAUSE_WORDS = 8
+_CLAUSE_END = re.compile(r"[.:;](?:\s|$)")
+
+
+def _first_clause(paragraph: nodes.Element) -> nodes.paragraph:
+    """A paragraph up to the end of its first clause (``.``, ``:`` or ``;`` outside math), as one line."""
+    line = nodes.paragraph(classes=["statement-formulas"])
+    for child in paragraph.children:
+        if isinstance(child, nodes.Text):
+            m = _CLAUSE_END.search(str(child))
+            if m:
+                line += nodes.Text(str(child)[:m.start()].rstrip() + ".")
+                return line
+        line += child.deepcopy()
+    return line
+
+
+def _formulas_of(block: nodes.Element) -> list[nodes.Node]:
+    """The short form of a statement whose formulas are inline: a list shows, per item, its label (its
+    bold or italic words) and its formulas that state a relation; a paragraph its first clause."""
+    if not isinstance(block, nodes.Sequential):
+        para = block if isinstance(block, nodes.paragraph) else next(iter(block.findall(nodes.paragraph)), None)
+        if para is None:
+            return []
+        clause = _first_clause(para)
+        if _words(clause) <= CLAUSE_WORDS:
+            return [clause]
+        # a long clause: its formulas that state a relation, else its first words
+        maths = [m.deepcopy() for m in para.findall(nodes.math) if _RELATION.search(m.astext())]
+        if maths:
+            line = nodes.paragraph(classes=["statement-formulas"])
+            for k, m in enumerate(maths[:3]):
+                if k:
+                    line += nodes.Text(",  ")
+                line += m
+            return [line]
+        words = clause.astext().split()
+        return [nodes.paragraph("", " ".join(words[:CLAUSE_WORDS]) + " \N{HORIZONTAL ELLIPSIS}",
+                                classes=["statement-formulas"])]
+    lines: list[nodes.Node] = []
+    for part in block.findall(nodes.list_item):
+        maths = [m for m in part.findall(nodes.math)]
+        maths = [m.deepcopy() for m in maths if _RELATION.search(m.astext())] or [m.deepcopy() for m in maths]
+        if not maths:
+            continue
+        line = nodes.paragraph(classes=["statement-formulas"])
+        label = next(iter(part.findall(lambda n: isinstance(n, nodes.strong | nodes.emphasis))), None)
+        if label is not None:
+            line += nodes.strong("", label.astext())
+            line += nodes.Text(": ")
+        for k, m in enumerate(maths):
+            if k:
+                line += nodes.Text(",  ")
+            line += m
+        lines.append(line)
+    return lines
 
 
 def _code_kind(node: nodes.Element) -> str:
@@ -247,16 +315,25 @@ def _code_for_slide(cell: nodes.Element) -> nodes.Element | None:
 
 def _display(block: nodes.Node) -> list[nodes.Node]:
     """What of a book block a slide shows (see the module docstring)."""
-    if isinstance(block, nodes.math_block | nodes.figure | nodes.image):
+    if isinstance(block, nodes.math_block):
+        return [_without_sentence_punctuation(block.deepcopy())]
+    if isinstance(block, nodes.figure | nodes.image):
         return [block.deepcopy()]
     if _is_code_cell(block):
         cell = _code_for_slide(block)
         return [cell] if cell is not None else []
     if type(block).__name__ in DISPLAY_PRF:
-        return [block.deepcopy()]
-    if isinstance(block, nodes.raw) or (isinstance(block, nodes.container) and block.get("nb_element") is None
-                                        and "live-view" in block.get("classes", [])):
-        return [block.deepcopy()]
+        copy = block.deepcopy()
+        _equations_without_punctuation(copy)
+        return [copy]
+    if isinstance(block, nodes.raw):
+        return [_classic_live_view(block.deepcopy())]
+    if (isinstance(block, nodes.container) and block.get("nb_element") is None
+            and "live-view" in block.get("classes", [])):
+        copy = block.deepcopy()
+        for raw in list(copy.findall(nodes.raw)):
+            raw.replace_self(_classic_live_view(raw))
+        return [copy]
     if isinstance(block, nodes.paragraph | nodes.bullet_list | nodes.enumerated_list | nodes.table
                   | nodes.block_quote | nodes.Admonition | nodes.comment | nodes.literal_block
                   | nodes.definition_list | nodes.rubric | nodes.line_block):
@@ -269,6 +346,57 @@ def _display(block: nodes.Node) -> list[nodes.Node]:
     return []
 
 
+#: punctuation a display formula keeps from the sentence around it in the book, at its end (before any
+#: closing ``\\end{...}``, after any spacing command): a slide shows the formula alone
+_TRAILING_PUNCTUATION = re.compile(
+    r"(?:\\[,;:!]|\\quad|\\qquad|\\ |~|\s)*(?<!\\)[,;:.](?P<end>(?:\s|\\end\{[A-Za-z*]+\})*)$")
+
+
+def strip_sentence_punctuation(latex: str) -> str:
+    """``latex`` without the comma, semicolon, colon or full stop the sentence put at its end."""
+    return _TRAILING_PUNCTUATION.sub(lambda m: m.group("end"), latex.rstrip()).rstrip()
+
+
+def _without_sentence_punctuation(block: nodes.math_block) -> nodes.math_block:
+    latex = block.astext()
+    clean = strip_sentence_punctuation(latex)
+    if clean != latex:
+        block.children = []
+        block += nodes.Text(clean)
+    return block
+
+
+def _equations_without_punctuation(node: nodes.Element) -> None:
+    for block in list(node.findall(nodes.math_block)):
+        _without_sentence_punctuation(block)
+
+
+#: a live view's module script (``_ext/live_views.py``): a deck mounts its views with the classic script
+#: ``_static/live/jac-live.js`` instead (built by esbuild from the same modules), which also works from disk
+_LIVE_MODULE = re.compile(r'<script type="module">.*?</script>', re.S)
+_LIVE_NOSCRIPT = re.compile(r"<noscript>.*?</noscript>", re.S)
+LIVE_BUNDLE = "live/jac-live.js"
+
+
+def live_fallback(view: str) -> str:
+    """What a live view's slide shows until (or unless) the view starts: what it is, and why it is not there."""
+    what = view.replace("_", " ")
+    return (f'<div class="jl-static"><p class="jl-static-title">Live view: {what}</p>'
+            '<p>It starts when the deck\'s script <code>_static/live/jac-live.js</code> runs; if you read this, '
+            "JavaScript is off or that file is missing next to the deck. The book's chapter shows the same "
+            "view.</p></div>")
+
+
+def _classic_live_view(raw: nodes.raw) -> nodes.raw:
+    text = raw.astext()
+    if 'class="jac-live"' not in text:
+        return raw
+    m = re.search(r'data-view="([^"]+)"', text)
+    text = _LIVE_MODULE.sub("", text)
+    text = _LIVE_NOSCRIPT.sub(live_fallback(m.group(1) if m else "view"), text)
+    return nodes.raw("", text, format="html")
+
+
 def _is_picture(node: nodes.Node) -> bool:
     if isinstance(node, nodes.image | nodes.raw | nodes.figure):
         return True
@@ -277,9 +405,11 @@ def _is_picture(node: nodes.Node) -> bool:
 
 
 class _Slide:
-    def __init__(self, title: nodes.Node | None, ids: list[str]):
+    def __init__(self, title: nodes.Node | None, ids: list[str], anchor: str = ""):
         self.title = title
         self.ids = ids
+        #: the id of the book's section this slide comes from (its small link to the book)
+        self.anchor = anchor
         self.body: list[nodes.Node] = []
         self.notes: list[nodes.Node] = []
         #: holds display material of the book (not only slide text and notes)
@@ -311,7 +441,7 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
     kind = "-"
 
     def start(heading: nodes.Node | None, ids: list[str]) -> _Slide:
-        slides.append(_Slide(heading, ids))
+        slides.append(_Slide(heading, ids, section_ids[0] if section_ids else ""))
         return slides[-1]
 
     for event, value in _events(top, 1):
@@ -382,7 +512,12 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
     # title slide, then every slide with something on it
     new_top = nodes.section("", ids=list(top["ids"]), classes=["title-slide"])
     new_top += title
-    new_top += nodes.paragraph("", app.config.html_title or app.config.project, classes=["deck-course"])
+    new_top += nodes.paragraph("", app.config.decks_course or app.config.html_title or app.config.project,
+                               classes=["deck-course"])
+    who = " \N{MIDDLE DOT} ".join(t for t in (app.config.decks_lecturer or app.config.author,
+                                               app.config.decks_date) if t)
+    if who:
+        new_top += nodes.paragraph("", who, classes=["deck-lecturer"])
     kept: list[_Slide] = []
     for slide in slides:
         authored = any(isinstance(n, slide_notes) for n in slide.notes)
@@ -391,25 +526,41 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
                 kept[-1].notes.extend(slide.notes)
             continue
         kept.append(slide)
+    for slide in kept:
+        _first_view_not_blank(slide)
+    if kept and not _is_summary(kept[-1]):
+        kept.append(_summary_slide(kept, lambda st: _statement_number(app, docname, st)))
+    new_top += _title_notes(kept)
     for number, slide in enumerate(kept):
         # a slide of its own title has an id of its own (HTML writers number titles by their section's id)
         sec = nodes.section("", ids=list(slide.ids) or [f"slide-{number}"])
         if not slide.ids:  # and no section number (the writer would fall back to the chapter's)
             app.env.toc_secnumbers.setdefault(docname, {})[f"#slide-{number}"] = ()
         sec += slide.title if slide.title is not None else title.deepcopy()
+        sec += _book_link(docname, slide.anchor)
         for item in slide.body:
             sec += item
         if slide.notes:
             box = slide_notes(minutes="")
+            minutes = 0.0
             for note in slide.notes:
                 if isinstance(note, slide_notes):
-                    if note.get("minutes") and not box.get("minutes"):
-                        box["minutes"] = note["minutes"]
+                    minutes += _minutes(note.get("minutes", ""))
                     box.extend(c.deepcopy() for c in note.children)
                 else:
                     box += note
+            if minutes:   # notes merged onto one slide: their times add up
+                box["minutes"] = f"{minutes:g}"
+            _one_key_point_one_question(box)
             sec += box
         new_top += sec
+    # every display formula on a slide (book material or slide text) without the sentence's punctuation
+    for block in list(new_top.findall(nodes.math_block)):
+        parent = block.parent
+        while parent is not None and not isinstance(parent, slide_notes):
+            parent = parent.parent
+        if parent is None:
+            _without_sentence_punctuation(block)
     # sections inside blocks (sphinx-proof wraps a statement in one) are not slides
     for inner in list(new_top.findall(nodes.section)):
         if inner is not new_top and not isinstance(inner.parent, nodes.section):
@@ -419,14 +570,117 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
     doctree += new_top
 
 
+def _minutes(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        return 0.0
+
+
+#: the labels a note starts with; a slide's merged notes keep the first of each, the others read "Also"
+_NOTE_LABELS = {"Key point": "Also", "Ask": "Or ask"}
+
+
+def _one_key_point_one_question(box: nodes.Element) -> None:
+    """Notes merged onto one slide say "Key point" and "Ask" once each: later ones are relabelled."""
+    seen: set[str] = set()
+    for para in box.findall(nodes.paragraph):
+        first = next(iter(para.findall(nodes.Text)), None)
+        if first is None:
+            continue
+        for label, again in _NOTE_LABELS.items():
+            if str(first).lstrip().startswith(label):
+                if label in seen:
+                    first.parent.replace(first, nodes.Text(str(first).replace(label, again, 1)))
+                seen.add(label)
+
+
+def _title_notes(slides: list[_Slide]) -> slide_notes:
+    """The title slide's notes: the lecture's plan (its sections in order) and its length by the notes."""
+    total = sum(_minutes(n.get("minutes", "")) for s in slides for n in s.notes if isinstance(n, slide_notes))
+    # headings as plain words (a heading's TeX, e.g. B(\phi), read as B(phi))
+    plan = list(dict.fromkeys(re.sub(r"\\([A-Za-z]+)", r"\1", s.title.astext()).replace("{", "").replace("}", "")
+                              for s in slides if s.title is not None))
+    notes = slide_notes(minutes="")
+    notes.append(nodes.paragraph("", f"This lecture: about {total:g} min by the slides' notes, {len(slides)} slides."))
+    notes.append(nodes.paragraph("", "Plan: " + "; ".join(plan) + "."))
+    return notes
+
+
+def _first_view_not_blank(slide: _Slide) -> None:
+    """A slide whose whole content is a build step opens on a bare heading: its first step shows at once."""
+    if slide.body and all(isinstance(b, nodes.Element) and "fragment" in b.get("classes", []) for b in slide.body):
+        slide.body[0]["classes"] = [c for c in slide.body[0]["classes"] if c != "fragment"]
+
+
+_SUMMARY = re.compile(r"\b(summary|recap|in short|take-?aways?|what we (?:saw|learned))\b", re.I)
+#: at most this many statements on the summary slide (one idea a slide: about 40 words)
+SUMMARY_ITEMS = 5
+
+
+def _is_summary(slide: _Slide) -> bool:
+    return slide.title is not None and bool(_SUMMARY.search(slide.title.astext()))
+
+
+def _statement_number(app: Sphinx, docname: str, statement: nodes.Element) -> str:
+    """A statement's name as the book prints it, e.g. "Definition 6.1" (sphinx-proof's numbering)."""
+    ids = statement.get("ids") or [""]
+    number = app.env.toc_fignumbers.get(docname, {}).get(statement.get("countertype", ""), {}).get(ids[0], ())
+    return f"{str(statement.get('realtype', 'statement')).title()} {'.'.join(map(str, number))}".strip()
+
+
+def _summary_slide(slides: list[_Slide], name: Any) -> _Slide:
+    """The deck's closing slide: the statements it set up (numbers and titles), linked to the book."""
+    statements: list[nodes.Element] = []
+    for slide in slides:
+        for item in slide.body:
+            for node in ([item] if type(item).__name__ in DISPLAY_PRF else []) + [
+                    n for n in (item.findall(nodes.Element) if isinstance(item, nodes.Element) else [])
+                    if type(n).__name__ in DISPLAY_PRF and n is not item]:
+                statements.append(node)
+    summary = _Slide(nodes.title("", "Summary"), [], slides[-1].anchor)
+    items = nodes.bullet_list()
+    for st in statements[:SUMMARY_ITEMS]:
+        title = next(iter(st.findall(nodes.title)), None)
+        text = title.astext() if title is not None else str(st.get("realtype", "Statement")).capitalize()
+        para = nodes.paragraph("", name(st) + " ")
+        para += [c.deepcopy() for c in title.children] if title is not None else nodes.Text(text)
+        items += nodes.list_item("", para)
+    if len(items):
+        summary.body.append(nodes.paragraph("", "This lecture set up:"))
+        summary.body.append(items)
+        if len(statements) > SUMMARY_ITEMS:
+            summary.body.append(nodes.paragraph("", f"and {len(statements) - SUMMARY_ITEMS} more in the book."))
+    else:
+        headings = [s.title.astext() for s in slides if s.title is not None]
+        seen = list(dict.fromkeys(headings))[:SUMMARY_ITEMS]
+        summary.body.append(nodes.paragraph("", "This lecture covered:"))
+        summary.body.append(nodes.bullet_list("", *[nodes.list_item("", nodes.paragraph("", h)) for h in seen]))
+    notes = slide_notes(minutes="2")
+    notes += nodes.paragraph("", "Key point: the statements above are the lecture's working tools; each is "
+                                 "stated in full, with its proof and a check by code, in the book.")
+    notes += nodes.paragraph("", "Ask: which of these would you reach for first in the next exercise, and why?")
+    summary.notes.append(notes)
+    summary.display = True
+    return summary
+
+
+def _book_link(docname: str, anchor: str) -> nodes.raw:
+    """The slide's small link to its section of the book, opened in a new tab."""
+    href = "../" * (docname.count("/") + 1) + docname + ".html" + (f"#{anchor}" if anchor else "")
+    return nodes.raw("", f'<a class="book-link" href="{href}" target="_blank" rel="noopener" '
+                         f'title="This slide\'s section in the book (new tab)">book \u2197</a>', format="html")
+
+
 def _book_links(doctree: nodes.document, docname: str) -> None:
-    """Internal references open the book's page (the deck is in ``slides/`` of the book)."""
+    """Internal references open the book's page (the deck is in ``slides/`` of the book), in a new tab."""
     up = "../" * (docname.count("/") + 1)
     here = posixpath.dirname(docname)
     for ref in doctree.findall(nodes.reference):
         uri = ref.get("refuri", "")
         if not ref.get("internal") or not uri or "://" in uri:
             continue
+        ref["target"] = "_blank"
         if uri.startswith("#"):
             target = posixpath.basename(docname) + ".html" + uri
             ref["refuri"] = up + posixpath.join(here, target)
@@ -447,6 +701,8 @@ def deck_assets(app: Sphinx, pagename: str, templatename: str, context: dict[str
     """A deck loads reveal.js, MathJax, its own CSS and script and the styles of the book's boxes."""
     if app.builder.name != BUILDER:
         return
+    # no <link rel="next"/"prev"> to the book's pages: a deck stands alone (its book links are in the slides)
+    context["next"] = context["prev"] = None
     context["script_files"] = [s for s in context.get("script_files", [])
                                if not any(u in str(getattr(s, "filename", s) or "") for u in UNUSED_SCRIPTS)]
     context["css_files"] = [c for c in context.get("css_files", [])
@@ -466,14 +722,33 @@ def configure(app: Sphinx, config: Any) -> None:
     config.revealjs_html_theme = "revealjs-basic"
     config.revealjs_style_theme = "white"
     config.revealjs_static_path = [str(STATIC)]
-    config.revealjs_css_files = ["course_decks.css"]
-    config.revealjs_js_files = [("course_decks.js", {})]
+    config.revealjs_css_files = ["course_decks.css", "plugins/chalkboard/style.css"]
+    config.revealjs_js_files = [("course_decks.js", {}), (LIVE_BUNDLE, {})]
     config.revealjs_script_conf = {
         "width": WIDTH, "height": HEIGHT, "margin": 0.04, "minScale": 0.2, "maxScale": 2.0,
-        "hash": True, "slideNumber": "c/t", "transition": "none", "center": False,
+        "hash": True, "hashOneBasedIndex": True, "slideNumber": "c/t", "transition": "none", "center": False,
         "pdfMaxPagesPerSlide": 1, "pdfSeparateFragments": False,
+        # the presenter's toolkit: M (or a click on the slide number) the slide menu (its icons from its own
+        # copy of Font Awesome, no CDN), T the pacing timer (course_decks.js),
+        # W the chalkboard and C a pen on the slide (B stays reveal's black screen), Ctrl+Shift+F search,
+        # Alt+click zoom, S the speaker notes
+        "menu": {"side": "left", "numbers": True, "titleSelector": "h1, h2", "hideMissingTitles": False,
+                 "loadIcons": True, "transitions": False, "themes": False, "openButton": False,
+                 "openSlideNumber": True},
+        "chalkboard": {"boardmarkerWidth": 4, "chalkWidth": 6, "toggleChalkboardButton": False,
+                       "toggleNotesButton": False, "colorButtons": True,
+                       "keyBindings": {"toggleChalkboard": {"keyCode": 87, "key": "W",
+                                                            "description": "Toggle chalkboard"},
+                                       "resetAll": {"keyCode": 0, "key": "", "description": "Reset all drawings"},
+                                       "download": {"keyCode": 0, "key": "", "description": "Download drawings"}}},
     }
-    config.revealjs_script_plugins = [{"name": "RevealNotes", "src": "revealjs/plugin/notes/notes.js"}]
+    config.revealjs_script_plugins = [
+        {"name": "RevealNotes", "src": "revealjs/plugin/notes/notes.js"},
+        {"name": "RevealSearch", "src": "revealjs/plugin/search/search.js"},
+        {"name": "RevealZoom", "src": "revealjs/plugin/zoom/zoom.js"},
+        {"name": "RevealMenu", "src": "plugins/menu/menu.js"},
+        {"name": "RevealChalkboard", "src": "plugins/chalkboard/plugin.js"},
+    ]
 
 
 def setup(app: Sphinx) -> dict[str, Any]:
@@ -486,6 +761,11 @@ def setup(app: Sphinx) -> dict[str, Any]:
                                 BUILDER: (_visit_only, _depart_only)})
     app.add_node(slide_notes, **{**visitors, "html": (_visit_notes, _depart_notes),
                                  BUILDER: (_visit_notes, _depart_notes)})
+    # the title slide's course, lecturer and date: _config.yml (sphinx: config:) or the environment
+    # (COURSE_TITLE, COURSE_LECTURER, COURSE_DATE: `make slides COURSE_LECTURER=...`); no rebuild on change
+    app.add_config_value("decks_course", os.environ.get("COURSE_TITLE", ""), "")
+    app.add_config_value("decks_lecturer", os.environ.get("COURSE_LECTURER", ""), "")
+    app.add_config_value("decks_date", os.environ.get("COURSE_DATE", ""), "")
     app.add_directive("slide", SlideDirective)
     app.add_directive("slide-notes", SlideNotesDirective)
     app.connect("config-inited", configure, priority=900)

@@ -1,12 +1,16 @@
-"""One headless Debian Chromium for the deck and PDF tests (never a downloaded browser)."""
+"""One headless Debian Chromium for the deck and PDF tests (never a downloaded browser), and the decks
+as a lecturer carries them: a copy of the built ``slides/`` folder alone, opened from disk (``file://``)."""
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import pytest
 
 CHROMIUM = "/usr/bin/chromium"
+ROOT = Path(__file__).resolve().parents[2]
+SLIDES = ROOT / "_build" / "html" / "slides"
 
 
 @pytest.fixture(scope="session")
@@ -19,3 +23,15 @@ def deck_browser():
         b = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
         yield b
         b.close()
+
+
+@pytest.fixture(scope="session")
+def usb(tmp_path_factory) -> Path:
+    """A copy of ``_build/html/slides`` alone in an empty temp folder (no book around it): a USB stick."""
+    from tools import build_slides
+
+    if not (SLIDES / "decks.json").is_file():
+        assert build_slides.main([]) == 0, "tools/build_slides.py failed"
+    stick = tmp_path_factory.mktemp("usb") / "slides"
+    shutil.copytree(SLIDES, stick, ignore=shutil.ignore_patterns("pdf"))
+    return stick

@@ -1,4 +1,5 @@
-"""The live views on the deck slides (issue #13), in headless Chromium at 1280x720.
+"""The live views on the deck slides, in headless Chromium at 1280x720, opened from a copy of the deck
+folder alone (``file://``, as from a USB stick: the views come from the classic bundle ``jac-live.js``).
 
 On every deck slide that holds a live view (``.jac-live``, mounted by the
 ``{live-view}`` directive): an input event on one of its sliders changes the
@@ -16,10 +17,8 @@ in a view is at least 24 px on the slide. Screenshots go to
 from __future__ import annotations
 
 import functools
-import http.server
 import json
 import math
-import threading
 from pathlib import Path
 from typing import Any
 
@@ -67,21 +66,6 @@ OUTSIDE = """() => {
     return r.left < box.left - 2 || r.right > box.right + 2 || r.top < box.top - 2 || r.bottom > box.bottom + 2;
   }).map((e) => e.tagName + "." + (e.getAttribute("class") || "")).slice(0, 5);
 }"""
-
-
-class _Quiet(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, *args: Any) -> None:
-        pass
-
-
-@pytest.fixture(scope="module")
-def server():
-    if not (SITE / "slides" / "decks.json").is_file():
-        assert build_slides.main([]) == 0, "tools/build_slides.py failed"
-    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(_Quiet, directory=str(SITE)))
-    threading.Thread(target=httpd.serve_forever, daemon=True).start()
-    yield f"http://127.0.0.1:{httpd.server_address[1]}/"
-    httpd.shutdown()
 
 
 def _numbers(rows: list[list[str]]) -> np.ndarray:
@@ -180,14 +164,14 @@ VIEWS = {
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=[s.stem for s in SOURCES])
-def test_live_view_slides_show_the_librarys_numbers_and_arrows_still_move_on(deck_browser, server, source):
+def test_live_view_slides_show_the_librarys_numbers_and_arrows_still_move_on(deck_browser, usb, source):
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
     page = deck_browser.new_page(viewport={"width": 1280, "height": 720})
     problems: list[str] = []
     page.on("console", lambda m: problems.append(m.text) if m.type == "error" else None)
     page.on("pageerror", lambda e: problems.append(str(e)))
     try:
-        page.goto(server + "slides/" + build_slides.deck_path(source), wait_until="load")
+        page.goto((usb / build_slides.deck_path(source)).as_uri(), wait_until="load")
         page.wait_for_selector("html[data-math-done]", state="attached", timeout=60_000)
         total = page.evaluate("Reveal.getTotalSlides()")
         with_view = page.evaluate("""() => Reveal.getSlides().map((s, i) => s.querySelector(".jac-live") ? i : -1)

@@ -1,23 +1,22 @@
 """Every chapter's deck, slide by slide, in a real browser (headless Chromium), as projected at 1280x720.
 
 The decks are the ones ``make book`` writes into ``_build/html/slides`` (built
-here by ``tools/build_slides.py`` if missing), served over HTTP on 127.0.0.1
-with the book around them (they load the book's MathJax and styles). Each
-deck is walked once (:func:`walk`): every slide measured after MathJax has
-typeset it, every request and console message recorded, every request to
-another host aborted. The tests then check what was measured. Screenshots of
-every slide are kept in ``_build/test-artifacts/slides/`` (not committed).
+here by ``tools/build_slides.py`` if missing), copied alone into a temp folder
+and opened from disk (``file://``), as from a USB stick: everything they load
+must be inside ``slides/``. Each deck is walked once (:func:`walk`): every
+slide measured after MathJax has typeset it, at 1280x720 and again at
+1024x768 (a 4:3 projector), every request and console message recorded,
+every request to a web host aborted. The tests then check what was measured.
+Screenshots of every slide are kept in ``_build/test-artifacts/slides/`` (not
+committed).
 """
 
 from __future__ import annotations
 
 import base64
-import functools
-import http.server
 import io
 import json
 import re
-import threading
 import urllib.parse
 from pathlib import Path
 from typing import Any
@@ -48,6 +47,70 @@ BANNED = {
     "raw MyST": re.compile(r"(```|:::)\{|\{[\w:-]+\}`"),
 }
 
+#: what every slide must show, measured at each size: statement boxes with their content inside, display
+#: formulas without a sentence's punctuation at their end, no overlap between text, controls and reveal's
+#: own buttons, and something besides the heading in the slide's first view (before any fragment)
+CONTENT = """(i) => {
+  const slide = Reveal.getCurrentSlide();
+  const shown = (el) => el.checkVisibility({ opacityProperty: true, visibilityProperty: true })
+    && el.getClientRects().length > 0;
+  const rect = (el) => el.getBoundingClientRect();
+  const inside = (a, b) => a.left >= b.left - 2 && a.right <= b.right + 2 && a.top >= b.top - 2 && a.bottom <= b.bottom + 2;
+  // statement boxes (sphinx-proof's div.proof): text or a formula besides the title, and every formula inside
+  const boxes = [];
+  for (const box of slide.querySelectorAll("div.proof")) {
+    if (!shown(box)) continue;
+    const clone = box.cloneNode(true);
+    clone.querySelectorAll(".admonition-title, mjx-assistive-mml").forEach((n) => n.remove());
+    const body = clone.textContent.trim() || clone.querySelector("mjx-container");
+    const title = (box.querySelector(".admonition-title") || box).textContent.trim().slice(0, 40);
+    if (!body) boxes.push(title + ": only a title");
+    for (const m of box.querySelectorAll("mjx-container")) if (!inside(rect(m), rect(box))) boxes.push(title + ": formula outside");
+  }
+  // display formulas, from MathJax's own record of their TeX
+  const punct = [];
+  const items = (window.MathJax && MathJax.startup && MathJax.startup.document)
+    ? MathJax.startup.document.getMathItemsWithin(slide) : [];
+  for (const it of items) if (it.display && !(it.typesetRoot && it.typesetRoot.closest("aside.notes")) && /(^|[^\\\\])[,;:]\\s*(\\\\end\\{[^}]*\\}\\s*)*$/.test(it.math.trim())) punct.push(it.math.trim().slice(-40));
+  // overlaps: lines of text (their text's own boxes), controls and reveal's own buttons
+  const parts = [];
+  const walker = document.createTreeWalker(slide, NodeFilter.SHOW_TEXT);
+  for (let t = walker.nextNode(); t; t = walker.nextNode()) {
+    const el = t.parentElement;
+    if (!el || !t.textContent.trim() || el.closest("aside.notes, mjx-container, script, style, svg, button, select, option, .anim-state")) continue;
+    if (!shown(el)) continue;
+    const range = document.createRange(); range.selectNodeContents(t);
+    for (const r of range.getClientRects()) if (r.width > 1 && r.height > 1) parts.push({ r, el, what: "text " + t.textContent.trim().slice(0, 24) });
+  }
+  for (const m of slide.querySelectorAll("mjx-container")) if (shown(m) && !m.closest("aside.notes")) parts.push({ r: rect(m), el: m, what: "math" });
+  for (const c of slide.querySelectorAll("button, input, select, a.book-link")) if (shown(c)) parts.push({ r: rect(c), el: c, what: c.tagName.toLowerCase() + " " + (c.textContent || c.className).trim().slice(0, 20) });
+  for (const c of document.querySelectorAll(".reveal > .controls button, .reveal > .slide-number")) {
+    if (c.checkVisibility({ opacityProperty: true, visibilityProperty: true }) && parseFloat(getComputedStyle(c).opacity || "1") > 0.05
+        && !c.disabled && !c.closest("[aria-hidden=true]")) parts.push({ r: rect(c), el: c, what: "deck " + (c.className || "") });
+  }
+  const overlaps = [];
+  for (let a = 0; a < parts.length; a++) for (let b = a + 1; b < parts.length; b++) {
+    const p = parts[a], q = parts[b];
+    if (p.el === q.el || p.el.contains(q.el) || q.el.contains(p.el)) continue;
+    const w = Math.min(p.r.right, q.r.right) - Math.max(p.r.left, q.r.left);
+    const h = Math.min(p.r.bottom, q.r.bottom) - Math.max(p.r.top, q.r.top);
+    // lines of text may touch (a superscript reaches into the line above): a collision covers a good part of both
+    const minW = Math.min(p.r.width, q.r.width), minH = Math.min(p.r.height, q.r.height);
+    if (w > 2 && h > 2 && w > 0.25 * minW && h > 0.4 * minH) overlaps.push(p.what + " / " + q.what);
+  }
+  return { index: i, boxes, punct, overlaps: overlaps.slice(0, 4) };
+}"""
+
+#: the slide as it first appears (no fragment shown yet): something besides its heading is on it
+FIRST_VIEW = """() => {
+  const slide = Reveal.getCurrentSlide();
+  const shown = (el) => el.checkVisibility({ opacityProperty: true, visibilityProperty: true })
+    && el.getClientRects().length > 0;
+  return [...slide.querySelectorAll("img, svg, mjx-container, p, li, td, div.proof, .jac-live, pre")]
+    .filter((el) => !el.closest("aside.notes, h1, h2") && shown(el)
+      && (el.textContent.trim() || el.tagName === "IMG" || el.tagName === "svg")).length;
+}"""
+
 MEASURE = """(i) => {
   const slide = Reveal.getCurrentSlide();
   const box = slide.getBoundingClientRect();
@@ -71,12 +134,13 @@ MEASURE = """(i) => {
       return {w: Math.min(r.width, r.height * im.naturalWidth / Math.max(im.naturalHeight, 1)) / scale,
               natural: im.naturalWidth, src: im.currentSrc || im.src,
               textPx: anim ? anim.getAttribute("data-smallest-text-px") : null}; });
-  // the words a reader sees: visible text, not math, not the notes, not a live view's controls and readouts
+  // the words a reader sees: visible text, not math, not the notes, not a live view's controls and readouts,
+  // not the slide's small link to the book
   const words = [];
   const walker = document.createTreeWalker(slide, NodeFilter.SHOW_TEXT);
   for (let t = walker.nextNode(); t; t = walker.nextNode()) {
     const el = t.parentElement;
-    if (!el || el.closest("aside.notes, mjx-container, script, style, .jac-live, .live-view") || !el.checkVisibility()) continue;
+    if (!el || el.closest("aside.notes, mjx-container, script, style, .jac-live, .live-view, a.book-link") || !el.checkVisibility()) continue;
     words.push(...t.textContent.split(/\\s+/).filter(w => /[A-Za-z0-9]/.test(w)));
   }
   const notes = slide.querySelector("aside.notes");
@@ -91,27 +155,15 @@ MEASURE = """(i) => {
 }"""
 
 
-@pytest.fixture(scope="session")
-def server():
-    if not (SLIDES / "decks.json").is_file():
-        assert build_slides.main([]) == 0, "tools/build_slides.py failed"
-    handler = functools.partial(_Quiet, directory=str(SITE))
-    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    threading.Thread(target=httpd.serve_forever, daemon=True).start()
-    yield f"http://127.0.0.1:{httpd.server_address[1]}/"
-    httpd.shutdown()
-
-
-class _Quiet(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, *args: Any) -> None:
-        pass
-
-
 _WALKS: dict[str, dict[str, Any]] = {}
 
 
-def walk(browser: Any, server: str, source: Path) -> dict[str, Any]:
-    """Open the deck at 1280x720, measure every slide, drive its animations from the keyboard."""
+SIZES = ((1280, 720), (1024, 768))
+
+
+def walk(browser: Any, usb: Path, source: Path) -> dict[str, Any]:
+    """Open the deck from disk at 1280x720, measure every slide, drive its animations from the keyboard;
+    then at 1024x768, what every slide must show."""
     if source.stem in _WALKS:
         return _WALKS[source.stem]
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
@@ -122,23 +174,34 @@ def walk(browser: Any, server: str, source: Path) -> dict[str, Any]:
     page.on("response", lambda r: problems.append(f"HTTP {r.status} {r.url}") if r.status >= 400 else None)
 
     def route(r: Any) -> None:
-        if r.request.url.startswith(server) or r.request.url.startswith("data:"):
-            r.continue_()
-        else:
-            problems.append(f"request to another host: {r.request.url}")
-            r.abort()
+        problems.append(f"request to a web host: {r.request.url}")
+        r.abort()
 
-    page.route("**/*", route)
-    page.goto(server + "slides/" + build_slides.deck_path(source), wait_until="load")
+    page.route(re.compile(r"^(?:https?|wss?)://"), route)
+    page.on("request", lambda r: None if r.url.startswith(("file:", "data:", "blob:")) else problems.append(
+        f"request outside the deck folder: {r.url}"))
+    page.goto((usb / build_slides.deck_path(source)).as_uri(), wait_until="load")
     page.wait_for_selector("html[data-math-done]", timeout=60_000)
     page.wait_for_timeout(300)
     total = page.evaluate("Reveal.getTotalSlides()")
-    slides = []
+    slides, content, first = [], [], []
     for i in range(total):
+        page.evaluate(f"Reveal.slide({i}, 0, -1)")   # as it first appears
+        page.wait_for_timeout(60)
+        first.append(page.evaluate(FIRST_VIEW))
         page.evaluate(f"Reveal.slide({i}, 0, 99)")   # every fragment shown: the slide at its fullest
         page.wait_for_timeout(120)
         slides.append(page.evaluate(MEASURE, i))
+        content.append(page.evaluate(CONTENT, i))
         page.screenshot(path=str(ARTIFACTS / f"{source.stem}-{i:02d}.png"))
+    stuck_live = page.evaluate("[...document.querySelectorAll('.jac-live[data-view]')]"
+                               ".filter((el) => el.dataset.ready !== '1').map((el) => el.id)")
+    if stuck_live:
+        problems.append(f"live views that did not start: {stuck_live}")
+    untypeset = page.evaluate("[...document.querySelectorAll('.reveal .slides div.math')]"
+                              ".filter((el) => !el.querySelector('mjx-container')).length")
+    if untypeset:
+        problems.append(f"{untypeset} display formulas not typeset")
     # animations: reached with the keyboard, they run; the arrow keys still move on
     anims = []
     page.evaluate("Reveal.slide(0)")
@@ -155,13 +218,26 @@ def walk(browser: Any, server: str, source: Path) -> dict[str, Any]:
             before = page.evaluate(src)
             page.wait_for_timeout(900)
             anims.append((i, before != page.evaluate(src)))
+    # a 4:3 projector: what every slide must show, again
+    page.set_viewport_size({"width": 1024, "height": 768})
+    page.wait_for_timeout(200)
+    for i in range(total):
+        page.evaluate(f"Reveal.slide({i}, 0, -1)")
+        page.wait_for_timeout(40)
+        first.append(page.evaluate(FIRST_VIEW))
+        page.evaluate(f"Reveal.slide({i}, 0, 99)")
+        page.wait_for_timeout(80)
+        content.append(page.evaluate(CONTENT, i))
+        if i % 4 == 0:
+            page.screenshot(path=str(ARTIFACTS / f"{source.stem}-{i:02d}-1024.png"))
     page.close()
-    _WALKS[source.stem] = {"slides": slides, "problems": problems, "animations": anims, "total": total}
+    _WALKS[source.stem] = {"slides": slides, "problems": problems, "animations": anims, "total": total,
+                           "content": content, "first": first}
     return _WALKS[source.stem]
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
-def test_deck_is_built_and_listed(server, source):
+def test_deck_is_built_and_listed(usb, source):
     decks = {d["name"]: d for d in json.loads((SLIDES / "decks.json").read_text())}
     assert source.stem in decks
     html = (SLIDES / build_slides.deck_path(source)).read_text(encoding="utf-8")
@@ -179,8 +255,8 @@ def test_deck_is_built_and_listed(server, source):
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
-def test_slides_are_legible_and_inside(deck_browser, server, source):
-    w = walk(deck_browser, server, source)
+def test_slides_are_legible_and_inside(deck_browser, usb, source):
+    w = walk(deck_browser, usb, source)
     bad = []
     for s in w["slides"]:
         if s["scale"] < MIN_SCALE:
@@ -195,22 +271,22 @@ def test_slides_are_legible_and_inside(deck_browser, server, source):
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
-def test_no_raw_labels_wording_or_printouts(deck_browser, server, source):
-    w = walk(deck_browser, server, source)
+def test_no_raw_labels_wording_or_printouts(deck_browser, usb, source):
+    w = walk(deck_browser, usb, source)
     bad = [f"slide {s['index']}: {what}: {m.group(0)!r} in {s['text'][max(0, m.start() - 40):m.end() + 40]!r}"
            for s in w["slides"] for what, rx in BANNED.items() for m in [rx.search(s["text"])] if m]
     assert not bad, "\n".join(bad)
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
-def test_no_console_error_or_failed_request(deck_browser, server, source):
-    w = walk(deck_browser, server, source)
+def test_no_console_error_or_failed_request(deck_browser, usb, source):
+    w = walk(deck_browser, usb, source)
     assert not w["problems"], "\n".join(w["problems"])
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
-def test_animations_run_when_reached_by_keyboard(deck_browser, server, source):
-    w = walk(deck_browser, server, source)
+def test_animations_run_when_reached_by_keyboard(deck_browser, usb, source):
+    w = walk(deck_browser, usb, source)
     stuck = [i for i, moved in w["animations"] if not moved]
     assert not stuck, f"animations on slides {stuck} did not advance after the key press"
 
@@ -232,7 +308,7 @@ def smallest_text_px(im: dict[str, Any]) -> float | None:
         if src.startswith("data:"):
             data = base64.b64decode(src.split(",", 1)[1])
         else:
-            path = SITE / urllib.parse.unquote(urllib.parse.urlsplit(src).path).lstrip("/")
+            path = Path(urllib.parse.unquote(urllib.parse.urlsplit(src).path))
             data = path.read_bytes()
         value = Image.open(io.BytesIO(data)).text.get(TEXT_SIZE_KEY)
         assert value is not None, f"{src[:80]}: a picture without its text size (drawn without start_page?)"
@@ -240,8 +316,8 @@ def smallest_text_px(im: dict[str, Any]) -> float | None:
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
-def test_figures_are_wide_with_large_labels(deck_browser, server, source):
-    w = walk(deck_browser, server, source)
+def test_figures_are_wide_with_large_labels(deck_browser, usb, source):
+    w = walk(deck_browser, usb, source)
     bad = []
     for s in w["slides"]:
         for im in s["imgs"]:
@@ -253,15 +329,15 @@ def test_figures_are_wide_with_large_labels(deck_browser, server, source):
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
-def test_one_idea_a_slide_at_most_45_words(deck_browser, server, source):
-    w = walk(deck_browser, server, source)
+def test_one_idea_a_slide_at_most_45_words(deck_browser, usb, source):
+    w = walk(deck_browser, usb, source)
     long = [f"slide {s['index']} ({s['heading']}): {s['words']} words" for s in w["slides"] if s["words"] > MAX_WORDS]
     assert not long, "\n".join(long)
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
-def test_every_content_slide_has_notes_with_minutes(deck_browser, server, source):
-    w = walk(deck_browser, server, source)
+def test_every_content_slide_has_notes_with_minutes(deck_browser, usb, source):
+    w = walk(deck_browser, usb, source)
     missing = [s["index"] for s in w["slides"] if not s["title"] and not re.search(r"About \d+", s["notes"])]
     assert not missing, f"content slides without speaker notes (key point, question, minutes): {missing}"
     # each note: the key point, a question to put to the class, and text a speaker can read out
@@ -281,17 +357,109 @@ def test_every_content_slide_has_notes_with_minutes(deck_browser, server, source
     assert not bad, "\n".join(bad)
 
 
-def test_index_loads_without_a_failed_request_and_every_link_resolves(deck_browser, server):
+@pytest.mark.parametrize("source", SOURCES, ids=IDS)
+def test_every_slide_shows_its_content_at_both_sizes(deck_browser, usb, source):
+    """No empty statement box, no formula outside its box or ending in , ; : and nothing overlapping,
+    at 1280x720 and 1024x768."""
+    w = walk(deck_browser, usb, source)
+    bad = []
+    for k, c in enumerate(w["content"]):
+        size = "x".join(map(str, SIZES[k // w["total"]]))
+        bad += [f"{size} slide {c['index'] + 1}: statement box {b}" for b in c["boxes"]]
+        bad += [f"{size} slide {c['index'] + 1}: display formula ends in punctuation: ...{m!r}" for m in c["punct"]]
+        bad += [f"{size} slide {c['index'] + 1}: overlap {o}" for o in c["overlaps"]]
+    assert not bad, "\n".join(bad)
+
+
+@pytest.mark.parametrize("source", SOURCES, ids=IDS)
+def test_the_first_view_of_every_slide_is_not_blank(deck_browser, usb, source):
+    w = walk(deck_browser, usb, source)
+    blank = sorted({k % w["total"] + 1 for k, n in enumerate(w["first"]) if n == 0})
+    assert not blank, f"slides (1-based) that open on their heading alone: {blank}"
+
+
+def test_decks_standalone_folder_links_nothing_outside_but_the_book(usb):
+    """Every file a deck links (script, style, image) is inside the copied folder; only links to the book leave it."""
+    bad = []
+    for deck in json.loads((usb / "decks.json").read_text()):
+        page = usb / deck["file"]
+        html = page.read_text(encoding="utf-8")
+        for m in re.finditer(r"<(script|link|img)\b[^>]*?\b(?:src|href)=[\"']([^\"'#?]+)", html):
+            target = (page.parent / urllib.parse.unquote(m.group(2))).resolve()
+            if not target.is_relative_to(usb) or not target.is_file():
+                bad.append(f"{deck['file']}: <{m.group(1)}> {m.group(2)}")
+        if "type=\"module\"" in html:
+            bad.append(f"{deck['file']}: a module script (blocked over file://)")
+    assert not bad, "\n".join(bad[:20])
+
+
+def test_cross_references_resolve_and_open_the_book_in_a_new_tab():
+    """Every link on a slide to the book names a page of the site and an id on it, and opens a new tab;
+    each content slide links its section of the book."""
+    from html.parser import HTMLParser
+
+    class Links(HTMLParser):
+        def __init__(self) -> None:
+            super().__init__()
+            self.links: list[dict[str, str | None]] = []
+            self.ids: set[str] = set()
+
+        def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+            a = dict(attrs)
+            if a.get("id"):
+                self.ids.add(str(a["id"]))
+            if tag == "a" and a.get("href"):
+                self.links.append(a)
+
+    pages: dict[Path, set[str]] = {}
+
+    def ids(path: Path) -> set[str]:
+        if path not in pages:
+            parser = Links()
+            parser.feed(path.read_text(encoding="utf-8"))
+            pages[path] = parser.ids
+        return pages[path]
+
+    bad = []
+    for deck in json.loads((SLIDES / "decks.json").read_text()):
+        page = SLIDES / deck["file"]
+        parser = Links()
+        parser.feed(page.read_text(encoding="utf-8"))
+        book_links = 0
+        for a in parser.links:
+            href = str(a["href"])
+            if href.startswith(("#", "http:", "https:", "mailto:")):
+                continue
+            path, _, frag = href.partition("#")
+            target = (page.parent / urllib.parse.unquote(path)).resolve()
+            if not target.is_file():
+                bad.append(f"{deck['file']}: {href}: no such page")
+            elif frag and frag not in ids(target):
+                bad.append(f"{deck['file']}: {href}: no id {frag!r} on that page")
+            if target.is_relative_to(SITE) and not target.is_relative_to(SLIDES):
+                book_links += 1
+                if a.get("target") != "_blank":
+                    bad.append(f"{deck['file']}: {href} opens in the presenting tab")
+        slides = page.read_text(encoding="utf-8").count('class="book-link"')
+        if slides < 3:
+            bad.append(f"{deck['file']}: {slides} slides link their section of the book")
+    assert not bad, "\n".join(bad[:30])
+
+
+def test_index_loads_without_a_failed_request_and_every_link_resolves(deck_browser):
     page = deck_browser.new_page()
     bad: list[str] = []
     page.on("requestfailed", lambda r: bad.append(f"failed {r.url}"))
-    page.on("response", lambda r: bad.append(f"HTTP {r.status} {r.url}") if r.status >= 400 else None)
-    page.goto(server + "slides/index.html", wait_until="load")
+    page.goto((SLIDES / "index.html").as_uri(), wait_until="load")
     page.wait_for_timeout(300)
     hrefs = page.evaluate("[...document.querySelectorAll('a')].map(a => a.getAttribute('href'))")
+    text = page.evaluate("document.body.innerText")
     page.close()
     assert not bad, bad
     decks = json.loads((SLIDES / "decks.json").read_text())
     assert len(hrefs) >= 2 * len(decks) + 1
     for href in hrefs:
         assert (SLIDES / href).resolve().is_file(), f"the index links {href}, which is not there"
+    # each lecture with its minutes, the sum of its speaker notes' minutes
+    for d in decks:
+        assert int(d["minutes"]) > 0 and f"{d['minutes']} min" in text, d

@@ -1,0 +1,48 @@
+// The live views of the decks as one classic script (esbuild bundles this file into
+// slides/_static/live/jac-live.js: tools/build_slides.py). A deck opened from disk
+// (file://) cannot load ES modules (the browser blocks them as cross-origin), so the
+// decks do not import the views' modules as the book's pages do: this bundle, built
+// from the same modules, mounts every live view of the page once the page is parsed.
+// A view that cannot start keeps its static text and says why (see `fail`).
+import { mount } from "../../lib/jacobians/widgets/static/live/host.js";
+import columns_explorer from "../../lib/jacobians/widgets/static/live/columns_explorer.js";
+import gimbal_lock from "../../lib/jacobians/widgets/static/live/gimbal_lock.js";
+import planar_explorer from "../../lib/jacobians/widgets/static/live/planar_explorer.js";
+import resolved_rate from "../../lib/jacobians/widgets/static/live/resolved_rate.js";
+import story from "../../lib/jacobians/widgets/static/live/story.js";
+
+const VIEWS = { columns_explorer, gimbal_lock, planar_explorer, resolved_rate, story };
+
+/** Leave the host's static content (written by the deck build) and add the reason the view did not start. */
+function fail(el, why) {
+  el.dataset.failed = "1";
+  const note = document.createElement("p");
+  note.className = "jl-failed";
+  note.textContent = `This live view could not start: ${why}`;
+  el.appendChild(note);
+  console.warn(`live view ${el.id}: ${why}`);
+}
+
+function start(el) {
+  if (el.dataset.ready || el.dataset.failed) return;
+  const view = VIEWS[el.dataset.view];
+  if (!view) {
+    fail(el, `no view named "${el.dataset.view}" in this bundle`);
+    return;
+  }
+  const fallback = [...el.childNodes].map((n) => n.cloneNode(true));
+  try {
+    mount(el, view);
+  } catch (err) {
+    el.replaceChildren(...fallback);
+    fail(el, err && err.message ? err.message : String(err));
+  }
+}
+
+export function startAll(root = document) {
+  root.querySelectorAll(".jac-live[data-view]").forEach(start);
+}
+
+window.JacLive = { startAll, views: Object.keys(VIEWS) };
+if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", () => startAll());
+else startAll();
