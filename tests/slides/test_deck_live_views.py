@@ -33,7 +33,7 @@ SITE = ROOT / "_build" / "html"
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
 HALF_ULP = 0.005 + 1e-9
 SOURCES = [s for s in build_slides.deck_sources() if "{live-view}" in s.read_text(encoding="utf-8")]
-#: decks whose live view must be on a slide (issue #13: all four views in the decks)
+#: decks whose live view must be on a slide (all four views are in the decks)
 MUST = {"01_twists": "story", "03_body_jacobian": "story", "07_conversions": "story",
         "04_space_vs_body": "columns_explorer", "06_analytic_jacobian": "gimbal_lock",
         "09_using_the_jacobian": "resolved_rate"}
@@ -150,7 +150,7 @@ SVG_LABELS = """() => {
   }
   return out;
 }"""
-MIN_LABEL_PX = 24 - 0.5   # 24 px on a slide (issue #13), less half a pixel of rounding
+MIN_LABEL_PX = 24 - 0.5   # 24 px on a slide, less half a pixel of rounding
 
 
 #: view -> (the slider moved, its value before the key press, the check of the numbers shown)

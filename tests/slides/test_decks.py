@@ -35,7 +35,7 @@ MIN_FONT_PX = 24
 MIN_SCALE = 0.9
 MIN_LABEL_PX = 16
 MIN_FIGURE_PX = 900
-#: one idea a slide: about 40 words (issue #14), math not counted
+#: one idea a slide: about 40 words, math not counted
 MAX_WORDS = 45
 
 BANNED = {
