@@ -44,7 +44,7 @@ def product_of_exponentials(chain, theta, i):
 # ---------------------------------------------------------------- chapter 7, exercise 4
 
 def test_ch07_ex4_old_false_statement_is_gone():
-    ex = block(CH07, "ch07_ex4")
+    ex = block(CH07, "ch07-ex-D")
     assert "overlooked in the statement" not in ex
     assert "equal only when the origin of $\\{b\\}$ is at the origin of $\\{s\\}$ or every column's angular part is zero" not in ex
     assert "if and only if $\\omega_{s,i}\\times p = 0$ for every $i$" in ex
@@ -171,7 +171,7 @@ def test_notes_index_slips_give_wrong_columns():
 # ---------------------------------------------------------------- chapter 9, exercise 3
 
 def test_ch09_ex3_says_which_force_the_sensor_reads_and_negates_it():
-    ex = block(CH09, "ch09_ex3")
+    ex = block(CH09, "ch09-ex-C")
     assert "measures the force that the environment exerts **on the tool**" in ex
     assert "F_b = -F_measured" in ex
 
