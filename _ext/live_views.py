@@ -9,6 +9,10 @@ A MyST page writes::
     ```
 
 or ``{live-view} resolved_rate`` with ``:path:``, ``:method:``, ``:damping:``,
+and, for any view, ``:caption:`` (MyST inline text) and ``:name:`` (a label):
+the view then sits in a numbered figure (``<figure>`` with "Fig. 2.4" and the
+caption, which is also the figure's accessible name) that the text refers to
+with ``{numref}`label```. A live view without a caption is an error,
 and gets a host ``<div class="jac-live" data-view=... data-model='JSON'>``
 holding the model computed here by the library at build time
 (``jacobians.widgets.live.MODELS[view]``: screw axes, home, joint axis points,
@@ -100,20 +104,47 @@ class LiveView(SphinxDirective):
     """``{live-view} <view>`` with the options of ``OPTIONS`` that its model builder takes."""
 
     required_arguments = 1
-    option_spec = {k: directives.unchanged for k in OPTIONS}
+    option_spec = {**{k: directives.unchanged for k in OPTIONS},
+                   "caption": directives.unchanged_required, "name": directives.unchanged_required}
 
     def run(self) -> list[nodes.Node]:
         view = self.arguments[0]
+        options = {k: v for k, v in self.options.items() if k in OPTIONS}
         try:
-            model = model_for(view, dict(self.options))
+            model = model_for(view, options)
         except ValueError as exc:
             raise self.error(f"live-view: {exc}") from exc
         serial = self.env.new_serialno("live-view")
         uid = f"jac-live-{self.env.docname.replace('/', '-')}-{serial}"
         depth = self.env.docname.count("/")
-        return [nodes.raw("", host_html(view, model, depth, uid), format="html")]
+        raw = nodes.raw("", host_html(view, model, depth, uid), format="html")
+        caption_text = self.options.get("caption")
+        if not caption_text:
+            raise self.error("live-view: give it a :caption: (and a :name: to refer to it): "
+                             "a live figure is numbered like every figure, and its caption is its title")
+        figure = nodes.figure("", raw, classes=["jac-live-figure"])
+        inline, messages = self.state.inline_text(caption_text, self.lineno)
+        figure += nodes.caption(caption_text, "", *inline)
+        self.set_source_info(figure)
+        if "name" in self.options:
+            self.options["name"] = self.options["name"].strip()
+            self.add_name(figure)
+        return [figure, *messages]
+
+
+def drop_captions_on_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
+    """On a slide the heading names the view: its caption (book prose, 20-40 words) stays in the book.
+
+    The decks share the book's doctrees, so this runs when the revealjs builder resolves them, before
+    ``_ext/decks.py`` cuts them into slides."""
+    if app.builder.name != "revealjs":
+        return
+    for fig in doctree.findall(lambda n: isinstance(n, nodes.figure) and "jac-live-figure" in n["classes"]):
+        for cap in list(fig.findall(nodes.caption)):
+            cap.parent.remove(cap)
 
 
 def setup(app: Sphinx) -> dict[str, Any]:
     app.add_directive("live-view", LiveView)
+    app.connect("doctree-resolved", drop_captions_on_slides, priority=400)
     return {"version": "1.1", "parallel_read_safe": True, "parallel_write_safe": True}

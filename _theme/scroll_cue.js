@@ -6,7 +6,8 @@
 // to twice the page's width, in a box of its own that scrolls the same way.
 (function () {
   "use strict";
-  const SELECTOR = "div.math, .cell_output div.math, .cell_output pre, .jac-fig-scroll";
+  // (a display formula inside a box, e.g. a warning or a proposition, scrolls in its own mjx-container)
+  const SELECTOR = "div.math, .cell_output div.math, .cell_output pre, .jac-fig-scroll, mjx-container[display=\"true\"]";
   const PHONE = window.matchMedia("(max-width: 600px)");
   const WIDE = 1.5;  // width : height from which a figure is "wide"
 

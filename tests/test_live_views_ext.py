@@ -121,3 +121,21 @@ def test_live_view_widget_state_and_library_values():
         LiveView("planar_explorer", live_views.planar_model("planar_2r"), robot="planar_2r")
     with pytest.raises(ValueError, match="no builder in MODELS"):
         LiveView("columns_explorer")
+
+
+def test_every_live_view_is_a_numbered_figure_the_text_refers_to():
+    """Each {live-view} of the chapters has a :caption: and a :name:, and its chapter cites the name."""
+    from pathlib import Path
+
+    chapters = sorted((Path(__file__).resolve().parents[1] / "chapters").glob("*.md"))
+    seen = 0
+    for path in chapters:
+        text = path.read_text(encoding="utf-8")
+        for block in re.findall(r"```\{live-view\}[^\n]*\n((?::[a-z_]+:[^\n]*\n)*)", text):
+            seen += 1
+            opts = dict(re.findall(r":([a-z_]+): *([^\n]*)", block))
+            assert opts.get("caption", "").strip(), f"{path.name}: a live view without :caption:"
+            name = opts.get("name", "").strip()
+            assert name, f"{path.name}: a live view without :name:"
+            assert f"{{numref}}`{name}`" in text, f"{path.name}: the text never refers to {name}"
+    assert seen >= 8

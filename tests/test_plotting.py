@@ -122,6 +122,9 @@ def test_animation_moves_arm_and_columns_and_html_has_no_cdn():
     assert "font-awesome" not in html and "https://" not in html and "http://" not in html
     assert "<i class=\"fa" not in html
     assert "&#9654;" in html  # the Play button is labelled
+    # the frame slider has a name (WCAG 4.1.2): exactly one slider, labelled
+    assert len(re.findall(r'<input id="_anim_slider[^>]*aria-label="Animation frame"', html)) == 1
+    assert html.count('type="range"') == 1
     assert html.count("data:image/png;base64") == 4  # one inline PNG per frame
     assert not plt.fignum_exists(fig.number)  # closed: no stray static copy
 

@@ -156,7 +156,9 @@ def test_watched_column_colours_the_axes_by_role(harness):
     page, open_view, seen, _ = harness
     model = spatial.columns_model(column=3)
     el = open_view("columns_explorer", model)
-    pal = model["palette"]
+    # the library's orange and sky blue, drawn darker on the view's white ground (ui.js graphic: >= 3:1)
+    on_white = {"#E69F00": "#B07800", "#56B4E9": "#3388BB"}
+    pal = {k: on_white.get(v.upper(), v) for k, v in model["palette"].items()}
     got = el.evaluate(READ_JS)
     assert got["axisColors"] == [pal["space"], pal["space"], "#000000", pal["body"], pal["body"]]
     el.query_selector("select.jl-column").select_option("1")

@@ -187,6 +187,9 @@ def _strip_cdn(html: str) -> str:
         return f'<span class="jac-anim-icon" aria-hidden="true">{sym}</span>'
 
     html = re.sub(r'<i class="(fa [^"]*)"></i>', icon, html)
+    # the frame slider gets a name a screen reader says ("Animation frame, 12")
+    html = re.sub(r'(<input id="_anim_slider[^"]*" type="range" class="anim-slider")',
+                  r'\1 aria-label="Animation frame"', html)
     style = ("<style>.animation .anim-buttons button{min-width:2.4em;font-size:1.05em;line-height:1.4;"
              "font-family:'DejaVu Sans',system-ui,sans-serif;}.jac-anim-icon{font-style:normal;}</style>")
     return style + html

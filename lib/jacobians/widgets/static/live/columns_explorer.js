@@ -16,7 +16,7 @@
 // Never throws on a reachable input, never shows NaN.
 
 import { evaluate, makeChain } from "./kinematics.js";
-import { suppressShortcuts } from "./ui.js";
+import { graphic, suppressShortcuts } from "./ui.js";
 import { CSS as CSS3D, createView3D, fixed, frameItems, groundGrid, html, injectStyle, put, sub, text } from "./view3d.js";
 
 const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
@@ -51,7 +51,9 @@ function render({ model, el }) {
   el.classList.add("jac-live");
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
-  const pal = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
+  const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
+  // the library's Okabe–Ito colours, darkened where a line on white needs it (ui.js graphic)
+  const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
   const limit = Number(model.get("limit")) || 3.14;
   const step = Number(model.get("step")) || 0.01;
   const reach = Number(model.get("reach")) || 1;
@@ -218,6 +220,7 @@ function render({ model, el }) {
     state.changeKey = changeKey;
     for (let i = 0; i < n; i++) {
       text(values[i], `${fixed((th[i] * 180) / Math.PI, 1)}°`);
+      put(sliders[i], "aria-valuetext", `${fixed((th[i] * 180) / Math.PI, 1)} degrees`);  // what the page shows
       if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
     }
     if (Number(select.value) !== col) select.value = String(col);

@@ -19,7 +19,7 @@
 import {
   analyticJacobian, coordinatesFromRotation, evaluate, makeChain, rateToAngularVelocity, singularValues,
 } from "./kinematics.js";
-import { suppressShortcuts } from "./ui.js";
+import { graphic, suppressShortcuts } from "./ui.js";
 import { CSS as CSS3D, FONT, createView3D, fixed, frameItems, html, injectStyle, put, sub, svg, text } from "./view3d.js";
 
 const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
@@ -83,7 +83,9 @@ function render({ model, el }) {
   const chains = {};
   for (const [k, w] of Object.entries(wristModels)) chains[k] = makeChain(w.S, w.M, w.Q || null);
   const keys = Object.keys(chains);
-  const pal = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
+  const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
+  // the library's Okabe–Ito colours, darkened where a line on white needs it (ui.js graphic)
+  const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
   const colColors = model.get("column_colors") || DEFAULT_COLUMNS;
   const limitDeg = Number(model.get("limit_deg")) || 180;
   const stepDeg = Number(model.get("step_deg")) || 0.5;
@@ -358,6 +360,7 @@ function render({ model, el }) {
     }
     for (let i = 0; i < 3; i++) {
       text(values[i], `${fixed(deg(th[i]), 1)}°`);
+      put(sliders[i], "aria-valuetext", `${fixed(deg(th[i]), 1)} degrees`);  // what the page shows
       const v = deg(th[i]);
       if (Math.abs(Number(sliders[i].value) - v) > 1e-9 && doc.activeElement !== sliders[i]) sliders[i].value = String(v);
     }

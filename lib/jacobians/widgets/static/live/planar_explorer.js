@@ -18,7 +18,7 @@
 
 import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "./kinematics.js";
 import {
-  PALETTE, capture, columnColor, fixed, html, injectStyle, makeArrow, planarCanvas, setArrow, setEllipse, sub,
+  PALETTE, announcer, capture, ink, columnColor, fixed, html, injectStyle, makeArrow, planarCanvas, setArrow, setEllipse, sub,
   holdTouch, suppressShortcuts, svg, toWorld,
 } from "./ui.js";
 
@@ -148,7 +148,7 @@ function render({ model, el }) {
   const thead = html("thead", {}, table);
   const hr = html("tr", {}, thead);
   html("th", { scope: "col" }, hr, "");
-  for (let i = 0; i < n; i++) html("th", { scope: "col", style: `color:${columnColor(i)}` }, hr, `col ${i + 1}`);
+  for (let i = 0; i < n; i++) html("th", { scope: "col", style: `color:${ink(columnColor(i))}` }, hr, `col ${i + 1}`);
   const tbody = html("tbody", {}, table);
   let cells = [];
   let rowsFor = null;
@@ -161,7 +161,8 @@ function render({ model, el }) {
     });
     rowsFor = labels;
   }
-  const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
+  const status = html("p", { class: "jl-status" }, side);
+  const say = announcer(side);  // the key numbers, once the reader stops moving a control
   sub(status, ["σ", "min"]);
   sub(status, ["(J", "v"]);
   const sigmaText = doc.createTextNode("");
@@ -243,6 +244,8 @@ function render({ model, el }) {
     }
     link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
     setText(sigmaText, `) = ${fixed(s, 3)} m`);
+    say(`${th.map((x, i) => `theta ${i + 1} ${fixed((x * 180) / Math.PI, 1)} degrees`).join(", ")}; `
+      + `smallest singular value ${fixed(s, 3)} metres${level === "ok" ? "" : `, ${level}`}`);
     if (level !== state.level) {
       banner.textContent = word;
       banner.hidden = level === "ok";
@@ -264,6 +267,9 @@ function render({ model, el }) {
     for (let r = 0; r < labels.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
     for (let i = 0; i < n; i++) {
       setText(values[i], `${fixed((th[i] * 180) / Math.PI, 1)}°`);
+      // a screen reader says what the page shows (degrees), not the slider's radians
+      const said = `${fixed((th[i] * 180) / Math.PI, 1)} degrees`;
+      if (sliders[i].getAttribute("aria-valuetext") !== said) sliders[i].setAttribute("aria-valuetext", said);
       if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
     }
     if (select.value !== frame) select.value = frame;

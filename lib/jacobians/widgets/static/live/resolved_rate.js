@@ -15,7 +15,7 @@
 
 import { dlsRates, evaluate, makeChain, resolvedRate } from "./kinematics.js";
 import {
-  PALETTE, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub, suppressShortcuts, svg,
+  PALETTE, announcer, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub, suppressShortcuts, svg,
   toWorld,
 } from "./ui.js";
 
@@ -172,7 +172,8 @@ function render({ model, el }) {
   const fwd = html("button", { type: "button", class: "jr-fwd", "aria-label": "one step on" }, row2, "step ▶");
   const help = html("p", { class: "jl-status" }, side,
     "Keys in the view: P play/pause, → or . one step on, ← or , one step back.");
-  const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
+  const status = html("p", { class: "jl-status" }, side);
+  const say = announcer(side);  // the key numbers, once a run or a drag has stopped
   const statusT = doc.createTextNode("");
   status.append(statusT);
   sub(status, ["σ", "min"]);
@@ -233,6 +234,8 @@ function render({ model, el }) {
     statusT.textContent = `t = ${fixed(t[k], 2)} s, `;
     statusS.textContent = `) = ${fixed(s, 3)} m; ‖θ̇‖ = ${fixed(now, 2)} rad/s, `
       + `peak |θ̇ᵢ| so far ${fixed(peak, 1)} rad/s; tracking error ${fixed(1000 * run.errors[k], 1)} mm`;
+    say(`time ${fixed(t[k], 2)} seconds; smallest singular value ${fixed(s, 3)} metres; `
+      + `peak joint rate so far ${fixed(peak, 1)} radians per second; tracking error ${fixed(1000 * run.errors[k], 1)} millimetres`);
     if (level !== state.level) {
       banner.hidden = level === "ok";
       banner.textContent = level === "ok" ? "" : level === "singular"
@@ -242,9 +245,12 @@ function render({ model, el }) {
     }
     link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
     lamOut.textContent = `${fixed(o.damping, 3)} m`;
+    // the slider moves log10(λ); a screen reader says λ itself, as the label shows it
+    lam.setAttribute("aria-valuetext", `λ = ${fixed(o.damping, 3)} metres`);
     lam.disabled = o.method !== "dls";
     if (doc.activeElement !== lam) lam.value = String(Math.log10(Math.max(o.damping, 1e-3)));
     stepOut.textContent = `${k} of ${nSteps - 1}`;
+    stepIn.setAttribute("aria-valuetext", `step ${k} of ${nSteps - 1}`);
     if (doc.activeElement !== stepIn || Number(stepIn.value) !== k) stepIn.value = String(k);
     if (pathSel.value !== o.path) pathSel.value = o.path;
     if (methodSel.value !== o.method) methodSel.value = o.method;

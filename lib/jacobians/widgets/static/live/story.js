@@ -21,10 +21,14 @@
 // course_decks.js presses Play when the slide is shown and Pause when it is left.
 
 import { evaluate, makeChain } from "./kinematics.js";
-import { columnColor, fixed, html, injectStyle, makeArrow, setArrow, sub, suppressShortcuts, svg } from "./ui.js";
+import {
+  columnColor, fixed, graphic, html, injectStyle, ink, makeArrow, setArrow, sub, suppressShortcuts, svg,
+} from "./ui.js";
 
 export const STORIES = ["fixed_axis", "body_columns", "three_velocities"];
-const C = { orange: "#E69F00", blue: "#0072B2", vermillion: "#D55E00", green: "#009E73", sky: "#56B4E9", black: "#000000" };
+// orange and sky blue darkened to 3:1 on white (ui.js graphic)
+const C = { orange: graphic("#E69F00"), blue: "#0072B2", vermillion: "#D55E00", green: "#009E73", sky: graphic("#56B4E9"),
+  black: "#000000" };
 
 const CSS = `
 .jac-live .js-plot{flex:1 1 300px;max-width:460px;min-width:0;display:flex;flex-wrap:wrap;gap:8px}
@@ -182,7 +186,7 @@ function render({ model, el }) {
     const hr = html("tr", {}, html("thead", {}, table));
     table.insertBefore(hr.parentNode, tbody);
     html("th", { scope: "col" }, hr, "");
-    cols.forEach((c, i) => html("th", { scope: "col", style: colColors ? `color:${colColors[i]}` : "" }, hr, c));
+    cols.forEach((c, i) => html("th", { scope: "col", style: colColors ? `color:${ink(colColors[i])}` : "" }, hr, c));
     for (const [key, lab] of labels) {
       const tr = html("tr", {}, tbody);
       sub(html("th", { scope: "row" }, tr), lab);
@@ -245,7 +249,7 @@ function render({ model, el }) {
     setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [0, L], 0.08, tiny);
     P.text(L + 0.02, -P.font * 1.1, "x");
     P.text(-P.font * 0.9, L + 0.02, "y");
-    const link = line(P.world, "#999999", 7, { class: "jl-link" });
+    const link = line(P.world, graphic("#999999"), 7, { class: "jl-link" });
     const joints = [];
     const jl = [];
     for (let i = 0; i < n; i++) {

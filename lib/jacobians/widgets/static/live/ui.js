@@ -3,11 +3,22 @@
 // HTML element factories, arrows, and number formatting that never shows NaN.
 
 export const SVGNS = "http://www.w3.org/2000/svg";
+// Okabe–Ito's orange (#E69F00, 2.2:1 on white) and sky blue (#56B4E9, 2.3:1) are too light for a line
+// on the views' white ground (WCAG asks 3:1 of graphics): the views draw them darker, same hue, and
+// the grey of the frame axes is #767676 (4.5:1), not #999999 (2.8:1).
+const ON_WHITE = { "#E69F00": "#B07800", "#56B4E9": "#3388BB", "#999999": "#767676" };
+/** A colour of the palette as a line or fill on white: at least 3:1. */
+export const graphic = (c) => ON_WHITE[String(c).toUpperCase()] || c;
+// Text in a colour must reach 4.5:1 on white: the darker shade of each hue (same hue, lower lightness).
+const INK = { "#D55E00": "#B35000", "#009E73": "#007A5A", "#CC79A7": "#9E5584", "#E69F00": "#9A6700",
+  "#56B4E9": "#2A6F9E", "#999999": "#767676" };
+/** A colour of the palette as text on white: at least 4.5:1. */
+export const ink = (c) => INK[String(c).toUpperCase()] || c;
 export const PALETTE = {
-  link: "#0072B2", joint: "#000000", muted: "#999999", velocity: "#D55E00", force: "#009E73", path: "#E69F00",
-  ok: "#009E73", warning: "#E69F00", singular: "#D55E00",
+  link: "#0072B2", joint: "#000000", muted: graphic("#999999"), velocity: "#D55E00", force: "#009E73",
+  path: graphic("#E69F00"), ok: "#009E73", warning: graphic("#E69F00"), singular: "#D55E00",
 };
-export const COLUMN_COLORS = ["#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"];
+export const COLUMN_COLORS = ["#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"].map(graphic);
 export const columnColor = (i) => COLUMN_COLORS[i % COLUMN_COLORS.length];
 
 const CSS = `
@@ -34,6 +45,8 @@ const CSS = `
 .jac-live .jl-legend li{margin:0}
 .jac-live .jl-key{display:inline-block;width:18px;height:4px;vertical-align:middle;margin-right:6px}
 .jac-live .jl-row{display:flex;flex-wrap:wrap;align-items:center;gap:4px}
+.jac-live .jl-sr{display:block;width:1px;height:1px;margin:0 0 -1px;padding:0;overflow:hidden;clip-path:inset(50%);white-space:nowrap;border:0}
+.jac-live input:focus-visible,.jac-live select:focus-visible,.jac-live button:focus-visible{outline:3px solid var(--pst-color-accent,#0072B2);outline-offset:2px}
 `;
 
 export function injectStyle(doc) {
@@ -64,6 +77,28 @@ export function html(tag, attrs = {}, parent = null, text = null) {
   if (text !== null) e.textContent = text;
   if (parent) parent.appendChild(e);
   return e;
+}
+
+/**
+ * A polite live region, read by screen readers and hidden from sight, and `say(text)` to fill it.
+ * A slider dragged or a run playing changes the numbers many times a second; `say` waits until
+ * they have been still for `quietMs` and then announces the last text once (never the same text
+ * twice in a row), so a listener hears where the view settled, not every step on the way.
+ */
+export function announcer(parent, quietMs = 900) {
+  const region = html("p", { class: "jl-sr", "aria-live": "polite", "aria-atomic": "true" }, parent);
+  let timer = null;
+  let last = "";
+  const say = (text) => {
+    if (timer !== null) clearTimeout(timer);
+    timer = setTimeout(() => {
+      timer = null;
+      if (text !== last) region.textContent = last = text;
+    }, quietMs);
+  };
+  say.region = region;
+  say.cancel = () => { if (timer !== null) clearTimeout(timer); timer = null; };
+  return say;
 }
 
 /** Append text with a subscript (e.g. J_s) to `parent`. */

@@ -1,0 +1,122 @@
+"""axe-core over the built book and its decks: what WCAG 2.1 A and AA rules each page breaks.
+
+axe-core comes from npm (``node_modules/axe-core/axe.min.js``); it is injected
+into each page after the page has settled (MathJax has typeset, the live views
+have mounted), and runs the rules tagged ``wcag2a``, ``wcag2aa``, ``wcag21a``
+and ``wcag21aa``. Each page is loaded once per colour mode:
+
+* light: the reader's system asks for light (``prefers-color-scheme: light``);
+* dark: it asks for dark; the book follows it (the theme's mode is "auto"), and
+  so do the live views and the decks (``course.css``, the decks' stylesheet).
+
+Used by ``test_axe_light.py`` and ``test_axe_dark.py`` (one module per mode, so
+``make test-browser`` runs the two modes on its two workers) and from the
+command line (``python tests/browser/axe_pages.py [--dark] [page ...]``),
+which prints each violation with its nodes.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+sys.path.insert(0, str(HERE))
+
+import bookcheck  # noqa: E402
+
+AXE_JS = ROOT / "node_modules" / "axe-core" / "axe.min.js"
+WCAG_TAGS = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"]
+EXTRA_PAGES = ["search.html"]  # written by Sphinx, not in the table of contents
+
+
+def deck_pages(book_html: Path) -> list[str]:
+    """The decks' index and every deck (``make book`` builds them into ``slides/``)."""
+    slides = book_html / "slides"
+    decks = sorted(p.relative_to(book_html).as_posix() for p in slides.rglob("*.html") if p.name != "index.html")
+    return ["slides/index.html", *decks] if (slides / "index.html").exists() else decks
+
+
+def book_pages(book_html: Path, toc: Path) -> list[str]:
+    return [*bookcheck.pages_from_toc(toc), *EXTRA_PAGES]
+
+
+@dataclass
+class AxeResult:
+    path: str
+    mode: str
+    violations: list[dict] = field(default_factory=list)
+    passes: int = 0
+
+    def lines(self) -> list[str]:
+        out = []
+        for v in self.violations:
+            nodes = v["nodes"]
+            where = "; ".join(
+                f"{' '.join(n['target']) if isinstance(n['target'][0], str) else n['target']}"
+                f" ({(n.get('failureSummary') or '').splitlines()[-1].strip() if n.get('failureSummary') else ''})"
+                for n in nodes[:4])
+            more = f" and {len(nodes) - 4} more" if len(nodes) > 4 else ""
+            out.append(f"{self.path} [{self.mode}] {v['id']} ({v['impact']}), {len(nodes)} nodes: {where}{more}")
+        return out
+
+
+_SETTLE = """async () => {
+  if (window.MathJax && MathJax.startup && MathJax.startup.promise) { await MathJax.startup.promise; }
+  if (window.Reveal && Reveal.isReady && !Reveal.isReady()) {
+    await new Promise((ok) => Reveal.on('ready', ok));
+  }
+  await new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(ok)));
+}"""
+
+_RUN = """async (tags) => {
+  const r = await axe.run(document, {runOnly: {type: 'tag', values: tags}, resultTypes: ['violations']});
+  return {violations: r.violations.map(v => ({id: v.id, impact: v.impact, help: v.help,
+            nodes: v.nodes.map(n => ({target: n.target, html: n.html.slice(0, 200),
+                                       failureSummary: n.failureSummary}))})),
+          passes: r.passes.length};
+}"""
+
+
+def check(context, base: str, path: str, mode: str) -> AxeResult:
+    """Load ``path`` once in ``mode`` ("light" or "dark"), run axe-core, return its violations."""
+    page = context.new_page()
+    try:
+        page.emulate_media(color_scheme=mode)
+        page.goto(base + path, wait_until="load", timeout=60_000)
+        page.evaluate(_SETTLE)
+        page.add_script_tag(path=str(AXE_JS))
+        got = page.evaluate(_RUN, WCAG_TAGS)
+    finally:
+        page.close()
+    return AxeResult(path, mode, got["violations"], got["passes"])
+
+
+def main(argv: list[str]) -> int:
+    from playwright.sync_api import sync_playwright
+
+    dark = "--dark" in argv
+    args = [a for a in argv if not a.startswith("--")]
+    html = ROOT / "_build" / "html"
+    paths = args or [*book_pages(html, ROOT / "_toc.yml"), *deck_pages(html)]
+    total = 0
+    with bookcheck.BookServer(html) as server, sync_playwright() as p:
+        context, _profile = bookcheck.launch_browser(p)
+        for path in paths:
+            for mode in (["dark"] if dark else ["light", "dark"]):
+                r = check(context, server.base, path, mode)
+                total += len(r.violations)
+                for line in r.lines():
+                    print(line)
+                if not r.violations:
+                    print(f"{path} [{mode}] clean ({r.passes} rules pass)")
+        context.close()
+    print(json.dumps({"violations": total, "pages": len(paths)}))
+    return 1 if total else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
