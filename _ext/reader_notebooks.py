@@ -224,8 +224,12 @@ def plain_markdown(source: str) -> tuple[str, list[tuple[str, str]]]:
         if name in _DROP:
             return ""
         if name == "live-view":
+            # the caption and name are the book's figure around the view, not options of its model
+            caption = options.pop("caption", "")
+            options.pop("name", None)
             views.append((arg, live_view_code(arg, options)))
-            return f"*A live view ({arg.replace('_', ' ')}): the code cell below shows it.*\n"
+            lead = f"*{caption}*\n\n" if caption else ""
+            return f"{lead}*A live view ({arg.replace('_', ' ')}): the code cell below shows it.*\n"
         if name == "solution-start":
             return "**Solution.**\n"
         if name == "solution-end":
