@@ -318,7 +318,11 @@ def _display(block: nodes.Node) -> list[nodes.Node]:
     if isinstance(block, nodes.math_block):
         return [_without_sentence_punctuation(block.deepcopy())]
     if isinstance(block, nodes.figure | nodes.image):
-        return [block.deepcopy()]
+        copy = block.deepcopy()
+        # a live view is a numbered figure around its host (``_ext/live_views.py``): mount it the deck's way
+        for raw in list(copy.findall(nodes.raw)):
+            raw.replace_self(_classic_live_view(raw))
+        return [copy]
     if _is_code_cell(block):
         cell = _code_for_slide(block)
         return [cell] if cell is not None else []

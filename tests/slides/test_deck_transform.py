@@ -41,6 +41,20 @@ def test_a_live_view_loses_its_module_script_and_keeps_a_static_text():
     assert out.startswith('<div class="jac-live" id="v1" data-view="gimbal_lock"')
 
 
+def test_a_live_view_in_its_numbered_figure_loses_its_module_script_on_a_slide():
+    from docutils import nodes
+
+    raw = nodes.raw("", '<div class="jac-live" id="v2" data-view="planar_explorer" data-model="{}">'
+                        "<noscript>This live figure needs JavaScript.</noscript></div>\n"
+                        '<script type="module">import { mount } from "../_static/live/host.js";</script>',
+                    format="html")
+    figure = nodes.figure("", raw, classes=["jac-live-figure"])
+    (shown,) = decks._display(figure)
+    out = "".join(r.astext() for r in shown.findall(nodes.raw))
+    assert 'type="module"' not in out and 'class="jl-static"' in out and "planar explorer" in out
+    assert raw.astext().count('type="module"') == 1  # the book's doctree keeps its module script
+
+
 def test_a_slide_that_is_all_build_steps_shows_its_first_step_at_once():
     from docutils import nodes
 
