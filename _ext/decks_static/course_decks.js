@@ -131,10 +131,21 @@
     });
   }
 
+  // The slide menu (reveal.js-menu) scrolls its list of slides: make each panel reachable from the keyboard.
+  function focusableMenu() {
+    document.querySelectorAll(".slide-menu-panel").forEach(function (panel) {
+      if (!panel.hasAttribute("tabindex")) { panel.setAttribute("tabindex", "0"); }
+      if (!panel.hasAttribute("aria-label")) { panel.setAttribute("aria-label", "Slides of this deck"); }
+    });
+  }
+
   function ready() {
     if (!window.Reveal) { return; }
     keys();
     pacing();
+    var deck = document.querySelector(".reveal");
+    if (deck) { deck.addEventListener("menu-ready", focusableMenu); }
+    focusableMenu();
     Reveal.on("ready", function (e) { play(e.currentSlide); });
     Reveal.on("slidechanged", function (e) { pause(e.previousSlide); play(e.currentSlide); });
     if (window.MathJax && MathJax.startup && MathJax.startup.promise) {
