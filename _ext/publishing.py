@@ -207,8 +207,17 @@ def no_404_in_decks(app: Sphinx) -> None:
         app.disconnect(x.id)
 
 
+def no_canonical_in_decks(app: Sphinx, pagename: str, templatename: str, context: dict[str, Any],
+                          doctree: Any) -> None:
+    """A deck is not the book's page: it carries no ``<link rel="canonical">`` to the site (it must work from
+    a copy of ``slides/`` alone, and a link to the served book would be the only address it names)."""
+    if app.builder.name != "html":
+        context["pageurl"] = None
+
+
 def setup(app: Sphinx) -> dict[str, Any]:
     app.connect("builder-inited", no_404_in_decks)
+    app.connect("html-page-context", no_canonical_in_decks)
     app.connect("config-inited", configure, priority=100)
     # before sphinxext-opengraph (500), which then keeps this description
     app.connect("html-page-context", add_description, priority=400)

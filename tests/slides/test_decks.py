@@ -77,7 +77,7 @@ CONTENT = """(i) => {
   const walker = document.createTreeWalker(slide, NodeFilter.SHOW_TEXT);
   for (let t = walker.nextNode(); t; t = walker.nextNode()) {
     const el = t.parentElement;
-    if (!el || !t.textContent.trim() || el.closest("aside.notes, mjx-container, script, style, svg, button, select, option, .anim-state")) continue;
+    if (!el || !t.textContent.trim() || el.closest("aside.notes, mjx-container, script, style, svg, button, select, option, .anim-state, .jl-sr, .sr-only")) continue;  // .jl-sr, .sr-only: screen-reader text, clipped to nothing
     if (!shown(el)) continue;
     const range = document.createRange(); range.selectNodeContents(t);
     for (const r of range.getClientRects()) if (r.width > 1 && r.height > 1) parts.push({ r, el, what: "text " + t.textContent.trim().slice(0, 24) });
