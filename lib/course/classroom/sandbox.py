@@ -559,14 +559,194 @@ def _spawn(argv: list[str], scratch: Path, limits: Limits, *, cpu_seconds: float
     return proc
 
 
-def limits_hit(proc: subprocess.Popen[bytes]) -> list[str]:
+#: The program that holds a warm sandbox open (process 2 of its PID namespace): it says it runs, then sleeps
+#: until the sandbox is killed.
+HOLDER = ["/bin/sh", "-c", "echo ready; exec sleep 100000"]
+
+
+class _Zygote:
+    """This grader process's warm worker (:mod:`~course.classroom._zygote`), started on first use."""
+
+    def __init__(self) -> None:
+        import socket
+
+        ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+        self.proc = subprocess.Popen(
+            [sys.executable, "-P", "-m", "course.classroom._zygote", str(theirs.fileno())], cwd="/",
+            env=_environment(HOME, {"HOME": "/nonexistent", "IPYTHONDIR": "/nonexistent",
+                                    "MPLCONFIGDIR": "/nonexistent"}),
+            stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, pass_fds=(theirs.fileno(),), close_fds=True,
+            preexec_fn=_die_with_parent)
+        theirs.close()
+        self.sock = ours
+        ours.settimeout(300)
+        if ours.recv(1) != b"R":
+            raise RuntimeError("the warm worker of make grade did not start")
+        ours.settimeout(None)
+        self.owner = os.getpid()
+
+    def send(self, job: dict[str, Any], fds: list[int]) -> None:
+        import socket
+
+        socket.send_fds(self.sock, [json.dumps(job).encode()], fds)
+
+    def close(self) -> None:
+        self.sock.close()
+        try:
+            self.proc.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+
+
+_ZYGOTE: dict[int, _Zygote] = {}
+
+
+def _die_with_parent() -> None:
+    import ctypes
+
+    ctypes.CDLL(None).prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
+
+
+def _zygote() -> _Zygote:
+    z = _ZYGOTE.get(os.getpid())  # (a forked grader process starts its own)
+    if z is None or z.proc.poll() is not None:
+        z = _ZYGOTE[os.getpid()] = _Zygote()
+    return z
+
+
+def stop_warm() -> None:
+    """Stop this process's warm worker, if it started one."""
+    z = _ZYGOTE.pop(os.getpid(), None)
+    if z is not None:
+        z.close()
+
+
+class WarmProcess:
+    """A program of the warm worker running in a bubblewrap sandbox of its own (:func:`start_warm`).
+
+    ``stdin``/``stdout`` are pipes to it when asked for; :meth:`wait` waits for it to end (not for what it
+    left running: :func:`kill_tree` ends the whole sandbox)."""
+
+    def __init__(self, box: subprocess.Popen[bytes], status: int, stdin: Any, stdout: Any) -> None:
+        self.box = box
+        self.pid = box.pid
+        self.stdin, self.stdout = stdin, stdout
+        self._status = status
+        self.returncode: int | None = None
+        self.error: str | None = None
+
+    def wait(self, timeout: float | None = None) -> int:
+        if self.returncode is None:
+            ready = select.select([self._status], [], [], timeout)[0]
+            if not ready:
+                raise subprocess.TimeoutExpired("sandboxed program", timeout or 0)
+            data = os.read(self._status, 4096)
+            try:
+                reply = json.loads(data) if data else {}
+            except ValueError:
+                reply = {}
+            self.error = reply.get("error")
+            status = reply.get("status")
+            self.returncode = (os.waitstatus_to_exitcode(status) if isinstance(status, int) else -9)
+        return self.returncode
+
+    def communicate(self, timeout: float | None = None) -> tuple[bytes, bytes]:
+        out = self.stdout.read() if self.stdout is not None else b""
+        self.wait(timeout)
+        return out, b""
+
+    def close(self) -> None:
+        for stream in (self.stdin, self.stdout):
+            if stream is not None:
+                stream.close()
+        try:
+            os.close(self._status)
+        except OSError:
+            pass
+        self._status = -1
+
+
+def start_warm(entry: str, args: list[str], scratch: Path, limits: Limits, *, cpu_seconds: float,
+               env: dict[str, str] | None = None, pipes: bool = False) -> WarmProcess | subprocess.Popen[bytes]:
+    """Run ``entry`` (``"cells"``: :mod:`~course.classroom._cells`; ``"callee"``: :mod:`~course.classroom._callee`)
+    with ``args`` in a new sandbox, forked from the warm worker instead of started afresh.
+
+    The sandbox is the one :func:`start` makes (bubblewrap, a uid of its own, a cgroup of its own), holding
+    :data:`HOLDER`; the warm worker's child enters it (:func:`course.classroom._zygote.enter`) and runs the
+    entry there. Without isolation (``UNSAFE=1``) the entry is started afresh as :func:`start` does."""
+    how = isolation()
+    module = {"cells": "course.classroom._cells", "callee": "course.classroom._callee"}[entry]
+    held = _SCRATCH.get(str(scratch))
+    if not how.ok or held is None:
+        return start([sys.executable, "-P", "-m", module, *args], scratch, limits, cpu_seconds=cpu_seconds,
+                     env=env, pipes=pipes)
+    box = _spawn(HOLDER, scratch, limits, cpu_seconds=cpu_seconds, env={}, pipes=True, how=how)
+    try:
+        assert box.stdout is not None
+        if not select.select([box.stdout], [], [], 60)[0] or box.stdout.readline() != b"ready\n":
+            raise RuntimeError("the sandbox did not start (bwrap)")
+        cgroup = _RUNNING[box.pid].cgroup
+        assert cgroup is not None
+        target = _holder_pid(cgroup.pids())
+        if target is None:
+            raise RuntimeError("the sandbox's first program was not found in its cgroup")
+        if pipes:
+            in_r, in_w = os.pipe()  # the grader writes, the program reads
+            out_r, out_w = os.pipe()  # the program writes, the grader reads
+            mine, theirs = [in_w, out_r], [in_r, out_w]
+        else:
+            mine, theirs = [], [os.open(os.devnull, os.O_RDONLY), os.open(os.devnull, os.O_WRONLY)]
+        status_r, status_w = os.pipe()
+        cpu = int(cpu_seconds) + 5
+        rlimits = [("RLIMIT_CPU", cpu, cpu + 5), ("RLIMIT_AS", limits.address_space, limits.address_space),
+                   ("RLIMIT_FSIZE", limits.file_size, limits.file_size), ("RLIMIT_CORE", 0, 0),
+                   ("RLIMIT_NPROC", 2 * limits.processes, 2 * limits.processes)]
+        job = {"entry": entry, "args": args, "uid": held.uid, "target": target, "cgroup": cgroup.procs,
+               "rlimits": rlimits, "env": _environment(HOME, env or {})}
+        try:
+            _zygote().send(job, [theirs[0], theirs[1], status_w])
+        finally:
+            for fd in (*theirs, status_w):
+                os.close(fd)
+        stdin = os.fdopen(mine[0], "wb") if pipes else None
+        stdout = os.fdopen(mine[1], "rb", buffering=0) if pipes else None
+    except BaseException:
+        kill_tree(box)
+        raise
+    return WarmProcess(box, status_r, stdin, stdout)
+
+
+def _holder_pid(pids: list[int]) -> int | None:
+    """Of the processes of a sandbox's cgroup, the one that is process 2 of the sandbox's PID namespace."""
+    for pid in pids:
+        try:
+            with open(f"/proc/{pid}/status", encoding="ascii") as f:
+                for line in f:
+                    if line.startswith("NSpid:"):
+                        parts = line.split()
+                        if len(parts) >= 3 and parts[-1] == "2":
+                            return pid
+        except OSError:
+            continue
+    return None
+
+
+def limits_hit(proc: subprocess.Popen[bytes] | WarmProcess) -> list[str]:
     """The whole-sandbox limits ``proc``'s sandbox ran into (call before :func:`kill_tree`)."""
     run = _RUNNING.get(proc.pid)
     return run.cgroup.hit_limits() if run and run.cgroup else []
 
 
-def kill_tree(proc: subprocess.Popen[bytes]) -> None:
+def kill_tree(proc: subprocess.Popen[bytes] | WarmProcess) -> None:
     """Kill every process of ``proc``'s sandbox (its cgroup; without isolation its process group) and wait."""
+    if isinstance(proc, WarmProcess):
+        kill_tree(proc.box)
+        for stream in (proc.box.stdin, proc.box.stdout):
+            if stream is not None:
+                stream.close()
+        proc.close()
+        return
     run = _RUNNING.pop(proc.pid, None)
     if run and run.cgroup:
         run.cgroup.kill()
@@ -590,13 +770,14 @@ class SandboxedFunction:
     """
 
     def __init__(self, answer: Any, scratch: Path, limits: Limits, *, call_timeout: float = 10.0,
-                 seed: str | int | None = None) -> None:
+                 seed: str | int | None = None, warm: bool = True) -> None:
         from .answers import encode  # noqa: F401  (imported for its side effect: numpy loaded once)
 
         self.__name__ = answer.name
         self.answer = answer
         self.call_timeout = call_timeout
-        self._proc: subprocess.Popen[bytes] | None = start(
+        self._proc: subprocess.Popen[bytes] | WarmProcess | None = start_warm(
+            "callee", [], scratch, limits, cpu_seconds=limits.notebook_timeout, pipes=True) if warm else start(
             [sys.executable, "-P", "-m", "course.classroom._callee"], scratch, limits,
             cpu_seconds=limits.notebook_timeout, pipes=True)
         spec = {"name": answer.name, "source": answer.source, "helpers": answer.helpers, "imports": answer.imports,
