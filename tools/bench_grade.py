@@ -7,8 +7,9 @@ the student notebook of ``tools.make_exercises`` with the set-up cell's
 notebook that calls the variant's reference function; ``wrong``: off by one or a function returning
 zeros; ``half``: the first half right, the rest untouched; ``blank``: nothing).
 
-``python -m tools.bench_grade [N]`` grades N (default 200) such notebooks, all
-every chapter and all four ways, and prints notebooks per second and per core.
+``python -m tools.bench_grade [N] [N_OLD]`` grades N (default 200) such notebooks,
+every chapter and all four ways, with isolation on, and the first N_OLD (default 40) of them the previous
+way (a Jupyter kernel per sandbox), in the same run; it prints both figures and their ratio.
 """
 
 from __future__ import annotations
@@ -131,23 +132,41 @@ def make_class(folder: Path, n: int, chapters: list[str] | None = None) -> list[
     return out
 
 
-def main(n: int = 200) -> None:
+def main(n: int = 200, n_old: int = 40) -> None:
+    """Grade ``n`` notebooks the current way (a warm worker forking into a bubblewrap sandbox per notebook),
+    and the first ``n_old`` of them the previous way (a fresh interpreter, nbclient and a Jupyter kernel in each
+    sandbox), in the same run; print both figures and their ratio."""
     from course.classroom.grade import grade_class
 
     cores = os.cpu_count() or 1
+    figures = {}
     with tempfile.TemporaryDirectory(prefix="bench-grade-") as tmp:
         folder = Path(tmp) / "submissions"
-        make_class(folder, n)
-        t0 = time.perf_counter()
-        rows = grade_class(folder, workers=cores)
-        dt = time.perf_counter() - t0
-    right = sum(r.correct == "1" for r in rows)
-    notes = [r for r in rows if r.exercise == "(notebook)"]
-    print(f"grading (a bubblewrap sandbox per notebook): {n} notebooks on {cores} cores in {dt:.1f} s: "
-          f"{n / dt:.2f} notebooks/s, {n / dt / cores:.2f} notebooks/s per core "
-          f"(load average {os.getloadavg()[0]:.1f}; {right} answers right, {len(notes)} notes on notebooks)")
+        made = make_class(folder, n)
+        old = Path(tmp) / "old"
+        for path in made[:n_old]:  # the same mix of chapters and ways
+            (old / path.parent.name).mkdir(parents=True, exist_ok=True)
+            (old / path.parent.name / path.name).write_bytes(path.read_bytes())
+        for engine, where, count in (("kernel", old, n_old), ("warm", folder, n)):
+            if count == 0:
+                continue
+            load = os.getloadavg()[0]
+            t0 = time.perf_counter()
+            rows = grade_class(where, workers=cores, engine=engine)
+            dt = time.perf_counter() - t0
+            right = sum(r.correct == "1" for r in rows)
+            notes = [r for r in rows if r.exercise == "(notebook)"]
+            figures[engine] = count / dt
+            label = {"kernel": "previous design (fresh Python + nbclient + Jupyter kernel per sandbox)",
+                     "warm": "current design (warm worker forked into a bubblewrap sandbox per notebook)"}[engine]
+            print(f"grading, {label}: {count} notebooks on {cores} cores in {dt:.1f} s: {count / dt:.2f} notebooks/s, "
+                  f"{count / dt / cores:.2f} per core (load average at start {load:.1f}; {right} answers right, "
+                  f"{len(notes)} notes on notebooks)", flush=True)
+    if len(figures) == 2:
+        print(f"grading: the current design grades {figures['warm'] / figures['kernel']:.1f} times as many notebooks "
+              "per second as the previous one (same run, same machine load)")
 
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 200)
+    main(*(int(a) for a in sys.argv[1:3]))

@@ -37,9 +37,10 @@ import sys
 import tempfile
 import threading
 import time
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import astuple, dataclass, replace
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -62,8 +63,8 @@ from .sandbox import (
 
 __all__ = ["COLUMNS", "NOTEBOOK", "Row", "exercises_of", "grade_class", "grade_notebook", "main", "student_id"]
 
-#: The columns of gradebook.csv.
-COLUMNS = ("student", "notebook", "exercise", "seed", "correct", "message", "mistake")
+#: The columns of gradebook.csv (``tests``: for a code exercise with partial credit, tests passed/tests run).
+COLUMNS = ("student", "notebook", "exercise", "seed", "correct", "message", "mistake", "tests")
 #: The ``exercise`` of a row about the whole notebook (it could not be read, a cell raised, ...).
 NOTEBOOK = "(notebook)"
 #: The ``exercise`` of a row about the roster (an ID not on it, a student on it without a notebook).
@@ -90,7 +91,9 @@ class Refused(RuntimeError):
 @dataclass(frozen=True)
 class Row:
     """One line of the gradebook. ``correct`` is ``"1"``, ``"0"`` or ``""`` (a row about the notebook);
-    ``mistake`` the name of the catalogued mistake the checker recognised in a wrong answer, if any."""
+    ``mistake`` the name of the catalogued mistake the checker recognised in a wrong answer, if any; ``tests``
+    the tests of a code exercise its function passed, as ``"passed/run"`` (only for the exercises given
+    partial credit in ``points.toml``)."""
 
     student: str
     notebook: str
@@ -99,6 +102,7 @@ class Row:
     correct: str
     message: str
     mistake: str = ""
+    tests: str = ""
 
 
 # --------------------------------------------------------------------------- reading a notebook (no execution)
@@ -344,7 +348,8 @@ def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: li
         if entry is None:
             rows.append(Row(student, rel, eid, seed, "0", "not attempted: no check of this exercise ran"))
             continue
-        rows.append(Row(student, rel, eid, seed, *_regrade(exercises, eid, entry, sid, scratch, limits)))
+        correct, message, mistake, tests = _regrade(exercises, eid, entry, sid, scratch, limits)
+        rows.append(Row(student, rel, eid, seed, correct, message, mistake, tests))
     return rows
 
 
@@ -392,11 +397,12 @@ def _last_checks(log: Path, wanted: set[str]) -> dict[str, dict[str, Any]]:
 
 
 def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, scratch: Path,
-             limits: Limits) -> tuple[str, str, str]:
+             limits: Limits) -> tuple[str, str, str, str]:
     from .answers import CodeAnswer, Opaque, decode
 
     extra = ""
     proxy = None
+    tests = ""
     try:
         with _cpu_limit(CHECK_CPU):
             answer = decode(entry["answer"])
@@ -404,7 +410,7 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
                 what = ("is too large to grade (a number of more than 4096 bits or an exponent above 64); it "
                         "was not decoded" if answer.type_name == "too large" else
                         f"could not be collected as data (an object of type {answer.type_name})")
-                return "0", f"invalid: the answer {what}", ""
+                return "0", f"invalid: the answer {what}", "", ""
             if isinstance(answer, CodeAnswer):
                 if answer.library:
                     extra += (f" (The answer is the library function {'.'.join(answer.library)}, not the "
@@ -412,8 +418,20 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
                 proxy = SandboxedFunction(answer, scratch, limits, seed=sid, warm=_ENGINE["name"] == "warm")
                 answer = proxy
             fb = exercises.check(eid, answer, seed=sid)
+            if proxy is not None and eid in partial_credit():
+                ex = exercises.load(eid, seed=sid)
+                if fb.correct:
+                    passed, run = len(ex.cases()), len(ex.cases())
+                else:
+                    def fresh() -> SandboxedFunction:
+                        return SandboxedFunction(proxy.answer, scratch, limits, seed=sid,
+                                                 warm=_ENGINE["name"] == "warm")
+                    passed, run = tests_passed(ex, proxy, fresh)
+                tests = f"{passed}/{run}"
+                extra += (f" (Partial credit: your function passed {passed} of the {run} tests, so it earns "
+                          f"{passed}/{run} of the exercise's points.)" if not fb.correct else "")
     except _OverTime:
-        return "0", f"not graded: checking this answer took more than {CHECK_CPU:g} s of the grader's time", ""
+        return "0", f"not graded: checking this answer took more than {CHECK_CPU:g} s of the grader's time", "", ""
     finally:
         if proxy is not None:
             proxy.close()
@@ -423,7 +441,28 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
         extra += f" (Checked in the notebook with seed {str(entry.get('seed'))[:40]!r}; graded for the ID's variant.)"
     kind = "" if fb.correct else "not attempted: " if fb.kind == "empty" else f"{fb.kind}: "
     return (("1" if fb.correct else "0"), (kind + str(fb.message) + extra).replace("\n", " "),
-            str(fb.mistake or "")[:80])
+            str(fb.mistake or "")[:80], tests)
+
+
+def tests_passed(ex: Any, fn: Any, fresh: Callable[[], Any] | None = None) -> tuple[int, int]:
+    """How many of the test cases of the code exercise ``ex`` the function ``fn`` passes, and how many were
+    run. Each test is judged by the exercise's own checker on that test alone (an exercise whose test list is
+    that one test), so a test passes here exactly when the checker would accept it. A function whose
+    sandbox stopped (it ran over its time, or crashed) is started again with ``fresh()`` for the next test."""
+    import copy
+
+    cases = ex.cases()
+    passed = 0
+    for case in cases:
+        one = copy.copy(ex)
+        one.cases = lambda case=case: [case]
+        passed += bool(one.check(fn).correct)
+        if fresh is not None and getattr(fn, "_proc", True) is None:  # the sandbox was stopped: a new one
+            fn.close()
+            fn = fresh()
+    if fresh is not None:
+        fn.close()
+    return passed, len(cases)
 
 
 class _OverTime(Exception):
@@ -659,31 +698,78 @@ def points(path: Path = POINTS_FILE) -> dict[str, float]:
     return out
 
 
+@cache
+def partial_credit(path: Path = POINTS_FILE) -> frozenset[str]:
+    """The code exercises that earn partial credit: the keys set to ``true`` in the ``[partial]`` table of
+    ``path`` (points times tests passed over tests run; every other exercise is all or nothing).
+
+    >>> isinstance(partial_credit(), frozenset)
+    True
+    """
+    import tomllib
+
+    from course import exercises
+
+    with open(path, "rb") as f:
+        table = tomllib.load(f).get("partial", {})
+    out = set()
+    for eid, value in table.items():
+        if eid not in exercises.exercise_ids():
+            raise ValueError(f"{path}: {eid!r} in [partial] is not an exercise of the course")
+        if not isinstance(value, bool):
+            raise ValueError(f"{path}: [partial] {eid} must be true or false, got {value!r}")
+        if value and exercises.load(eid, seed=0).kind != "function":
+            raise ValueError(f"{path}: {eid} is not a code exercise; only code exercises (tests passed over tests "
+                             "run) can earn partial credit")
+        if value:
+            out.add(eid)
+    return frozenset(out)
+
+
+def score(row: Row, partial: frozenset[str]) -> float:
+    """The share of an exercise's points a gradebook row earns: 1 if right, else tests passed over tests run
+    for a code exercise with partial credit, else 0.
+
+    >>> score(Row("s", "n", "ch02_ex4", "s", "0", "", "", "7/9"), frozenset({"ch02_ex4"}))
+    0.7777777777777778
+    """
+    if row.correct == "1":
+        return 1.0
+    if row.exercise in partial and row.tests.count("/") == 1:
+        passed, run = row.tests.split("/")
+        if passed.isdigit() and run.isdigit() and 0 < int(run) and int(passed) <= int(run):
+            return int(passed) / int(run)
+    return 0.0
+
+
 def _number(x: float) -> str:
-    return f"{x:g}"
+    return f"{round(x, 2):g}"
 
 
-def grades_table(rows: list[Row], names: dict[str, str], worth: dict[str, float] | None = None
-                 ) -> tuple[list[str], list[list[str]]]:
+def grades_table(rows: list[Row], names: dict[str, str], worth: dict[str, float] | None = None,
+                 partial: frozenset[str] | None = None) -> tuple[list[str], list[list[str]]]:
     """``grades.csv`` as a header and rows: one row per student (``student``, ``name``, the points of each
     chapter, ``total``); the header gives each column's maximum. A student's exercise counts once, from the
-    rows that count (an earlier copy of a later submission has none)."""
+    rows that count (an earlier copy of a later submission has none), with its :func:`score` (partial credit
+    for the code exercises of ``partial``, by default those of :func:`partial_credit`); points are rounded to
+    two decimals."""
     worth = worth or points()
+    partial = partial_credit() if partial is None else partial
     chapters = sorted({eid.split("_")[0] for eid in worth})
-    right: dict[str, set[str]] = {}
+    earned: dict[str, dict[str, float]] = {}
     for r in rows:
         if r.student and r.exercise not in (NOTEBOOK, ROSTER, "(submissions)"):
-            right.setdefault(r.student, set())
-            if r.correct == "1" and r.exercise in worth:
-                right[r.student].add(r.exercise)
+            mine = earned.setdefault(r.student, {})
+            if r.exercise in worth:
+                mine[r.exercise] = max(mine.get(r.exercise, 0.0), worth[r.exercise] * score(r, partial))
     for sid in names:
-        right.setdefault(sid, set())
+        earned.setdefault(sid, {})
     top = {c: sum(v for e, v in worth.items() if e.startswith(c + "_")) for c in chapters}
     head = ["student", "name", *(f"{c} (of {_number(top[c])})" for c in chapters),
             f"total (of {_number(sum(top.values()))})"]
     table = []
-    for sid in sorted(right):
-        got = {c: sum(worth[e] for e in right[sid] if e.startswith(c + "_")) for c in chapters}
+    for sid in sorted(earned):
+        got = {c: sum(v for e, v in earned[sid].items() if e.startswith(c + "_")) for c in chapters}
         table.append([sid, names.get(sid, ""), *(_number(got[c]) for c in chapters), _number(sum(got.values()))])
     return head, table
 
@@ -776,7 +862,7 @@ def read_gradebook(path: Path) -> list[Row]:
     with open(path, newline="", encoding="utf-8") as f:
         r = csv.reader(f)
         head = next(r)
-        if tuple(head) != COLUMNS:
+        if tuple(head) not in (COLUMNS, COLUMNS[:-1]):  # (a gradebook written before the tests column)
             raise ValueError(f"Expected the columns {COLUMNS}, got {head}")
         return [Row(*(_unsafe_back(v) for v in row)) for row in r]
 

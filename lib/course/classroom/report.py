@@ -63,8 +63,10 @@ def student_page(student: str, rows: Sequence[Any]) -> str:
             parts.append('<table><thead><tr><th scope="col">Exercise</th><th scope="col">Verdict</th>'
                          '<th scope="col">Feedback</th></tr></thead><tbody>')
             for r in ex:
+                tests = getattr(r, "tests", "")
                 verdict = '<td class="v ok">&#10004; right</td>' if r.correct == "1" else \
-                    '<td class="v no">&#10008; not yet</td>'
+                    f'<td class="v no">&#10008; not yet<br>{e(tests.replace("/", " of "))} tests</td>' \
+                    if tests else '<td class="v no">&#10008; not yet</td>'
                 message = r.message.removeprefix("wrong: ")  # (the verdict column says it)
                 parts.append(f"<tr><td><code>{e(r.exercise)}</code></td>{verdict}<td>{e(message)}</td></tr>")
             parts.append("</tbody></table>")

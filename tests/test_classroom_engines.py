@@ -1,0 +1,123 @@
+"""make grade's two ways of running a notebook agree, and partial credit for code exercises.
+
+The warm worker (:mod:`course.classroom._zygote`, cells run by IPython's shell in a fork that enters a bubblewrap
+sandbox) replaced a Jupyter kernel started afresh in each sandbox (:mod:`course.classroom._runner`, kept for
+``make bench``'s comparison). An honest class must get the same gradebook, row for row, both ways; here it
+also has a code exercise with partial credit, so that the tests-passed counts are compared too.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from tools.bench_grade import BOOK, submission
+
+from course import exercises
+from course.classroom import grade
+from course.classroom.grade import Row, grades_table, score
+from course.classroom.sandbox import Limits, isolation
+
+CH02 = "02_space_jacobian"
+
+#: A function answer right on every other call (the grader calls it once per test, in order): partial credit.
+_HALF = '''calls = [0]
+
+
+def {name}(*args):
+    calls[0] += 1
+    ref = exercises.load("ch02_ex4", seed=SEED).reference(*args)
+    return ref if calls[0] % 2 else 0 * np.asarray(ref)
+
+
+answer = {name}
+'''
+
+
+def test_tests_passed_counts_each_test_as_the_checker_judges_it():
+    ex = exercises.load("ch02_ex4", seed="s1")
+    n = len(ex.cases())
+    assert grade.tests_passed(ex, ex.reference) == (n, n)
+    assert grade.tests_passed(ex, lambda *a: np.zeros((6, 6))) == (0, n)
+    calls = []
+
+    def wrong_on_the_second(*args):
+        calls.append(1)
+        out = ex.reference(*args)
+        return out + 1.0 if len(calls) == 2 else out
+
+    assert grade.tests_passed(ex, wrong_on_the_second) == (n - 1, n)
+    calls.clear()
+    assert not ex.check(wrong_on_the_second).correct  # (all or nothing without partial credit)
+
+
+def test_partial_credit_scores_and_the_grades_table():
+    rows = [Row("s1", "a.ipynb", "ch02_ex4", "s1", "0", "wrong", "", "4/6"),
+            Row("s1", "a.ipynb", "ch02_ex1", "s1", "1", "right"),
+            Row("s2", "b.ipynb", "ch02_ex4", "s2", "0", "wrong", "", "4/6"),
+            Row("s3", "c.ipynb", "ch02_ex4", "s3", "0", "wrong", "", "7/6")]  # (impossible: earns nothing)
+    worth = {"ch02_ex1": 1.0, "ch02_ex4": 3.0}
+    head, table = grades_table(rows, {}, worth, partial=frozenset({"ch02_ex4"}))
+    assert head == ["student", "name", "ch02 (of 4)", "total (of 4)"]
+    assert table == [["s1", "", "3", "3"], ["s2", "", "2", "2"], ["s3", "", "0", "0"]]
+    _, none = grades_table(rows, {}, worth, partial=frozenset())
+    assert none == [["s1", "", "1", "1"], ["s2", "", "0", "0"], ["s3", "", "0", "0"]]
+    assert score(rows[0], frozenset()) == 0.0
+
+
+def test_partial_credit_is_only_for_code_exercises(tmp_path):
+    bad = tmp_path / "points.toml"
+    bad.write_text("[points]\n[partial]\nch02_ex1 = true\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="not a code exercise"):
+        grade.partial_credit.__wrapped__(bad)
+    bad.write_text("[partial]\nch02_ex4 = 1\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="true or false"):
+        grade.partial_credit.__wrapped__(bad)
+    bad.write_text("[partial]\nch02_ex4 = true\n", encoding="utf-8")
+    assert grade.partial_credit.__wrapped__(bad) == {"ch02_ex4"}
+
+
+@pytest.fixture(scope="module")
+def both_ways(tmp_path_factory):
+    if not isolation().ok:
+        pytest.skip(f"make grade cannot isolate notebooks here: {isolation().reason}")
+    import nbformat
+
+    root = tmp_path_factory.mktemp("engines")
+    nbs = {"right.ipynb": submission(CH02, "s-right", "right"), "wrong.ipynb": submission(CH02, "s-wrong", "wrong"),
+           "half.ipynb": submission(CH02, "s-half", "half"), "book.ipynb": submission("01_twists", "s-book", BOOK)}
+    partly = submission(CH02, "s-partly", "right")
+    cell = next(c for c in partly.cells if c.cell_type == "code" and c.source.startswith("def "))
+    cell.source = _HALF.format(name=cell.source.split("(")[0].removeprefix("def "))
+    nbs["partly.ipynb"] = partly
+    out = {}
+    patch = pytest.MonkeyPatch()
+    patch.setattr(grade, "partial_credit", lambda path=None: frozenset({"ch02_ex4"}))  # (forked workers inherit)
+    try:
+        for engine in grade.ENGINES:
+            folder = root / engine
+            folder.mkdir()
+            for name, nb in nbs.items():
+                nbformat.write(nb, folder / name)
+            out[engine] = grade.grade_class(folder, workers=2, engine=engine,
+                                            limits=Limits(cell_timeout=60, notebook_timeout=200))
+    finally:
+        patch.undo()
+    return out
+
+
+def test_an_honest_class_gets_the_same_gradebook_both_ways(both_ways):
+    warm, kernel = both_ways["warm"], both_ways["kernel"]
+    assert warm == kernel
+    assert not [r for r in warm if r.exercise == "(notebook)"], warm
+    assert sum(r.correct == "1" for r in warm) == 4 + 4 + 2 + 3  # right, book, half, partly (ex4 not right)
+
+
+def test_a_code_exercise_earns_partial_credit_end_to_end(both_ways):
+    rows = both_ways["warm"]
+    tests = {r.student: r.tests for r in rows if r.exercise == "ch02_ex4"}
+    n = len(exercises.load("ch02_ex4", seed="s-partly").cases())
+    assert tests["s-right"] == f"{n}/{n}" and tests["s-wrong"] == f"0/{n}"
+    passed, run = map(int, tests["s-partly"].split("/"))
+    assert run == n and 0 < passed < n
+    (row,) = [r for r in rows if r.student == "s-partly" and r.exercise == "ch02_ex4"]
+    assert row.correct == "0" and f"passed {passed} of the {n} tests" in row.message
