@@ -582,7 +582,7 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
             rows.append(Row("", name, "(submissions)", "", "", f"this file {what} while the class was graded"))
     _write_csv(gradebook, rows)
     write_grades(root / GRADES, rows, names or {})
-    write_exports(root / EXPORTS, rows, names or {})
+    write_exports(root / EXPORTS, rows, names or {}, roster_emails(Path(roster)) if roster else {})
     write_reports(reports, rows)
     (root / CLASS_PAGE).write_text(class_page(rows), encoding="utf-8")
     return rows
@@ -649,13 +649,32 @@ def read_roster(path: Path) -> dict[str, str]:
     names = [k for k, c in enumerate(head) if c in ("name", "full name", "student name")]
     if ids or names:
         table = table[1:]
+    mails = {k for k, c in enumerate(head) if c in ("email", "email address", "e-mail")}
     i = ids[0] if ids else 0
-    n = names[0] if names else (1 if i == 0 else 0)
+    n = names[0] if names else next((k for k in (1, 0) if k != i and k not in mails), -1)
     out: dict[str, str] = {}
     for row in table:
         if i < len(row) and row[i].strip():
-            out[normalise_id(row[i])] = row[n].strip() if n < len(row) and n != i else ""
+            out[normalise_id(row[i])] = row[n].strip() if 0 <= n < len(row) and n != i else ""
     return out
+
+
+def roster_emails(path: Path) -> dict[str, str]:
+    """``{normalised ID: email}`` from the roster's column headed ``email``, ``email address`` or ``e-mail``
+    (any case; empty if it has none). Gradescope's roster needs them."""
+    with open(path, newline="", encoding="utf-8-sig") as f:
+        table = [row for row in csv.reader(f) if any(c.strip() for c in row)]
+    if not table:
+        return {}
+    head = [c.strip().casefold() for c in table[0]]
+    mails = [k for k, c in enumerate(head) if c in ("email", "email address", "e-mail")]
+    ids = [k for k, c in enumerate(head) if c in ("id", "student", "student_id", "student id", "sis user id",
+                                                  "username", "login")]
+    if not mails:
+        return {}
+    i, m = (ids[0] if ids else 0), mails[0]
+    return {normalise_id(row[i]): row[m].strip() for row in table[1:]
+            if i < len(row) and m < len(row) and row[i].strip() and row[m].strip()}
 
 
 def _roster_rows(rows: list[Row], names: dict[str, str]) -> list[Row]:
@@ -790,23 +809,34 @@ def write_grades(path: Path, rows: list[Row], names: dict[str, str]) -> None:
 EXPORTS = "exports"
 
 
-def exports(rows: list[Row], names: dict[str, str], worth: dict[str, float] | None = None
-            ) -> dict[str, list[list[str]]]:
+def exports(rows: list[Row], names: dict[str, str], worth: dict[str, float] | None = None,
+            emails: dict[str, str] | None = None) -> dict[str, list[list[str]]]:
     """The chapter grades as each platform's CSV import expects them (one table per file name).
 
-    * ``canvas.csv``: Canvas's gradebook import: the columns ``Student`` (name), ``ID``, ``SIS User ID`` (the
-      student ID here), ``SIS Login ID``, ``Section``, then one column per assignment, named
-      ``Jacobians chNN`` (a name Canvas does not know yet becomes a new assignment), and a second row
-      ``Points Possible`` with each assignment's maximum, as Canvas's own gradebook export writes it.
-    * ``moodle.csv``: Moodle's "Import grades from CSV": a column identifying the user (``ID number``, mapped
-      to the user's ID number in the import form), a name column for the eye, one column per grade item
-      (mapped to the course's items in the form). The course total is Moodle's to compute, so it is not
-      exported.
-    * ``gradescope.csv``: the columns of Gradescope's score export (``Name``, ``SID``, ``Email``,
-      ``Total Score``), one column per chapter before the total.
+    Every file is UTF-8 CSV with a header row, fields quoted where they hold a comma, a double quote or a line
+    break (doubled inside, RFC 4180), as the platforms' import pages ask.
+
+    * ``canvas.csv``: Canvas's gradebook import ("How do I import grades in the Gradebook?", Instructure's
+      Canvas Instructor Guide; the same columns in Ohio State's guide "Import a CSV File to Carmen Grades",
+      teaching.resources.osu.edu/toolsets/carmencanvas/guides/calculating-final-grades/import-csv-file-carmen-grades):
+      the columns ``Student``, ``ID``, ``SIS User ID``, ``SIS Login ID``, ``Section`` (the student is found
+      by any one of name, Canvas ID or SIS User ID: here the SIS User ID is the student ID), then one column
+      per assignment, ``Jacobians chNN`` (a name the course does not have yet becomes a new assignment),
+      and a second row ``Points Possible`` with each assignment's maximum, as Canvas's own export writes it.
+    * ``moodle.csv``: Moodle's "Import grades from CSV" (docs.moodle.org/en/Grade_import): a header row; in
+      the import form the instructor maps the column ``ID number`` to the user field "ID number" (or
+      ``Email address`` to "Email address") and each ``Jacobians chNN`` column to a grade item (or a new
+      one). The course total is Moodle's to compute, so it is not exported.
+    * ``gradescope_roster.csv``: Gradescope's roster upload ("Adding Students and Staff", Gradescope Help
+      Center, help.gradescope.com/article/w59nl02vyt-instructor-course-add-members): a header on every
+      column, the full name in one column (``Name``), a unique ``Email`` per student (required: students
+      without one in the roster are left out), and ``SID``. Gradescope documents no CSV import of scores, so
+    * ``gradescope.csv`` holds the scores in the layout of Gradescope's own grade export (``Name``, ``SID``,
+      ``Email``, one column per assignment, ``Total Score``), for the instructor's records or a script.
 
     Placeholder IDs (no student to give the grade to) are left out.
     """
+    emails = emails or {}
     head, table = grades_table(rows, names, worth)
     chapters = [h.split(" ")[0] for h in head[2:-1]]
     tops = [h.split("(of ")[1].rstrip(")") for h in head[2:]]
@@ -814,22 +844,25 @@ def exports(rows: list[Row], names: dict[str, str], worth: dict[str, float] | No
     canvas = [["Student", "ID", "SIS User ID", "SIS Login ID", "Section", *(f"Jacobians {c}" for c in chapters)],
               ["    Points Possible", "", "", "", "", *tops[:-1]]]
     canvas += [[t[1] or t[0], "", t[0], "", "", *t[2:-1]] for t in real]
-    moodle = [["ID number", "Full name", *(f"Jacobians {c}" for c in chapters)]]
-    moodle += [[t[0], t[1], *t[2:-1]] for t in real]
+    moodle = [["ID number", "Full name", "Email address", *(f"Jacobians {c}" for c in chapters)]]
+    moodle += [[t[0], t[1], emails.get(t[0], ""), *t[2:-1]] for t in real]
+    roster = [["Name", "Email", "SID"]]
+    roster += [[t[1] or t[0], emails[t[0]], t[0]] for t in real if emails.get(t[0])]
     gradescope = [["Name", "SID", "Email", *chapters, "Total Score"]]
-    gradescope += [[t[1], t[0], "", *t[2:]] for t in real]
-    return {"canvas.csv": canvas, "moodle.csv": moodle, "gradescope.csv": gradescope}
+    gradescope += [[t[1], t[0], emails.get(t[0], ""), *t[2:]] for t in real]
+    return {"canvas.csv": canvas, "moodle.csv": moodle, "gradescope_roster.csv": roster, "gradescope.csv": gradescope}
 
 
-def write_exports(folder: Path, rows: list[Row], names: dict[str, str]) -> None:
+def write_exports(folder: Path, rows: list[Row], names: dict[str, str], emails: dict[str, str] | None = None,
+                  worth: dict[str, float] | None = None) -> None:
     """Write :func:`exports` into ``folder`` (every field made :func:`spreadsheet_safe`)."""
     folder.mkdir(exist_ok=True)
-    for name, table in exports(rows, names).items():
+    for name, table in exports(rows, names, worth, emails).items():
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
+        w = csv.writer(buf, lineterminator="\r\n")  # (RFC 4180's line break)
         for line in table:
             w.writerow([spreadsheet_safe(v) for v in line])
-        (folder / name).write_text(buf.getvalue(), encoding="utf-8")
+        (folder / name).write_text(buf.getvalue(), encoding="utf-8", newline="")
 
 
 def spreadsheet_safe(text: str) -> str:
