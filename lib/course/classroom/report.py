@@ -111,19 +111,67 @@ def class_page(rows: Sequence[Any]) -> str:
         elif getattr(r, "mistake", ""):
             ex["mistakes"][r.mistake] += 1
     students = {r.student for r in rows if r.student and r.exercise != "(roster)"}
+    notebooks = {r.notebook for r in rows if r.notebook and r.exercise not in ("(roster)", "(submissions)")}
+    unsafe = any(r.message.startswith("[UNSAFE") for r in rows)
     parts = ['<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">'
              '<meta name="viewport" content="width=device-width,initial-scale=1"><title>The class, exercise by '
-             f'exercise</title><style>{_CSS}td.n{{text-align:right;font-variant-numeric:tabular-nums}}</style>'
-             '</head><body><h1>The class, exercise by exercise</h1>'
-             f"<p>{len(students)} students (or notebooks without a usable ID) were graded. <em>Tried</em>: "
-             "gave an answer to the exercise's check; <em>right</em>: the answer that counts is right; the "
-             "mistakes are the ones the checker named in wrong answers, most frequent first.</p>"
-             '<table><thead><tr><th scope="col">Exercise</th><th scope="col">Tried</th>'
-             '<th scope="col">Right</th><th scope="col">Most common named mistakes</th></tr></thead><tbody>']
+             f'exercise</title><style>{_CSS}td.n,th.n{{text-align:right;font-variant-numeric:tabular-nums}}'
+             '.warn{background:#fde8e8;border-left:5px solid #b30000;padding:.5rem .8rem}'
+             'ul.look li{margin:.3rem 0}</style>'
+             '</head><body><h1>The class, exercise by exercise</h1>']
+    if unsafe:
+        parts.append('<p class="warn"><strong>Graded without isolation (UNSAFE=1).</strong> Student code ran '
+                     "as your own user: it could have read or changed other students' work and these grades.</p>")
+    parts.append(f"<p>{len(notebooks)} notebooks of {len(students)} students were graded (a notebook whose ID is "
+                 "the template's placeholder counts as a student of its own). Per exercise: <em>tried</em> is how "
+                 "many students gave an answer to its check, <em>right</em> how many have the answer that counts "
+                 "right, and the mistakes are those the checker named in wrong answers, most frequent first "
+                 "(with how many students made each).</p>")
+    look = _needs_a_look(rows)
+    roster = {k: v for k, v in look.items() if k[1] == "(roster)"}
+    look = {k: v for k, v in look.items() if k[1] != "(roster)"}
+    if look:
+        parts.append(f'<p><a href="#look">{len(look)} notebooks need a look</a> (errors, attempts the sandbox '
+                     "refused, limits reached, duplicate or unusable IDs): the list is below the table."
+                     + (f' <a href="#roster">{len(roster)} roster notes</a>.' if roster else "") + "</p>")
+    parts.append('<table><thead><tr><th scope="col">Exercise</th>'
+                 f'<th scope="col" class="n">Tried (of {len(students)})</th>'
+                 f'<th scope="col" class="n">Right (of {len(students)})</th>'
+                 '<th scope="col">Most common named mistakes</th></tr></thead><tbody>')
     for eid in sorted(by):
         ex = by[eid]
         top = ", ".join(f"{e(name)} ({n})" for name, n in ex["mistakes"].most_common(3)) or "&mdash;"
         parts.append(f"<tr><td><code>{e(eid)}</code></td><td class=\"n\">{len(ex['tried'])}</td>"
                      f"<td class=\"n\">{len(ex['right'])}</td><td>{top}</td></tr>")
-    parts.append("</tbody></table></body></html>")
+    parts.append("</tbody></table>")
+    if look:
+        parts.append('<h2 id="look">Notebooks that need a look</h2><p>What the grader noticed, per notebook; the '
+                     "student's report (linked) has the rest. Whatever a notebook tried, it ran in a sandbox of its "
+                     "own: these notes say what was stopped, not what got through.</p><ul class=\"look\">")
+        for (student, notebook), notes in look.items():
+            who = (f'<a href="reports/{e(report_name(student))}">{e(student)}</a>' if student else
+                   "no student ID")
+            items = "".join(f"<li>{e(m[:300])}</li>" for m in notes[:6])
+            more = f"<li>and {len(notes) - 6} more</li>" if len(notes) > 6 else ""
+            parts.append(f"<li><strong>{who}</strong>, <code>{e(notebook)}</code><ul>{items}{more}</ul></li>")
+        parts.append("</ul>")
+    if roster:
+        parts.append('<h2 id="roster">The roster</h2><ul class="look">')
+        for (student, _), notes in roster.items():
+            parts.append(f"<li><strong>{e(student)}</strong>: {e('; '.join(notes))}</li>")
+        parts.append("</ul>")
+    parts.append("</body></html>")
     return "\n".join(parts)
+
+
+def _needs_a_look(rows: Sequence[Any]) -> dict[tuple[str, str], list[str]]:
+    """The notes on notebooks and the roster, grouped by (student, notebook), in the order of the rows."""
+    out: dict[tuple[str, str], list[str]] = {}
+    for r in rows:
+        if r.correct == "" and r.exercise in ("(notebook)", "(roster)", "(submissions)"):
+            note = r.message.removeprefix("[UNSAFE: graded without isolation] ")
+            if r.exercise == "(notebook)" and not note.startswith("code cell"):
+                note = "It " + note  # (the notes on a notebook are sentences about it without their subject)
+            note = note[:1].upper() + note[1:]
+            out.setdefault((r.student, r.notebook or "(roster)"), []).append(note)
+    return out

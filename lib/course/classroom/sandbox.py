@@ -172,6 +172,11 @@ def unsafe_allowed() -> bool:
 @cache
 def isolation() -> Isolation:
     """Whether this machine can make the sandboxes of the module docstring; checked once by making one."""
+    return probe_isolation()
+
+
+def probe_isolation() -> Isolation:
+    """:func:`isolation`, checked now (not cached)."""
     if not hasattr(os, "geteuid") or os.geteuid() != 0:
         return Isolation(False, "the grader is not root, so it cannot give each notebook a uid and a cgroup of "
                                 "its own (run it as root: sudo make grade ...)")
@@ -212,8 +217,11 @@ def isolation() -> Isolation:
 _V1 = ("memory", "pids", "freezer")
 
 
-def _cgroup_kind() -> tuple[str | None, str]:
-    root = Path("/sys/fs/cgroup")
+#: Where the cgroup hierarchies are mounted.
+CGROUP_ROOT = Path("/sys/fs/cgroup")
+
+
+def _cgroup_kind(root: Path = CGROUP_ROOT) -> tuple[str | None, str]:
     if all(os.access(root / h, os.W_OK) and (root / h / "cgroup.procs").exists() for h in _V1):
         return "v1", ""
     if (root / "cgroup.controllers").exists():
@@ -229,9 +237,8 @@ def _cgroup_kind() -> tuple[str | None, str]:
 class _Cgroup:
     """One cgroup per sandbox (in each v1 hierarchy, or one v2 folder): limits, joining, killing, removing."""
 
-    def __init__(self, kind: str, name: str, limits: Limits) -> None:
+    def __init__(self, kind: str, name: str, limits: Limits, root: Path = CGROUP_ROOT) -> None:
         self.kind = kind
-        root = Path("/sys/fs/cgroup")
         if kind == "v1":
             self.dirs = {h: root / h / CGROUP_PARENT / name for h in _V1}
             for d in self.dirs.values():
