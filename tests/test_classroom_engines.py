@@ -36,8 +36,8 @@ answer = {name}
 def test_tests_passed_counts_each_test_as_the_checker_judges_it():
     ex = exercises.load("ch02_ex4", seed="s1")
     n = len(ex.cases())
-    assert grade.tests_passed(ex, ex.reference) == (n, n)
-    assert grade.tests_passed(ex, lambda *a: np.zeros((6, 6))) == (0, n)
+    assert grade.count_passed_tests(ex, ex.reference) == (n, n)
+    assert grade.count_passed_tests(ex, lambda *a: np.zeros((6, 6))) == (0, n)
     calls = []
 
     def wrong_on_the_second(*args):
@@ -45,7 +45,7 @@ def test_tests_passed_counts_each_test_as_the_checker_judges_it():
         out = ex.reference(*args)
         return out + 1.0 if len(calls) == 2 else out
 
-    assert grade.tests_passed(ex, wrong_on_the_second) == (n - 1, n)
+    assert grade.count_passed_tests(ex, wrong_on_the_second) == (n - 1, n)
     calls.clear()
     assert not ex.check(wrong_on_the_second).correct  # (all or nothing without partial credit)
 

@@ -6,10 +6,11 @@ are skipped):
 1. read it as JSON (never executing anything in the grader); take the student
    ID from the set-up cell's ``SEED = "..."`` line with :mod:`ast`, and the
    exercises from its ``exercises.load("chNN_exK", ...)`` cells;
-2. copy it into a scratch folder and execute it there in a separate process
-   (:mod:`~course.classroom.sandbox`): a time limit per cell and per notebook,
-   the user ``nobody`` when the grader is root; every ``exercises.check`` logs
-   its answer as data (:mod:`~course.classroom.answers`);
+2. copy it into a scratch folder and execute it there in a bubblewrap sandbox of its own
+   (:mod:`~course.classroom.sandbox`: a uid, namespaces and a cgroup of its own), its cells run by IPython's
+   shell in a fork of a warm worker (:mod:`~course.classroom._zygote`) that enters the sandbox, with a time
+   limit per cell and per notebook; every ``exercises.check`` logs its answer as data
+   (:mod:`~course.classroom.answers`);
 3. regrade the last answer to each exercise here, with the course's reference
    for the student's ID (a function answer is called in a sandboxed process);
    the verdict the notebook showed is never used, only compared;
@@ -426,7 +427,7 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
                     def fresh() -> SandboxedFunction:
                         return SandboxedFunction(proxy.answer, scratch, limits, seed=sid,
                                                  warm=_ENGINE["name"] == "warm")
-                    passed, run = tests_passed(ex, proxy, fresh)
+                    passed, run = count_passed_tests(ex, proxy, fresh)
                 tests = f"{passed}/{run}"
                 extra += (f" (Partial credit: your function passed {passed} of the {run} tests, so it earns "
                           f"{passed}/{run} of the exercise's points.)" if not fb.correct else "")
@@ -444,7 +445,7 @@ def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, sc
             str(fb.mistake or "")[:80], tests)
 
 
-def tests_passed(ex: Any, fn: Any, fresh: Callable[[], Any] | None = None) -> tuple[int, int]:
+def count_passed_tests(ex: Any, fn: Any, fresh: Callable[[], Any] | None = None) -> tuple[int, int]:
     """How many of the test cases of the code exercise ``ex`` the function ``fn`` passes, and how many were
     run. Each test is judged by the exercise's own checker on that test alone (an exercise whose test list is
     that one test), so a test passes here exactly when the checker would accept it. A function whose
@@ -509,11 +510,18 @@ ENGINES = ("warm", "kernel")
 _ENGINE = {"name": "warm"}
 
 
-def _worker(args: tuple[str, str, Limits, str, str]) -> list[Row]:
-    path, root, limits, scratch_parent, engine = args
+#: The kinds of submission :func:`grade_class` grades: for each, a function listing them under the submissions
+#: folder and one grading one (``(path, root, limits, scratch_parent) -> rows``; it must never raise for bad
+#: input, and must run student code only through :mod:`~course.classroom.sandbox`). A new kind (a reader's saved
+#: answers, say) is one more entry here, and a way for :func:`_quick_key` to read its student (``STUDENT=``).
+KINDS: dict[str, tuple[Callable[[Path], list[Path]], Callable[[Path, Path, Limits, Path], list[Row]]]] = {}
+
+
+def _worker(args: tuple[str, str, Limits, str, str, str]) -> list[Row]:
+    path, root, limits, scratch_parent, engine, kind = args
     _ENGINE["name"] = engine
     try:
-        return grade_notebook(Path(path), Path(root), limits, Path(scratch_parent))
+        return KINDS[kind][1](Path(path), Path(root), limits, Path(scratch_parent))
     except Exception as exc:  # a grader bug: say so in the gradebook, keep going
         return [Row("", str(Path(path).relative_to(root)), NOTEBOOK, "", "",
                     f"the grader failed on this notebook ({type(exc).__name__}: {exc}); please report it"[:400])]
@@ -545,7 +553,9 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
     gradebook, reports = root / "gradebook.csv", root / "reports"
     skip = {gradebook, reports, root / GRADES, root / CLASS_PAGE, root / EXPORTS}
     before = _tree_digest(root, skip)
-    paths = find_notebooks(root)
+    found = [(kind, p) for kind, (finder, _) in KINDS.items() for p in finder(root)]
+    paths = [p for _, p in found]
+    kind_of = {p: kind for kind, p in found}
     kept: list[Row] = []
     if student is not None:
         if not gradebook.exists():
@@ -560,7 +570,7 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
     workers = max(1, min(workers or os.cpu_count() or 1, len(paths) or 1))
     with tempfile.TemporaryDirectory(prefix="jacobians-grade-") as tmp:
         Path(tmp).chmod(0o711)  # the sandbox user may enter its own scratch folder, and list nothing
-        jobs = [(str(p), str(root), limits, tmp, engine) for p in paths]
+        jobs = [(str(p), str(root), limits, tmp, engine, kind_of[p]) for p in paths]
         if workers == 1:
             try:
                 results = [_worker(j) for j in jobs]
@@ -898,6 +908,9 @@ def read_gradebook(path: Path) -> list[Row]:
         if tuple(head) not in (COLUMNS, COLUMNS[:-1]):  # (a gradebook written before the tests column)
             raise ValueError(f"Expected the columns {COLUMNS}, got {head}")
         return [Row(*(_unsafe_back(v) for v in row)) for row in r]
+
+
+KINDS["notebook"] = (find_notebooks, grade_notebook)
 
 
 def main(argv: list[str] | None = None) -> int:
