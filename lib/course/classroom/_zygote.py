@@ -111,8 +111,10 @@ def _child(job: dict[str, Any], fds: list[int], sock: socket.socket) -> int:
             null = os.open("/dev/null", os.O_WRONLY)
             os.dup2(null, 2)
             os.closerange(3, 1 << 16)
+            with open(".environment.json", encoding="utf-8") as f:  # (sandbox.ENV_FILE, in the scratch folder)
+                env = json.load(f)
             os.environ.clear()
-            os.environ.update(job["env"])
+            os.environ.update({str(k): str(v) for k, v in env.items()})
             sys.argv = [job["entry"], *job["args"]]
             _run(job["entry"], job["args"])
             sys.stdout.flush()

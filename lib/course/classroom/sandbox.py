@@ -566,6 +566,9 @@ def _spawn(argv: list[str], scratch: Path, limits: Limits, *, cpu_seconds: float
     return proc
 
 
+#: Name of the file, in the scratch folder, that gives a warm sandbox's program its environment.
+ENV_FILE = ".environment.json"
+
 #: The program that holds a warm sandbox open (process 2 of its PID namespace): it says it runs, then sleeps
 #: until the sandbox is killed.
 HOLDER = ["/bin/sh", "-c", "echo ready; exec sleep 100000"]
@@ -709,8 +712,13 @@ def start_warm(entry: str, args: list[str], scratch: Path, limits: Limits, *, cp
         rlimits = [("RLIMIT_CPU", cpu, cpu + 5), ("RLIMIT_AS", limits.address_space, limits.address_space),
                    ("RLIMIT_FSIZE", limits.file_size, limits.file_size), ("RLIMIT_CORE", 0, 0),
                    ("RLIMIT_NPROC", 2 * limits.processes, 2 * limits.processes)]
+        # the environment goes through the scratch folder, so that nothing of a student ever passes through
+        # the warm worker's memory (which every later fork inherits): the job holds numbers and paths only
+        envfile = scratch / ENV_FILE
+        envfile.write_text(json.dumps(_environment(HOME, env or {})), encoding="utf-8")
+        os.chown(envfile, held.uid, held.uid)
         job = {"entry": entry, "args": args, "uid": held.uid, "target": target, "cgroup": cgroup.procs,
-               "rlimits": rlimits, "env": _environment(HOME, env or {})}
+               "rlimits": rlimits}
         try:
             _zygote().send(job, [theirs[0], theirs[1], status_w])
         finally:
