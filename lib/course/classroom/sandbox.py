@@ -37,6 +37,15 @@ no daemon). When the grader runs as root, a sandbox gets:
   (``.sandbox_events``), so that the gradebook can say what a notebook tried.
   The hook is a reporter; the barrier is the sandbox.
 
+**Warm sandboxes** (:func:`start_warm`, what ``make grade`` uses for notebooks and function answers): the
+sandbox above is made exactly as for :func:`start`, around a placeholder program (:data:`HOLDER`); instead of
+a fresh Python, a fork of this grading process's warm worker (:mod:`~course.classroom._zygote`, which
+imported numpy, sympy, the course and IPython once) joins its cgroup and limits, enters its namespaces and
+root, takes its uid, enters its user namespace and drops every capability, and runs the program there. Every
+property above holds per notebook: bubblewrap made the sandbox, the program is the sandbox's uid with no
+capability and ``no_new_privs``, sees only the sandbox's processes, files and (no) network, and dies with
+the sandbox's cgroup.
+
 :func:`isolation` says whether all this is possible here. If it is not (no
 ``bwrap``, not root, no cgroup hierarchy the grader may write, user namespaces
 disabled), ``make grade`` refuses to grade and prints why; ``UNSAFE=1`` grades
@@ -67,8 +76,8 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
-__all__ = ["GUARD", "MARKER", "HOME", "Isolation", "Limits", "SandboxedFunction", "isolation", "kill_tree",
-           "make_scratch", "start", "unsafe_allowed"]
+__all__ = ["GUARD", "MARKER", "HOME", "Isolation", "Limits", "SandboxedFunction", "WarmProcess", "isolation",
+           "kill_tree", "make_scratch", "probe_isolation", "start", "start_warm", "stop_warm", "unsafe_allowed"]
 
 #: Start of every message of the audit hook (the grader finds attempts by it).
 MARKER = "[grading sandbox]"
