@@ -1,5 +1,10 @@
 """Inside the sandbox: execute one notebook with nbclient and say what happened, as JSON.
 
+THE PREVIOUS DESIGN, kept only so that ``make bench`` can print its figure beside the current one's
+(``grade_class(engine="kernel")``) and ``tests/test_classroom_engines.py`` can check that both give an honest
+class the same gradebook. ``make grade`` runs notebooks with :mod:`~course.classroom._cells` in a warm sandbox
+(:func:`course.classroom.sandbox.start_warm`).
+
 ``python -m course.classroom._runner NOTEBOOK RESULT CELL_TIMEOUT`` runs the
 audit hook of :data:`course.classroom.sandbox.GUARD` first, then every code
 cell (nbgrader's settings: errors do not stop the run, a cell over its time is
