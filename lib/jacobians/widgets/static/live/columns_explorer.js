@@ -16,53 +16,47 @@
 // Never throws on a reachable input, never shows NaN.
 
 import { evaluate, makeChain } from "./kinematics.js";
-import { graphic, suppressShortcuts } from "./ui.js";
-import { CSS as CSS3D, createView3D, fixed, frameItems, groundGrid, html, injectStyle, put, sub, text } from "./view3d.js";
+import {
+  BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, matrixTable, put, sub, suppressShortcuts, text,
+  tint,
+} from "./ui.js";
+import { CSS as CSS3D, createView3D, frameItems, groundGrid } from "./view3d.js";
 
-const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
 const CHANGE_TOL = 1e-12; // as jacobians.widgets.columns: a column "changed" if an entry moved by more
-const DEFAULT_PALETTE = { space: "#E69F00", body: "#56B4E9", link: "#0072B2", joint: "#000000", muted: "#999999" };
+const DEFAULT_PALETTE = { space: PALETTE.space, body: PALETTE.body, link: PALETTE.link, joint: PALETTE.joint,
+  muted: PALETTE.muted };
+// what this view draws differently from the shared style (ui.js), scoped by its class
 const CSS = `
-.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:content}
-.jac-live *{box-sizing:border-box}
-.jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
-.jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
-.jac-live .jl-side{flex:1 1 280px;min-width:0}
-.jac-live label{display:block;font-size:16px}
-.jac-live input[type=range]{width:100%;margin:2px 0 8px}
-.jac-live select{font-size:16px;margin-left:6px}
-.jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
-.jac-live table.jl-matrix{table-layout:fixed;width:21.4em}
-.jac-live table.jl-matrix th[scope=col]:first-child{width:2.4em}
-.jac-live td,.jac-live th{padding:1px 6px;text-align:right;border:0}
-.jac-live caption{caption-side:top;text-align:left;font-size:15px}
-.jac-live sub{font-size:14px;line-height:1}
-.jac-live .jl-key{display:inline-block;width:14px;height:14px;border-radius:50%;vertical-align:-2px;margin-right:6px;
-  border:1px solid #000000}
-.jac-live .jl-changes{font-size:15px;margin:6px 0;min-height:2.7em}
-.jac-live .jl-legend{font-size:14px;margin:4px 0 0;padding:0;list-style:none}
-.jac-live .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
-.jac-live td.jl-watch,.jac-live th.jl-watch{outline:2px solid #000000;outline-offset:-2px}
+.jac-live.jl-columns{contain:content}
+.jl-columns .jl-side{flex:1 1 280px}
+.jl-columns select{max-width:none}
+.jl-columns table.jl-matrix{table-layout:fixed;width:21.4em}
+.jl-columns table.jl-matrix th[scope=col]:first-child{width:2.4em}
+.jl-columns td,.jl-columns th{padding:1px 6px}
+.jl-columns td{min-width:0}
+.jl-columns .jl-key{width:14px;height:14px;border-radius:50%;vertical-align:-2px;border:1px solid var(--jl-ink)}
+.jl-columns .jl-changes{font-size:15px;margin:6px 0;min-height:2.7em}
+.jl-columns .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
+.jl-columns td.jl-watch,.jl-columns th.jl-watch{outline:2px solid var(--jl-ink);outline-offset:-2px}
 `;
 
 function render({ model, el }) {
   const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style-columns", CSS + CSS3D);
-  el.classList.add("jac-live");
+  injectStyle(doc, "jac-live-style", BASE_CSS);
+  injectStyle(doc, "jac-live-style-3d", CSS3D);
+  injectStyle(doc, "jac-live-style-columns", CSS);
+  el.classList.add("jac-live", "jl-columns");
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
   const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
-  // the library's Okabe–Ito colours, darkened where a line on white needs it (ui.js graphic)
+  // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
   const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
-  const limit = Number(model.get("limit")) || 3.14;
+  const limit = Number(model.get("limit")) || LIMIT;
   const step = Number(model.get("step")) || 0.01;
   const reach = Number(model.get("reach")) || 1;
   const axisLen = Number(model.get("axis_length")) || 0.15 * reach;
   const name = model.get("name") || `${n}-joint arm`;
   const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
-  // translucent backgrounds of the changed columns, from the palette's space and body colours
-  const tint = (hex, a) => `rgba(${parseInt(hex.slice(1, 3), 16)},${parseInt(hex.slice(3, 5), 16)},`
-    + `${parseInt(hex.slice(5, 7), 16)},${a})`;
 
   const wrap = html("div", { class: "jl-wrap" }, el);
   const plot = html("div", { class: "jl-plot" }, wrap);
@@ -87,13 +81,13 @@ function render({ model, el }) {
   for (let i = 0; i < n; i++) axes.push(view.segment("solid", { "stroke-width": 4, class: `jl-axis jl-axis-${i + 1}` }));
   const joints = [];
   for (let i = 0; i < n; i++) {
-    joints.push(view.dot("solid", { r: 7, fill: "#ffffff", stroke: pal.joint, "stroke-width": 2.5 }));
+    joints.push(view.dot("solid", { r: 7, fill: PALETTE.bg, stroke: pal.joint, "stroke-width": 2.5 }));
   }
   const bFrame = frameItems(view, "{b}", 0.35 * reach / 2);
   const axisDots = [];
   const axisNums = [];
   for (let i = 0; i < n; i++) {
-    axisDots.push(view.dot("front", { r: 13, stroke: "#000000", "stroke-width": 1.5, class: "jl-axis-key" }));
+    axisDots.push(view.dot("front", { r: 13, stroke: PALETTE.fg, "stroke-width": 1.5, class: "jl-axis-key" }));
     axisNums.push(view.label("front", String(i + 1), { "font-weight": "bold", stroke: "none", class: "jl-axis-num" }));
   }
 
@@ -119,20 +113,11 @@ function render({ model, el }) {
   const legend = html("ul", { class: "jl-legend" }, side);
   const changes = html("p", { class: "jl-changes", "aria-live": "polite" }, side);
   const tables = html("div", { class: "jl-tables" }, side);
+  /** @param {SubText} symbol @param {string} cls @param {string} words */
   function makeTable(symbol, cls, words) {
-    const table = html("table", { class: `jl-matrix ${cls}` }, tables);
-    const caption = html("caption", {}, table);
-    sub(caption, symbol).append(`(θ), ${words}`);
-    const hr = html("tr", {}, html("thead", {}, table));
-    html("th", { scope: "col" }, hr, "");
-    const heads = Array.from({ length: n }, (_, i) => html("th", { scope: "col" }, hr, `${i + 1}`));
-    const tbody = html("tbody", {}, table);
-    const cells = ROW_LABELS.map((lab) => {
-      const tr = html("tr", {}, tbody);
-      sub(html("th", { scope: "row" }, tr), lab);
-      return Array.from({ length: n }, () => html("td", {}, tr, ""));
-    });
-    return { table, heads, cells };
+    const t = matrixTable(tables, cls, TWIST_ROWS, Array.from({ length: n }, (_, i) => `${i + 1}`));
+    sub(t.caption, symbol).append(`(θ), ${words}`);
+    return t;
   }
   const tS = makeTable(["J", "s"], "jl-space", "space Jacobian");
   const tB = makeTable(["J", "b"], "jl-body", "body Jacobian");
@@ -150,7 +135,7 @@ function render({ model, el }) {
     return c >= 1 && c <= n ? c : 1;
   }
   const state = { theta: null, column: null, Js: null, Jb: null, moved: [], changedS: [], changedB: [], changeKey: null };
-  const roleColor = (k, i) => (k < i ? pal.space : k > i ? pal.body : "#000000");
+  const roleColor = (k, i) => (k < i ? pal.space : k > i ? pal.body : PALETTE.fg);
 
   function changedColumns(A, B) {
     const out = [];
@@ -189,10 +174,10 @@ function render({ model, el }) {
       joints[i].set(q);
       const tip = [q[0] + 1.25 * axisLen * w[0], q[1] + 1.25 * axisLen * w[1], q[2] + 1.25 * axisLen * w[2]];
       axisDots[i].set(tip);
-      put(axisDots[i].el, "fill", i + 1 === col ? "#ffffff" : c);
+      put(axisDots[i].el, "fill", i + 1 === col ? PALETTE.bg : c);
       axisNums[i].set(tip);
-      put(keys[i], "style", `background:${i + 1 === col ? "#ffffff" : c}`);
-      put(sliders[i], "style", `accent-color:${i + 1 === col ? "#000000" : c}`);
+      put(keys[i], "style", `background:${i + 1 === col ? PALETTE.bg : c}`);
+      put(sliders[i], "style", `accent-color:${i + 1 === col ? PALETTE.fg : c}`);
     }
     const R = [e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)];
     bFrame.set(R, pts[n]);
@@ -245,7 +230,7 @@ function render({ model, el }) {
     l2.append(`axes ${list(after)} (after ${col}): they move column ${col} of `);
     sub(l2, ["J", "b"]);
     const l3 = html("li", {}, legend);
-    html("span", { class: "jl-key", style: "background:#ffffff" }, l3);
+    html("span", { class: "jl-key", style: `background:${PALETTE.bg}` }, l3);
     l3.append(`axis ${col}, outlined in the tables: it moves neither`);
   }
 

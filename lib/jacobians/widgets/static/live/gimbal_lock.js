@@ -19,39 +19,32 @@
 import {
   analyticJacobian, coordinatesFromRotation, evaluate, makeChain, rateToAngularVelocity, singularValues,
 } from "./kinematics.js";
-import { graphic, suppressShortcuts } from "./ui.js";
-import { CSS as CSS3D, FONT, createView3D, fixed, frameItems, html, injectStyle, put, sub, svg, text } from "./view3d.js";
+import {
+  BASE_CSS, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, ink, matrixTable, put, sub, suppressShortcuts, svg,
+  text,
+} from "./ui.js";
+import { CSS as CSS3D, FONT, createView3D, frameItems } from "./view3d.js";
 
-const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
+/** @typedef {import("./ui.js").SubText} SubText */
+/** @typedef {import("./ui.js").MatrixTable} MatrixTable */
 const REPS = { zyx: "ZYX (yaw, pitch, roll)", zyz: "ZYZ Euler" };
 const DET = { zyx: "−cos φ", zyz: "−sin φ" };
-const DEFAULT_PALETTE = { analytic: "#CC79A7", geometric: "#009E73", link: "#0072B2", joint: "#000000",
-  singular: "#D55E00", warning: "#E69F00", space: "#E69F00", muted: "#999999" };
-const DEFAULT_COLUMNS = ["#D55E00", "#0072B2", "#009E73"];
+const DEFAULT_PALETTE = { analytic: PALETTE.analytic, geometric: PALETTE.geometric, link: PALETTE.link,
+  joint: PALETTE.joint, singular: PALETTE.singular, warning: PALETTE.warning, space: PALETTE.space, muted: PALETTE.muted };
+const DEFAULT_COLUMNS = ["vermillion", "blue", "green"];
 const CHART = { w: 400, h: 190, left: 52, right: 24, top: 12, bottom: 46, lo: -2, hi: 3 }; // log10 range
 const N_CURVE = 121; // θ2 every 3°
 const LOCK_TOL = 1e-9; // kinematics.analyticJacobian's tol (the library's)
+// what this view draws differently from the shared style (ui.js), scoped by its class
 const CSS = `
-.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:content}
-.jac-live *{box-sizing:border-box}
-.jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
-.jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
-.jac-live .jl-side{flex:1 1 280px;min-width:0}
-.jac-live label{display:block;font-size:16px}
-.jac-live input[type=range]{width:100%;margin:2px 0 8px}
-.jac-live select{font-size:16px;margin-left:6px;max-width:100%}
-.jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
-.jac-live table.jl-matrix{table-layout:fixed;width:15em}
-.jac-live table.jl-matrix th[scope=col]:first-child{width:2.4em}
-.jac-live td,.jac-live th{padding:1px 6px;text-align:right;border:0}
-.jac-live caption{caption-side:top;text-align:left;font-size:15px}
-.jac-live sub{font-size:14px;line-height:1}
-.jac-live .jl-status{font-size:15px;margin:4px 0}
-.jac-live .jl-banner{font-size:16px;font-weight:bold;padding:4px 8px;border:3px solid;border-radius:6px;margin:6px 0}
-.jac-live .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
-.jac-live .jl-chart svg{width:100%;height:auto;display:block;margin-top:8px}
-.jac-live .jl-legend{font-size:14px;margin:4px 0 0;padding:0;list-style:none}
-.jac-live .jl-key{display:inline-block;width:18px;height:4px;vertical-align:middle;margin-right:6px}
+.jac-live.jl-gimbal{contain:content}
+.jl-gimbal .jl-side{flex:1 1 280px}
+.jl-gimbal table.jl-matrix{table-layout:fixed;width:15em}
+.jl-gimbal table.jl-matrix th[scope=col]:first-child{width:2.4em}
+.jl-gimbal td,.jl-gimbal th{padding:1px 6px}
+.jl-gimbal td{min-width:0}
+.jl-gimbal .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
+.jl-gimbal .jl-chart svg{width:100%;height:auto;display:block;margin-top:8px}
 `;
 
 const det3 = (A) => A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
@@ -77,16 +70,19 @@ export function cell(x) {
 
 function render({ model, el }) {
   const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style-gimbal", CSS + CSS3D);
-  el.classList.add("jac-live");
+  injectStyle(doc, "jac-live-style", BASE_CSS);
+  injectStyle(doc, "jac-live-style-3d", CSS3D);
+  injectStyle(doc, "jac-live-style-gimbal", CSS);
+  el.classList.add("jac-live", "jl-gimbal");
   const wristModels = model.get("wrists");
   const chains = {};
   for (const [k, w] of Object.entries(wristModels)) chains[k] = makeChain(w.S, w.M, w.Q || null);
   const keys = Object.keys(chains);
   const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
-  // the library's Okabe–Ito colours, darkened where a line on white needs it (ui.js graphic)
+  // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
   const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
-  const colColors = model.get("column_colors") || DEFAULT_COLUMNS;
+  /** @type {string[]} */
+  const colColors = (model.get("column_colors") || DEFAULT_COLUMNS).map(graphic);
   const limitDeg = Number(model.get("limit_deg")) || 180;
   const stepDeg = Number(model.get("step_deg")) || 0.5;
   const tool = Number(model.get("tool")) || 0.3;
@@ -114,17 +110,17 @@ function render({ model, el }) {
   const axisNums = [0, 1, 2].map((i) => view.label("front", String(i + 1), { fill: colColors[i],
     "font-weight": "bold" }));
   const link = view.segment("solid", { stroke: pal.link, "stroke-width": 6, class: "jl-link" });
-  const centre = view.dot("solid", { r: 6, fill: "#ffffff", stroke: pal.joint, "stroke-width": 2.5 });
+  const centre = view.dot("solid", { r: 6, fill: PALETTE.bg, stroke: pal.joint, "stroke-width": 2.5 });
   const bFrame = frameItems(view, "{b}", 0.4 * tool, { letters: true });
   const bCols = [0, 1, 2].map(() => view.arrow("solid", pal.analytic, 3, 12));
   bCols.forEach((a, k) => a.el.setAttribute("class", `jl-bcol jl-bcol-${k + 1}`));
   bCols.forEach((a) => a.el.querySelector("line").setAttribute("stroke-dasharray", "7 5"));
   const bLabels = [0, 1, 2].map((k) => view.label("front", `φ${String.fromCharCode(0x2081 + k)}`,
-    { fill: "#7a3d63", "font-style": "italic" }));
+    { fill: ink("plum"), "font-style": "italic" }));
 
   // ---- the chart: ‖J_a‖, ‖J‖, |det B| along θ2 (log scale)
   const chartBox = html("div", { class: "jl-chart" }, plot);
-  const chart = svg("svg", { viewBox: `0 0 ${CHART.w} ${CHART.h}`, role: "img", "font-size": FONT - 2,
+  const chart = svg("svg", { viewBox: `0 0 ${CHART.w} ${CHART.h}`, role: "img", "font-size": FONT - 2, fill: PALETTE.fg,
     "aria-label": "Along θ2 with θ1 and θ3 fixed: the size of J_a, of J, and |det B|, log scale; a line at the current θ2" },
   chartBox);
   const X = (d) => CHART.left + ((d + limitDeg) / (2 * limitDeg)) * (CHART.w - CHART.left - CHART.right);
@@ -135,9 +131,9 @@ function render({ model, el }) {
   };
   const yBottom = CHART.h - CHART.bottom;
   svg("rect", { x: CHART.left, y: CHART.top, width: CHART.w - CHART.left - CHART.right, height: yBottom - CHART.top,
-    fill: "none", stroke: "#bbbbbb" }, chart);
+    fill: "none", stroke: PALETTE.border }, chart);
   for (let p = CHART.lo; p <= CHART.hi; p++) {
-    svg("line", { x1: CHART.left, x2: CHART.w - CHART.right, y1: Y(10 ** p), y2: Y(10 ** p), stroke: "#eeeeee" }, chart);
+    svg("line", { x1: CHART.left, x2: CHART.w - CHART.right, y1: Y(10 ** p), y2: Y(10 ** p), stroke: PALETTE.faint }, chart);
     svg("text", { x: CHART.left - 4, y: Y(10 ** p), "text-anchor": "end", "dominant-baseline": "central" }, chart)
       .textContent = p === 0 ? "1" : `10${p < 0 ? "⁻" : ""}${"⁰¹²³⁴⁵⁶⁷⁸⁹"[Math.abs(p)]}`;
   }
@@ -150,13 +146,13 @@ function render({ model, el }) {
   const curveA = svg("polyline", { fill: "none", stroke: pal.analytic, "stroke-width": 2.5, class: "jl-curve-a" }, chart);
   const curveJ = svg("polyline", { fill: "none", stroke: pal.geometric, "stroke-width": 2.5, "stroke-dasharray": "6 4",
     class: "jl-curve-j" }, chart);
-  const curveD = svg("polyline", { fill: "none", stroke: "#000000", "stroke-width": 2, "stroke-dasharray": "2 3",
+  const curveD = svg("polyline", { fill: "none", stroke: PALETTE.fg, "stroke-width": 2, "stroke-dasharray": "2 3",
     class: "jl-curve-d" }, chart);
-  const cursor = svg("line", { y1: CHART.top, y2: yBottom, stroke: "#000000", "stroke-width": 1.2, class: "jl-cursor" },
+  const cursor = svg("line", { y1: CHART.top, y2: yBottom, stroke: PALETTE.fg, "stroke-width": 1.2, class: "jl-cursor" },
     chart);
   const legend = html("ul", { class: "jl-legend" }, chartBox);
   for (const [colour, dash, words] of [[pal.analytic, "", ["‖J", "a‖ (Frobenius), undefined at the lock"]],
-    [pal.geometric, "dashed", ["‖J‖, the geometric Jacobian", ""]], ["#000000", "dotted", ["|det B(φ)|", ""]]]) {
+    [pal.geometric, "dashed", ["‖J‖, the geometric Jacobian", ""]], [PALETTE.fg, "dotted", ["|det B(φ)|", ""]]]) {
     const li = html("li", {}, legend);
     html("span", { class: "jl-key", style: dash ? `border-top:3px ${dash} ${colour};height:0` : `background:${colour}` },
       li);
@@ -186,24 +182,12 @@ function render({ model, el }) {
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
   const tables = html("div", { class: "jl-tables" }, side);
-  function makeTable(cls, rows, cols) {
-    const table = html("table", { class: `jl-matrix ${cls}` }, tables);
-    const caption = html("caption", {}, table);
-    const hr = html("tr", {}, html("thead", {}, table));
-    html("th", { scope: "col" }, hr, "");
-    cols.forEach((c) => sub(html("th", { scope: "col" }, hr), c));
-    const tbody = html("tbody", {}, table);
-    const cells = rows.map((lab) => {
-      const tr = html("tr", {}, tbody);
-      sub(html("th", { scope: "row" }, tr), lab);
-      return cols.map(() => html("td", {}, tr, ""));
-    });
-    return { table, caption, cells };
-  }
+  /** @type {(cls: string, rows: ReadonlyArray<SubText>, cols: ReadonlyArray<SubText>) => MatrixTable} */
+  const makeTable = (cls, rows, cols) => matrixTable(tables, cls, rows, cols);
   const rateCols = [["φ̇", "1"], ["φ̇", "2"], ["φ̇", "3"]];
   const jointCols = [["θ̇", "1"], ["θ̇", "2"], ["θ̇", "3"]];
-  const tB = makeTable("jl-B", ROW_LABELS.slice(0, 3), rateCols);
-  const tJ = makeTable("jl-J", ROW_LABELS, jointCols);
+  const tB = makeTable("jl-B", TWIST_ROWS.slice(0, 3), rateCols);
+  const tJ = makeTable("jl-J", TWIST_ROWS, jointCols);
   const tA = makeTable("jl-Ja", [["φ̇", "1"], ["φ̇", "2"], ["φ̇", "3"], ["ṗ", "x"], ["ṗ", "y"], ["ṗ", "z"]], jointCols);
   sub(tJ.caption, ["J", ""]).append("(θ), geometric");
   tB.caption.append("B(φ), ω");

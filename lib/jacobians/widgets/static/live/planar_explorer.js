@@ -18,18 +18,17 @@
 
 import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "./kinematics.js";
 import {
-  PALETTE, announcer, capture, ink, columnColor, fixed, html, injectStyle, makeArrow, planarCanvas, setArrow, setEllipse, sub,
-  holdTouch, suppressShortcuts, svg, toWorld,
+  BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, announcer, capture, ink, columnColor, fixed, html, injectStyle, legendItem,
+  makeArrow, planarCanvas, setArrow, setEllipse, sub, holdTouch, suppressShortcuts, svg, text as setText, toWorld,
 } from "./ui.js";
 
 export { fixed };
 export const FRAMES = ["space", "body", "geometric", "analytic"];
 const SYMBOLS = { space: ["J", "s"], body: ["J", "b"], geometric: ["J", ""], analytic: ["J", "a"] };
-const TWIST_ROWS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
 const ANALYTIC_ROWS = [["ẋ", ""], ["ẏ", ""], ["φ̇", ""]];
 const STEP = 0.01; // rad, as the matplotlib explorer's sliders
 const MAX_STEP = 0.2; // rad, largest joint change of one DLS iteration of a tool drag
-const LIMIT = 3.14; // slider range ±LIMIT rad (a multiple of STEP: the initial θ keeps its value)
+// the slider range ±LIMIT rad (palette.js) is a multiple of STEP: the initial θ keeps its value
 const PLAY_STEP = 0.02; // rad per frame of Play: from -LIMIT it passes 0 exactly (the singularity of a stretched arm)
 const PLAY_MS = 30;
 
@@ -56,22 +55,10 @@ function linearColumns(e, frame, n) {
   return { P, V };
 }
 
-/** Set a node's text only when it changes (no needless layout). */
-function setText(node, text) {
-  if (node.textContent !== text) node.textContent = text;
-}
-
-function legendItem(ul, color, parts, dashed = false) {
-  const li = html("li", {}, ul);
-  const style = dashed ? `border-top:3px dashed ${color};height:0` : `background:${color}`;
-  html("span", { class: "jl-key", style }, li);
-  for (const p of parts) (Array.isArray(p) ? sub(li, p) : li.append(p));
-  return li;
-}
 
 function render({ model, el }) {
   const doc = el.ownerDocument;
-  injectStyle(doc);
+  injectStyle(doc, "jac-live-style", BASE_CSS);
   el.classList.add("jac-live");
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
@@ -107,7 +94,7 @@ function render({ model, el }) {
   const by = makeArrow(world, PALETTE.muted, 1.5);
   const joints = [];
   for (let i = 0; i < n; i++) {
-    joints.push(svg("circle", { r: 0.045 * reach, fill: "white", stroke: PALETTE.joint, "stroke-width": 2.2,
+    joints.push(svg("circle", { r: 0.045 * reach, fill: PALETTE.bg, stroke: PALETTE.joint, "stroke-width": 2.2,
       "vector-effect": "non-scaling-stroke", class: i ? "jl-joint-handle" : "jl-joint", "data-joint": i + 1 }, world));
     if (i) svg("title", {}, joints[i]).textContent = `drag joint ${i + 1}: turns joint ${i}`;
   }
@@ -115,7 +102,7 @@ function render({ model, el }) {
   const cols = [];
   for (let i = 0; i < n; i++) cols.push(makeArrow(world, columnColor(i), 3));
   cols.forEach((a, i) => a.g.setAttribute("class", `jl-col jl-col-${i + 1}`));
-  const handle = svg("circle", { r: 0.1 * reach, fill: "#000000", "fill-opacity": 0.06, stroke: PALETTE.joint,
+  const handle = svg("circle", { r: 0.1 * reach, fill: PALETTE.fg, "fill-opacity": 0.06, stroke: PALETTE.joint,
     "stroke-opacity": 0.5, "stroke-dasharray": "3 3", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke",
     class: "jl-handle" }, world);
   svg("title", {}, handle).textContent = "drag the tool (inverse kinematics by damped least squares)";

@@ -15,7 +15,8 @@
 
 import { dlsRates, evaluate, makeChain, resolvedRate } from "./kinematics.js";
 import {
-  PALETTE, announcer, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub, suppressShortcuts, svg,
+  BASE_CSS, PALETTE, announcer, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub,
+  suppressShortcuts, svg,
   toWorld,
 } from "./ui.js";
 
@@ -92,7 +93,7 @@ export function simulate(chain, { path, drawn, method, damping, nSteps, duration
 
 function render({ model, el }) {
   const doc = el.ownerDocument;
-  injectStyle(doc);
+  injectStyle(doc, "jac-live-style", BASE_CSS);
   el.classList.add("jac-live");
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
@@ -117,7 +118,7 @@ function render({ model, el }) {
   const actLine = svg("polyline", { ...ns, stroke: PALETTE.velocity, "stroke-width": 2, class: "jr-actual" }, world);
   const link = svg("polyline", { ...ns, stroke: PALETTE.link, "stroke-width": 6, "stroke-linejoin": "round",
     "stroke-linecap": "round", class: "jl-link" }, world);
-  const joints = Array.from({ length: n }, () => svg("circle", { r: 0.045 * reach, fill: "white", stroke: PALETTE.joint,
+  const joints = Array.from({ length: n }, () => svg("circle", { r: 0.045 * reach, fill: PALETTE.bg, stroke: PALETTE.joint,
     "stroke-width": 2.2, "vector-effect": "non-scaling-stroke" }, world));
   const target = svg("path", { ...ns, stroke: PALETTE.path, "stroke-width": 3, class: "jr-target" }, world);
   const ink = svg("polyline", { ...ns, stroke: PALETTE.joint, "stroke-width": 2, class: "jr-ink" }, world);
@@ -130,9 +131,9 @@ function render({ model, el }) {
   const py = (r) => Y0 + ((Y1 - Y0) * (rateLimit - Math.max(-rateLimit, Math.min(rateLimit, r)))) / (2 * rateLimit);
   const rp = svg("svg", { viewBox: `0 0 ${W} ${H}`, role: "img", class: "jr-rates",
     "aria-label": "joint rates against time, as the run goes" }, right);
-  const axes = svg("g", { stroke: "#888888", "stroke-width": 1, "font-size": 16, fill: "#000000" }, rp);
+  const axes = svg("g", { stroke: PALETTE.muted, "stroke-width": 1, "font-size": 16, fill: PALETTE.fg }, rp);
   for (const r of [-rateLimit, -rateLimit / 2, 0, rateLimit / 2, rateLimit]) {
-    svg("line", { x1: X0, x2: X1, y1: py(r), y2: py(r), stroke: r === 0 ? "#888888" : "#e2e2e2" }, axes);
+    svg("line", { x1: X0, x2: X1, y1: py(r), y2: py(r), stroke: r === 0 ? PALETTE.muted : PALETTE.faint }, axes);
     svg("text", { x: X0 - 6, y: py(r) + 5, "text-anchor": "end", stroke: "none" }, axes).textContent = fixed(r, 0);
   }
   for (let s = 0; s <= duration + 1e-9; s += 1) {
@@ -142,7 +143,7 @@ function render({ model, el }) {
   svg("text", { x: X0 + 4, y: Y0 + 14, stroke: "none" }, axes).textContent = "θ̇ (rad/s)";
   const rateLines = Array.from({ length: n }, (_, i) => svg("polyline", { fill: "none", stroke: columnColor(i),
     "stroke-width": 2.5, class: `jr-rate jr-rate-${i + 1}` }, rp));
-  const cursor = svg("line", { y1: Y0, y2: Y1, stroke: "#4d4d4d", "stroke-width": 1.5 }, rp);
+  const cursor = svg("line", { y1: Y0, y2: Y1, stroke: PALETTE.soft, "stroke-width": 1.5 }, rp);
   const key = html("ul", { class: "jl-legend" }, right);
   for (let i = 0; i < n; i++) {
     const li = html("li", { style: "display:inline-block;margin-right:12px" }, key);
