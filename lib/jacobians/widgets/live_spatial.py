@@ -41,7 +41,7 @@ from ..chain import SerialChain
 from ..jacobian import analytic_jacobian, body_jacobian, geometric_jacobian, pose_coordinates, space_jacobian
 from ..plotting import arm_reach
 from ..plotting.style import COLUMN_COLORS, PALETTE
-from .live import LiveView
+from .live import LIMIT, LiveView
 
 __all__ = ["ColumnsExplorer", "GimbalLock", "columns_model", "gimbal_model", "SPATIAL_MODELS", "SPATIAL_VIEWS",
            "COLUMN_ROBOTS", "WRISTS", "WRIST_TOOL", "REPS"]
@@ -52,7 +52,6 @@ WRIST_TOOL = 0.3  # m, as jacobians.widgets.gimbal
 WRISTS: dict[str, Callable[[], SerialChain]] = {"zyz_wrist": lambda: robots.zyz_wrist(WRIST_TOOL),
                                                 "zyx_wrist": lambda: robots.zyx_wrist(WRIST_TOOL)}
 REPS = ("zyx", "zyz")
-LIMIT = 3.14  # the sliders' range, rad (as the planar explorer)
 GIMBAL_LIMIT_DEG = 180.0  # the gimbal view's sliders, degrees
 NEAR_LOCK = 0.1  # |det B| below this: "near gimbal lock" (jacobians.widgets.gimbal's margin)
 WRIST_SINGULAR = 1e-3  # sigma_min of J's angular rows below this: the wrist itself is singular

@@ -176,6 +176,7 @@ function render({ model, el }) {
       axisDots[i].set(tip);
       put(axisDots[i].el, "fill", i + 1 === col ? PALETTE.bg : c);
       axisNums[i].set(tip);
+      put(axisNums[i].el, "fill", i + 1 === col ? PALETTE.fg : PALETTE.onColour);
       put(keys[i], "style", `background:${i + 1 === col ? PALETTE.bg : c}`);
       put(sliders[i], "style", `accent-color:${i + 1 === col ? PALETTE.fg : c}`);
     }

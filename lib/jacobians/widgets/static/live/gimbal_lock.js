@@ -104,10 +104,10 @@ function render({ model, el }) {
   const sFrame = frameItems(view, "{s}", 0.45 * tool, { letters: true, width: 1.5 });
   sFrame.set([[1, 0, 0], [0, 1, 0], [0, 0, 1]], [0, 0, 0]);
   const rings = [0, 1, 2].map((i) => view.ring("solid", { stroke: colColors[i], "stroke-width": 3,
-    "stroke-opacity": 0.85, class: `jl-ring jl-ring-${i + 1}` }));
+    class: `jl-ring jl-ring-${i + 1}` }));
   const axes = [0, 1, 2].map((i) => view.segment("solid", { stroke: colColors[i], "stroke-width": 4,
     class: `jl-axis jl-axis-${i + 1}` }));
-  const axisNums = [0, 1, 2].map((i) => view.label("front", String(i + 1), { fill: colColors[i],
+  const axisNums = [0, 1, 2].map((i) => view.label("front", String(i + 1), { fill: ink(colColors[i]),
     "font-weight": "bold" }));
   const link = view.segment("solid", { stroke: pal.link, "stroke-width": 6, class: "jl-link" });
   const centre = view.dot("solid", { r: 6, fill: PALETTE.bg, stroke: pal.joint, "stroke-width": 2.5 });

@@ -49,6 +49,9 @@ export const DECOR = {
   grid: ["#DDDDDD", "#3A3A3A"],
   faint: ["#EBEBEB", "#2A2A2A"],
   border: ["#BBBBBB", "#5C5C5C"],
+  // text on a dot filled with a palette colour: black on the light mode's darker shades, the dark ground's
+  // colour on the dark mode's lighter ones (tests/browser/test_live_theme.py measures it on the dot)
+  "on-colour": ["#000000", "#121212"],
 };
 
 // Other spellings of a colour in the library or the views: the swatch they are drawn with.
@@ -63,6 +66,8 @@ const BY_HEX = new Map([
 
 /** @param {string} c @returns {string | undefined} the swatch or decor name of colour c */
 function nameOf(c) {
+  const ref = /^var\(--jl-([a-z-]+)\)$/.exec(String(c)); // a colour graphic() already gave
+  if (ref && (ref[1] in SWATCHES || ref[1] in DECOR)) return ref[1];
   const k = String(c).toUpperCase();
   if (k in SWATCHES || k.toLowerCase() in SWATCHES) return k.toLowerCase();
   if (k.toLowerCase() in DECOR) return k.toLowerCase();
@@ -99,7 +104,7 @@ export const PALETTE = Object.freeze({
   force: graphic("green"), path: graphic("orange"), ok: graphic("green"), warning: graphic("orange"),
   singular: graphic("vermillion"), space: graphic("orange"), body: graphic("sky"), geometric: graphic("green"),
   analytic: graphic("purple"), fg: graphic("ink"), bg: graphic("paper"), grid: graphic("grid"),
-  faint: graphic("faint"), border: graphic("border"), soft: graphic("soft"),
+  faint: graphic("faint"), border: graphic("border"), soft: graphic("soft"), onColour: graphic("on-colour"),
 });
 
 /** Colours of Jacobian columns 1, 2, 3, ... (cycled): jacobians.plotting.style.COLUMN_COLORS. */

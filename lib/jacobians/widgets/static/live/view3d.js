@@ -17,7 +17,7 @@
 // change redraws without recomputing the kinematics. Items in the "solid" layer
 // are drawn back to front (painter's order by depth).
 
-import { AXIS_COLORS, PALETTE, html, put, svg } from "./ui.js";
+import { AXIS_COLORS, PALETTE, html, ink, put, svg } from "./ui.js";
 
 export { AXIS_COLORS };
 
@@ -398,7 +398,7 @@ export function createView3D(parent, options) {
  */
 export function frameItems(view, name, length, { letters = false, layer = "solid", width = 2.5 } = {}) {
   const arrows = AXIS_COLORS.map((c) => view.arrow(layer, c, width));
-  const labels = letters ? ["x", "y", "z"].map((a, k) => view.label("front", a, { fill: AXIS_COLORS[k] })) : [];
+  const labels = letters ? ["x", "y", "z"].map((a, k) => view.label("front", a, { fill: ink(AXIS_COLORS[k]) })) : [];
   const title = view.label("front", name, { fill: PALETTE.fg });
   return {
     arrows, labels, title,
