@@ -89,6 +89,7 @@ function render({ model, el }) {
   for (let i = 0; i < n; i++) {
     axisDots.push(view.dot("front", { r: 13, stroke: PALETTE.fg, "stroke-width": 1.5, class: "jl-axis-key" }));
     axisNums.push(view.label("front", String(i + 1), { "font-weight": "bold", stroke: "none", class: "jl-axis-num" }));
+    axisNums[i].anchor = axisDots[i]; // the number sits on its dot
   }
 
   // ---- the controls

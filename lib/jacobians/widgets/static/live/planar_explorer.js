@@ -5,8 +5,8 @@
 // geometric, or the analytic Jacobian in (x, y, φ)), the linear parts of its
 // columns as arrows, the velocity and force ellipses of J_v (the x, y rows of
 // the geometric Jacobian) and σ_min(J_v), with a banner near a singularity.
-// What is drawn follows the book's matplotlib explorer
-// (jacobians.widgets.planar, jacobians.plotting.planar.column_arrows).
+// The column arrows are drawn as the book's figures draw them
+// (jacobians.plotting.planar.column_arrows).
 //
 // anywidget-compatible: `export default { render }`; render({model, el}) reads
 // model.get(key) for S (6×n), M (4×4), Q (n×3 joint axis points), theta (n, rad),

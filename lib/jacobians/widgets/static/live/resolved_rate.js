@@ -1,5 +1,5 @@
 // Resolved-rate motion of a planar arm, live: the tool follows a
-// path the reader picks (the presets of jacobians.widgets.path_following) or
+// path the reader picks (the presets of jacobians.widgets.live.planar_path) or
 // draws with the pointer, by θ̇ = J_v^# (ṗ_d + K (p_d − p)) with the
 // pseudo-inverse or damped least squares (λ on a slider); the joint rates are
 // plotted as the run goes. Play, pause and step from the buttons or the keys
@@ -27,7 +27,7 @@ const METHODS = { pinv: "pseudo-inverse", dls: "damped least squares" };
 const KEYS_ON = new Set(["ArrowRight", "."]);
 const KEYS_BACK = new Set(["ArrowLeft", ","]);
 
-/** The preset paths of path_following._planar_path: {t, x, v} (N times, N×2 positions and velocities). */
+/** The preset paths of jacobians.widgets.live.planar_path: {t, x, v} (N times, N×2 positions and velocities). */
 export function planarPath(kind, reach, nSteps, duration = 4.0) {
   const T = duration;
   const t = Array.from({ length: nSteps }, (_, k) => (nSteps > 1 ? (T * k) / (nSteps - 1) : 0));
@@ -62,7 +62,7 @@ export function resample(points, nSteps) {
   return out;
 }
 
-/** The run's start, as ResolvedRateExplorer._start_configuration: 200 DLS (λ = 1 mm) Newton steps to x0. */
+/** The run's start, as jacobians.widgets.live.start_configuration: 200 DLS (λ = 1 mm) Newton steps to x0. */
 export function startConfiguration(chain, x0) {
   const n = chain.n;
   const th = [0.3, 0.9, 0.9, 0.9, 0.9, 0.9, 0.9].slice(0, n);

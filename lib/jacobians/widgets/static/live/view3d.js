@@ -36,7 +36,11 @@ export { AXIS_COLORS };
  * @property {boolean} visible
  * @property {number} depth
  * @property {(pr: Projector, basis: Basis) => void} draw
+ * @property {Box} [box] where a label or a dot sits on screen, once drawn: declutter() keeps these apart
+ * @property {(x: number, y: number) => void} [moveTo] put it elsewhere on screen (declutter)
+ * @property {Item} [anchor] a label drawn on this item (a number on its dot): it moves with it
  */
+/** @typedef {{x: number, y: number, hw: number, hh: number}} Box a centre and half sizes, SVG units */
 /** @typedef {Item & {p: Point, q: Point, set(p: Point, q: Point): Segment}} Segment */
 /** @typedef {Item & {pts: Point[], set(pts: Point[]): Polyline}} Polyline */
 /** @typedef {Item & {pts: Point[], set(c: Point, n: Point, radius: number): Ring}} Ring */
@@ -128,8 +132,50 @@ export function createView3D(parent, options) {
   const items = [];
   /** @type {((camera: Camera) => void)[]} */
   const listeners = [];
+  /**
+   * Labels and dots must not cover each other: in the order they were made (the first keep their place), each
+   * that overlaps one already placed moves to the nearest free spot on rings of 4, 8, ... 48 SVG units around
+   * where it belongs (12 directions a ring), inside the drawing. A label with an anchor moves with its anchor.
+   */
+  function declutter() {
+    /** @type {Box[]} */
+    const placed = [];
+    /** @type {Map<Item, [number, number]>} */
+    const moved = new Map();
+    const half = VIEWBOX / 2;
+    /** @param {Box} b */
+    const free = (b) => Math.abs(b.x) + b.hw <= half && Math.abs(b.y) + b.hh <= half
+      && placed.every((q) => Math.abs(q.x - b.x) >= q.hw + b.hw || Math.abs(q.y - b.y) >= q.hh + b.hh);
+    for (const it of items) {
+      const b = it.box;
+      if (!it.visible || !b || it.anchor || !it.moveTo) continue;
+      let best = b;
+      if (!free(b)) {
+        search: for (let r = 4; r <= 48; r += 4) {
+          for (let k = 0; k < 12; k++) {
+            const t = (Math.PI / 6) * k - Math.PI / 4;
+            const c = { ...b, x: b.x + r * Math.cos(t), y: b.y + r * Math.sin(t) };
+            if (free(c)) {
+              best = c;
+              break search;
+            }
+          }
+        }
+      }
+      placed.push(best);
+      if (best !== b) {
+        it.moveTo(best.x, best.y);
+        moved.set(it, [best.x - b.x, best.y - b.y]);
+      }
+    }
+    for (const it of items) {
+      const shift = it.anchor && moved.get(it.anchor);
+      if (shift && it.box && it.moveTo && it.visible) it.moveTo(it.box.x + shift[0], it.box.y + shift[1]);
+    }
+  }
   function render() {
     for (const it of items) it.draw(project, basis);
+    declutter();
     const solid = items.filter((it) => it.layer === "solid" && it.visible);
     solid.sort((a, b) => a.depth - b.depth);
     let i = 0;
@@ -301,9 +347,14 @@ export function createView3D(parent, options) {
     const el = svg("text", { "text-anchor": "middle", "dominant-baseline": "central", "paint-order": "stroke",
       stroke: PALETTE.bg, "stroke-width": 4, "stroke-linejoin": "round", ...attrs }, layers[layer]);
     el.textContent = text;
+    let font = 0; // its font size in SVG units, read once it is shown (a deck's style may change it)
     /** @type {Label} */
     const it = {
       el, layer, visible: true, depth: 0, p: [0, 0, 0], dx: 0, dy: 0,
+      moveTo(x, y) {
+        put(el, "x", x.toFixed(2));
+        put(el, "y", y.toFixed(2));
+      },
       set(p, t = null, dx = 0, dy = 0) {
         this.p = p; this.dx = dx; this.dy = dy; this.visible = finite3(p);
         if (t !== null && el.textContent !== t) el.textContent = t;
@@ -313,8 +364,11 @@ export function createView3D(parent, options) {
         put(el, "visibility", this.visible ? "visible" : "hidden");
         if (!this.visible) return;
         const a = pr(this.p);
-        put(el, "x", (a[0] + this.dx).toFixed(2));
-        put(el, "y", (a[1] + this.dy).toFixed(2));
+        if (!font) font = parseFloat(getComputedStyle(el).fontSize) || FONT;
+        // a glyph is about 0.6 em wide; the box is what declutter keeps apart
+        this.box = { x: a[0] + this.dx, y: a[1] + this.dy, hw: 0.3 * font * (el.textContent || "").length + 1,
+          hh: 0.5 * font };
+        this.moveTo?.(this.box.x, this.box.y);
         this.depth = a[2];
       },
     };
@@ -327,15 +381,22 @@ export function createView3D(parent, options) {
    */
   function dot(layer, attrs) {
     const el = svg("circle", { "vector-effect": "non-scaling-stroke", ...attrs }, layers[layer]);
+    const r = Number(attrs.r) || 0;
     /** @type {Dot} */
     const it = {
       el, layer, visible: true, depth: 0, p: [0, 0, 0],
       set(p) { this.p = p; this.visible = finite3(p); return this; },
+      moveTo(x, y) {
+        put(el, "cx", x.toFixed(2));
+        put(el, "cy", y.toFixed(2));
+      },
       draw(pr) {
         put(el, "visibility", this.visible ? "visible" : "hidden");
         if (!this.visible) return;
         const a = pr(this.p);
         put(el, "cx", a[0].toFixed(2)); put(el, "cy", a[1].toFixed(2));
+        // a dot of the front layer is a key that labels must not cover; a joint of the arm is not
+        if (layer === "front") this.box = { x: a[0], y: a[1], hw: r, hh: r };
         this.depth = a[2];
       },
     };
