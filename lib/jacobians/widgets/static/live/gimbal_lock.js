@@ -68,33 +68,8 @@ export function cell(x) {
   return x.toExponential(2).replace("-", "\u2212").replace("e+", "e");
 }
 
-function render({ model, el }) {
-  const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style", BASE_CSS);
-  injectStyle(doc, "jac-live-style-3d", CSS3D);
-  injectStyle(doc, "jac-live-style-gimbal", CSS);
-  el.classList.add("jac-live", "jl-gimbal");
-  const wristModels = model.get("wrists");
-  const chains = {};
-  for (const [k, w] of Object.entries(wristModels)) chains[k] = makeChain(w.S, w.M, w.Q || null);
-  const keys = Object.keys(chains);
-  const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
-  // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
-  const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
-  /** @type {string[]} */
-  const colColors = (model.get("column_colors") || DEFAULT_COLUMNS).map(graphic);
-  const limitDeg = Number(model.get("limit_deg")) || 180;
-  const stepDeg = Number(model.get("step_deg")) || 0.5;
-  const tool = Number(model.get("tool")) || 0.3;
-  const near = Number(model.get("near")) || 0.1;
-  const wristSingular = Number(model.get("wrist_singular")) || 1e-3;
-  const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
-
-  const wrap = html("div", { class: "jl-wrap" }, el);
-  const plot = html("div", { class: "jl-plot" }, wrap);
-  const side = html("div", { class: "jl-side" }, wrap);
-
-  // ---- the 3-D drawing
+/** The 3-D drawing of the wrist: its axes, rings, the frames, the columns of B(φ) (build). */
+function buildScene(plot, { uid, tool, pal, colColors }) {
   const R0 = 1.55 * tool; // the tool frame stays inside at every pose
   const view = createView3D(plot, {
     id: uid, center: [0, 0, 0], extent: R0, azimuth: -0.95, elevation: 0.4,
@@ -118,7 +93,11 @@ function render({ model, el }) {
   const bLabels = [0, 1, 2].map((k) => view.label("front", `φ${String.fromCharCode(0x2081 + k)}`,
     { fill: ink("plum"), "font-style": "italic" }));
 
-  // ---- the chart: ‖J_a‖, ‖J‖, |det B| along θ2 (log scale)
+  return { view, rings, axes, axisNums, link, centre, bFrame, bCols, bLabels };
+}
+
+/** The chart of ‖J_a‖, ‖J‖ and |det B| along θ2, log scale (build): its scales and the lines update() moves. */
+function buildChart(plot, { pal, limitDeg }) {
   const chartBox = html("div", { class: "jl-chart" }, plot);
   const chart = svg("svg", { viewBox: `0 0 ${CHART.w} ${CHART.h}`, role: "img", "font-size": FONT - 2, fill: PALETTE.fg,
     "aria-label": "Along θ2 with θ1 and θ3 fixed: the size of J_a, of J, and |det B|, log scale; a line at the current θ2" },
@@ -159,7 +138,11 @@ function render({ model, el }) {
     sub(li, words);
   }
 
-  // ---- the controls
+  return { X, Y, curveA, curveJ, curveD, cursor };
+}
+
+/** The selects, the sliders, the banner and status, the tables of B, J and J_a (build). */
+function buildControls(side, { uid, wristModels, keys, limitDeg, stepDeg, colColors, theta0 }) {
   const wristLabel = html("label", { for: `${uid}-wrist` }, side, "Wrist:");
   const wristSelect = html("select", { id: `${uid}-wrist`, class: "jl-wrist" }, wristLabel);
   for (const k of keys) html("option", { value: k }, wristSelect, wristModels[k].name || k);
@@ -168,7 +151,6 @@ function render({ model, el }) {
   for (const [k, words] of Object.entries(REPS)) html("option", { value: k }, repSelect, words);
   const sliders = [];
   const values = [];
-  const theta0 = model.get("theta");
   for (let i = 0; i < 3; i++) {
     const id = `${uid}-t${i + 1}`;
     const lab = html("label", { for: id }, side);
@@ -193,7 +175,154 @@ function render({ model, el }) {
   tB.caption.append("B(φ), ω");
   sub(tB.caption, ["", "s"]).append(" = B(φ) φ̇");
 
-  // ---- state -> picture
+  return { wristSelect, repSelect, sliders, values, banner, status, tB, tJ, tA };
+}
+
+// One sweep per point: J from evaluate, φ from its R, then J_a's angular rows B(φ)⁻¹ J_ω
+// (the same J_a as analyticJacobian; test_live_gimbal.py reads the curves back against the library).
+function curves(chain, th, rep, limitDeg, { X, Y, curveA, curveJ, curveD }) {
+  const A = [], G = [], D = [];
+  for (let k = 0; k < N_CURVE; k++) {
+    const d = -limitDeg + (2 * limitDeg * k) / (N_CURVE - 1);
+    const t = [th[0], (d * Math.PI) / 180, th[2]];
+    const e = evaluate(chain, t);
+    const J = e.Jg;
+    const phi = coordinatesFromRotation([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], rep);
+    const margin = rep === "zyx" ? Math.abs(Math.cos(phi[1])) : Math.abs(Math.sin(phi[1]));
+    let lin = 0, ang = 0;
+    for (let r = 3; r < 6; r++) for (let c = 0; c < 3; c++) lin += J[r][c] * J[r][c];
+    for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) ang += J[r][c] * J[r][c];
+    const x = X(d).toFixed(1);
+    G.push(`${x},${Y(Math.sqrt(lin + ang)).toFixed(1)}`);
+    D.push(`${x},${Y(margin).toFixed(1)}`); // |det B| = the margin, |cos φ2| or |sin φ2|
+    if (margin < LOCK_TOL) {
+      A.push(`${x},${Y(1e9).toFixed(1)}`); // off the top: undefined at the lock
+      continue;
+    }
+    const B = rateToAngularVelocity(phi, rep);
+    const Bi = inverse3(B);
+    let sa = 0;
+    for (let c = 0; c < 3; c++) {
+      for (let i = 0; i < 3; i++) {
+        const y = Bi[i][0] * J[0][c] + Bi[i][1] * J[1][c] + Bi[i][2] * J[2][c];
+        sa += y * y;
+      }
+    }
+    A.push(`${x},${Y(Math.sqrt(sa + lin)).toFixed(1)}`);
+  }
+  put(curveA, "points", A.join(" "));
+  put(curveJ, "points", G.join(" "));
+  put(curveD, "points", D.join(" "));
+}
+
+/** Put the wrist's axes, rings, B(φ)'s columns and the frames where e (evaluate) and B say, and redraw (update). */
+function drawScene({ view, rings, axes, axisNums, link, centre, bFrame, bCols, bLabels }, e, B, tool) {
+  const L = [0.95 * tool, 0.95 * tool, 0.95 * tool];
+  const radius = [0.8 * tool, 0.66 * tool, 0.52 * tool];
+  for (let i = 0; i < 3; i++) {
+    const u = [e.Jg[0][i], e.Jg[1][i], e.Jg[2][i]];
+    axes[i].set(u.map((x) => -L[i] * x), u.map((x) => L[i] * x));
+    axisNums[i].set(u.map((x) => 1.12 * L[i] * x));
+    rings[i].set([0, 0, 0], u, radius[i]);
+    const b = [B[0][i], B[1][i], B[2][i]];
+    bCols[i].set([0, 0, 0], b.map((x) => 0.75 * tool * x));
+    bLabels[i].set(b.map((x) => 0.75 * tool * x), null, 14 * (i - 1), -14);
+  }
+  const p = [e.T[0][3], e.T[1][3], e.T[2][3]];
+  link.set([0, 0, 0], p);
+  centre.set([0, 0, 0]);
+  bFrame.set([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], p);
+  view.render();
+}
+
+/** The status lines: φ, det B(φ), σ_min of J's ω rows, ‖J‖ and ‖J_a‖ (update; rewritten only when they change). */
+function writeStatus(status, state, { rep, phi, detB, sigmaMin, wristSing, normJ, normA }) {
+  const statusKey = [rep, ...phi.map((x) => fixed(deg(x), 1)), fixed(detB, 4), fixed(sigmaMin, 3), wristSing,
+    fixed(normJ, 2), normA === null ? "u" : cell(normA)].join("|");
+  if (statusKey !== state.statusKey) {
+    state.statusKey = statusKey;
+    status.textContent = "";
+    status.append(`φ (${rep.toUpperCase()}) = (${phi.map((x) => `${fixed(deg(x), 1)}°`).join(", ")})`);
+    html("br", {}, status);
+    status.append(`det B(φ) = ${DET[rep]}`);
+    sub(status, ["", "2"]).append(` = ${fixed(detB, 4)}`);
+    html("br", {}, status);
+    sub(status, ["σ", "min"]).append(" of J's ω rows = ");
+    status.append(`${fixed(sigmaMin, 3)}${wristSing ? " (the wrist is singular)" : ""}`);
+    html("br", {}, status);
+    status.append(`‖J‖ = ${fixed(normJ, 2)}, ‖J`);
+    sub(status, ["", "a"]).append(`‖ = ${normA === null ? "undefined" : cell(normA)}`);
+  }
+}
+
+/**
+ * The reader's input -> the model: a slider sets theta (degrees shown, radians kept), the selects the wrist and the
+ * coordinates; a change of the model redraws (bind). Returns the remover of all of it.
+ */
+function bind(model, { wristSelect, repSelect, sliders }, readTheta, draw) {
+const onInput = (ev) => {
+  const th = readTheta();
+  const i = Number(ev.target.dataset.joint) - 1;
+  const v = Number(ev.target.value);
+  if (!Number.isFinite(v)) return;
+  th[i] = (v * Math.PI) / 180;
+  model.set("theta", th);
+  model.save_changes();
+};
+const onWrist = () => {
+  model.set("wrist", wristSelect.value);
+  model.save_changes();
+};
+const onRep = () => {
+  model.set("rep", repSelect.value);
+  model.save_changes();
+};
+sliders.forEach((s) => s.addEventListener("input", onInput));
+wristSelect.addEventListener("change", onWrist);
+repSelect.addEventListener("change", onRep);
+for (const k of ["theta", "wrist", "rep"]) model.on(`change:${k}`, draw);
+  return () => {
+    for (const k of ["theta", "wrist", "rep"]) model.off(`change:${k}`, draw);
+    sliders.forEach((s) => s.removeEventListener("input", onInput));
+    wristSelect.removeEventListener("change", onWrist);
+    repSelect.removeEventListener("change", onRep);
+  };
+}
+
+function render({ model, el }) {
+  const doc = el.ownerDocument;
+  injectStyle(doc, "jac-live-style", BASE_CSS);
+  injectStyle(doc, "jac-live-style-3d", CSS3D);
+  injectStyle(doc, "jac-live-style-gimbal", CSS);
+  el.classList.add("jac-live", "jl-gimbal");
+  const wristModels = model.get("wrists");
+  const chains = {};
+  for (const [k, w] of Object.entries(wristModels)) chains[k] = makeChain(w.S, w.M, w.Q || null);
+  const keys = Object.keys(chains);
+  const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
+  // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
+  const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
+  /** @type {string[]} */
+  const colColors = (model.get("column_colors") || DEFAULT_COLUMNS).map(graphic);
+  const limitDeg = Number(model.get("limit_deg")) || 180;
+  const stepDeg = Number(model.get("step_deg")) || 0.5;
+  const tool = Number(model.get("tool")) || 0.3;
+  const near = Number(model.get("near")) || 0.1;
+  const wristSingular = Number(model.get("wrist_singular")) || 1e-3;
+  const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
+
+  const wrap = html("div", { class: "jl-wrap" }, el);
+  const plot = html("div", { class: "jl-plot" }, wrap);
+  const side = html("div", { class: "jl-side" }, wrap);
+
+  const opts = { uid, tool, pal, colColors, limitDeg, stepDeg, wristModels, keys, theta0: model.get("theta") };
+  const scene = buildScene(plot, opts);
+  const view = scene.view;
+  const chartParts = buildChart(plot, opts);
+  const { X, cursor } = chartParts;
+  const { wristSelect, repSelect, sliders, values, banner, status, tB, tJ, tA } = buildControls(side, opts);
+
+  // ---- state -> picture (update)
   function readWrist() {
     const w = model.get("wrist");
     return keys.includes(w) ? w : keys[0];
@@ -212,43 +341,6 @@ function render({ model, el }) {
   }
   const state = { theta: null, wrist: null, rep: null, curveKey: null };
 
-  // One sweep per point: J from evaluate, φ from its R, then J_a's angular rows B(φ)⁻¹ J_ω
-  // (the same J_a as analyticJacobian; test_live_gimbal.py reads the curves back against the library).
-  function curves(chain, th, rep) {
-    const A = [], G = [], D = [];
-    for (let k = 0; k < N_CURVE; k++) {
-      const d = -limitDeg + (2 * limitDeg * k) / (N_CURVE - 1);
-      const t = [th[0], (d * Math.PI) / 180, th[2]];
-      const e = evaluate(chain, t);
-      const J = e.Jg;
-      const phi = coordinatesFromRotation([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], rep);
-      const margin = rep === "zyx" ? Math.abs(Math.cos(phi[1])) : Math.abs(Math.sin(phi[1]));
-      let lin = 0, ang = 0;
-      for (let r = 3; r < 6; r++) for (let c = 0; c < 3; c++) lin += J[r][c] * J[r][c];
-      for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) ang += J[r][c] * J[r][c];
-      const x = X(d).toFixed(1);
-      G.push(`${x},${Y(Math.sqrt(lin + ang)).toFixed(1)}`);
-      D.push(`${x},${Y(margin).toFixed(1)}`); // |det B| = the margin, |cos φ2| or |sin φ2|
-      if (margin < LOCK_TOL) {
-        A.push(`${x},${Y(1e9).toFixed(1)}`); // off the top: undefined at the lock
-        continue;
-      }
-      const B = rateToAngularVelocity(phi, rep);
-      const Bi = inverse3(B);
-      let sa = 0;
-      for (let c = 0; c < 3; c++) {
-        for (let i = 0; i < 3; i++) {
-          const y = Bi[i][0] * J[0][c] + Bi[i][1] * J[1][c] + Bi[i][2] * J[2][c];
-          sa += y * y;
-        }
-      }
-      A.push(`${x},${Y(Math.sqrt(sa + lin)).toFixed(1)}`);
-    }
-    put(curveA, "points", A.join(" "));
-    put(curveJ, "points", G.join(" "));
-    put(curveD, "points", D.join(" "));
-  }
-
   function draw() {
     const w = readWrist();
     const rep = readRep();
@@ -262,30 +354,14 @@ function render({ model, el }) {
     const sigmaMin = sv[2];
     const normJ = frob(e.Jg);
     const normA = a.singular ? null : frob(a.J);
-    // 3-D
-    const L = [0.95 * tool, 0.95 * tool, 0.95 * tool];
-    const radius = [0.8 * tool, 0.66 * tool, 0.52 * tool];
-    for (let i = 0; i < 3; i++) {
-      const u = [e.Jg[0][i], e.Jg[1][i], e.Jg[2][i]];
-      axes[i].set(u.map((x) => -L[i] * x), u.map((x) => L[i] * x));
-      axisNums[i].set(u.map((x) => 1.12 * L[i] * x));
-      rings[i].set([0, 0, 0], u, radius[i]);
-      const b = [B[0][i], B[1][i], B[2][i]];
-      bCols[i].set([0, 0, 0], b.map((x) => 0.75 * tool * x));
-      bLabels[i].set(b.map((x) => 0.75 * tool * x), null, 14 * (i - 1), -14);
-    }
-    const p = [e.T[0][3], e.T[1][3], e.T[2][3]];
-    link.set([0, 0, 0], p);
-    centre.set([0, 0, 0]);
-    bFrame.set([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], p);
-    view.render();
+    drawScene(scene, e, B, tool);
     // chart
     // Along θ2 the three norms do not depend on θ1: joint 1 turns the whole wrist about z, which turns J's
     // columns about z and adds θ1 to φ1 (both ZYX and ZYZ start with a turn about z), and B(φ) = R_z(φ1) B(0, φ2, φ3).
     // So the chart is redone only when θ3, the wrist or the coordinates change (the test checks it at any θ1).
     const key = `${w}|${rep}|${th[2]}`;
     if (key !== state.curveKey) {
-      curves(chain, th, rep);
+      curves(chain, th, rep, limitDeg, chartParts);
       state.curveKey = key;
     }
     const cx = X(deg(th[1])).toFixed(1);
@@ -326,22 +402,7 @@ function render({ model, el }) {
     text(banner, word);
     banner.hidden = word === "";
     put(banner, "style", `border-color:${level === "warning" ? pal.warning : pal.singular}`);
-    const statusKey = [rep, ...a.phi.map((x) => fixed(deg(x), 1)), fixed(detB, 4), fixed(sigmaMin, 3), wristSing,
-      fixed(normJ, 2), normA === null ? "u" : cell(normA)].join("|");
-    if (statusKey !== state.statusKey) {
-      state.statusKey = statusKey;
-      status.textContent = "";
-      status.append(`φ (${rep.toUpperCase()}) = (${a.phi.map((x) => `${fixed(deg(x), 1)}°`).join(", ")})`);
-      html("br", {}, status);
-      status.append(`det B(φ) = ${DET[rep]}`);
-      sub(status, ["", "2"]).append(` = ${fixed(detB, 4)}`);
-      html("br", {}, status);
-      sub(status, ["σ", "min"]).append(" of J's ω rows = ");
-      status.append(`${fixed(sigmaMin, 3)}${wristSing ? " (the wrist is singular)" : ""}`);
-      html("br", {}, status);
-      status.append(`‖J‖ = ${fixed(normJ, 2)}, ‖J`);
-      sub(status, ["", "a"]).append(`‖ = ${normA === null ? "undefined" : cell(normA)}`);
-    }
+    writeStatus(status, state, { rep, phi: a.phi, detB, sigmaMin, wristSing, normJ, normA });
     for (let i = 0; i < 3; i++) {
       text(values[i], `${fixed(deg(th[i]), 1)}°`);
       put(sliders[i], "aria-valuetext", `${fixed(deg(th[i]), 1)} degrees`);  // what the page shows
@@ -359,36 +420,13 @@ function render({ model, el }) {
   }
 
   // ---- input -> state
-  const onInput = (ev) => {
-    const th = readTheta();
-    const i = Number(ev.target.dataset.joint) - 1;
-    const v = Number(ev.target.value);
-    if (!Number.isFinite(v)) return;
-    th[i] = (v * Math.PI) / 180;
-    model.set("theta", th);
-    model.save_changes();
-  };
-  const onWrist = () => {
-    model.set("wrist", wristSelect.value);
-    model.save_changes();
-  };
-  const onRep = () => {
-    model.set("rep", repSelect.value);
-    model.save_changes();
-  };
-  sliders.forEach((s) => s.addEventListener("input", onInput));
-  wristSelect.addEventListener("change", onWrist);
-  repSelect.addEventListener("change", onRep);
-  for (const k of ["theta", "wrist", "rep"]) model.on(`change:${k}`, draw);
+  const unbind = bind(model, { wristSelect, repSelect, sliders }, readTheta, draw);
   draw();
   suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
   el.jacLive = state;
   el.jacView = view;
   return () => {
-    for (const k of ["theta", "wrist", "rep"]) model.off(`change:${k}`, draw);
-    sliders.forEach((s) => s.removeEventListener("input", onInput));
-    wristSelect.removeEventListener("change", onWrist);
-    repSelect.removeEventListener("change", onRep);
+    unbind();
     view.destroy();
     el.textContent = "";
   };

@@ -85,6 +85,49 @@ const dot3 = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const finite3 = (p) => Number.isFinite(p[0]) && Number.isFinite(p[1]) && Number.isFinite(p[2]);
 
 /**
+ * Labels and dots must not cover each other: in the order they were made (the first keep their place), each
+ * that overlaps one already placed moves to the nearest free spot on rings of 4, 8, ... 48 SVG units around
+ * where it belongs (12 directions a ring), inside the drawing. A label with an anchor moves with its anchor.
+  * @param {Item[]} items
+ */
+function declutter(items) {
+  /** @type {Box[]} */
+  const placed = [];
+  /** @type {Map<Item, [number, number]>} */
+  const moved = new Map();
+  const half = VIEWBOX / 2;
+  /** @param {Box} b */
+  const free = (b) => Math.abs(b.x) + b.hw <= half && Math.abs(b.y) + b.hh <= half
+    && placed.every((q) => Math.abs(q.x - b.x) >= q.hw + b.hw || Math.abs(q.y - b.y) >= q.hh + b.hh);
+  for (const it of items) {
+    const b = it.box;
+    if (!it.visible || !b || it.anchor || !it.moveTo) continue;
+    let best = b;
+    if (!free(b)) {
+      search: for (let r = 4; r <= 48; r += 4) {
+        for (let k = 0; k < 12; k++) {
+          const t = (Math.PI / 6) * k - Math.PI / 4;
+          const c = { ...b, x: b.x + r * Math.cos(t), y: b.y + r * Math.sin(t) };
+          if (free(c)) {
+            best = c;
+            break search;
+          }
+        }
+      }
+    }
+    placed.push(best);
+    if (best !== b) {
+      it.moveTo(best.x, best.y);
+      moved.set(it, [best.x - b.x, best.y - b.y]);
+    }
+  }
+  for (const it of items) {
+    const shift = it.anchor && moved.get(it.anchor);
+    if (shift && it.box && it.moveTo && it.visible) it.moveTo(it.box.x + shift[0], it.box.y + shift[1]);
+  }
+}
+
+/**
  * An orthographic 3-D view in `parent`.
  * options: center (3), extent (world radius that must fit), azimuth, elevation (rad),
  * label (the aria-label: what is drawn), help (a visible line of how to turn it), id.
@@ -132,50 +175,9 @@ export function createView3D(parent, options) {
   const items = [];
   /** @type {((camera: Camera) => void)[]} */
   const listeners = [];
-  /**
-   * Labels and dots must not cover each other: in the order they were made (the first keep their place), each
-   * that overlaps one already placed moves to the nearest free spot on rings of 4, 8, ... 48 SVG units around
-   * where it belongs (12 directions a ring), inside the drawing. A label with an anchor moves with its anchor.
-   */
-  function declutter() {
-    /** @type {Box[]} */
-    const placed = [];
-    /** @type {Map<Item, [number, number]>} */
-    const moved = new Map();
-    const half = VIEWBOX / 2;
-    /** @param {Box} b */
-    const free = (b) => Math.abs(b.x) + b.hw <= half && Math.abs(b.y) + b.hh <= half
-      && placed.every((q) => Math.abs(q.x - b.x) >= q.hw + b.hw || Math.abs(q.y - b.y) >= q.hh + b.hh);
-    for (const it of items) {
-      const b = it.box;
-      if (!it.visible || !b || it.anchor || !it.moveTo) continue;
-      let best = b;
-      if (!free(b)) {
-        search: for (let r = 4; r <= 48; r += 4) {
-          for (let k = 0; k < 12; k++) {
-            const t = (Math.PI / 6) * k - Math.PI / 4;
-            const c = { ...b, x: b.x + r * Math.cos(t), y: b.y + r * Math.sin(t) };
-            if (free(c)) {
-              best = c;
-              break search;
-            }
-          }
-        }
-      }
-      placed.push(best);
-      if (best !== b) {
-        it.moveTo(best.x, best.y);
-        moved.set(it, [best.x - b.x, best.y - b.y]);
-      }
-    }
-    for (const it of items) {
-      const shift = it.anchor && moved.get(it.anchor);
-      if (shift && it.box && it.moveTo && it.visible) it.moveTo(it.box.x + shift[0], it.box.y + shift[1]);
-    }
-  }
   function render() {
     for (const it of items) it.draw(project, basis);
-    declutter();
+    declutter(items);
     const solid = items.filter((it) => it.layer === "solid" && it.visible);
     solid.sort((a, b) => a.depth - b.depth);
     let i = 0;
@@ -255,183 +257,18 @@ export function createView3D(parent, options) {
     items.push(item);
     return item;
   }
-  /** A segment p–q (world), stroke in px. set(p, q).
-   * @param {Layer} layer
-   * @param {Attrs} attrs
-   * @returns {Segment}
-   */
-  function segment(layer, attrs) {
-    const el = svg("line", { "vector-effect": "non-scaling-stroke", "stroke-linecap": "round", ...attrs },
-      layers[layer]);
-    /** @type {Segment} */
-    const it = {
-      el, layer, visible: true, depth: 0, p: [0, 0, 0], q: [0, 0, 0],
-      set(p, q) { this.p = p; this.q = q; this.visible = finite3(p) && finite3(q); return this; },
-      draw(pr) {
-        put(el, "visibility", this.visible ? "visible" : "hidden");
-        if (!this.visible) return;
-        const a = pr(this.p), b = pr(this.q);
-        put(el, "x1", a[0].toFixed(2)); put(el, "y1", a[1].toFixed(2));
-        put(el, "x2", b[0].toFixed(2)); put(el, "y2", b[1].toFixed(2));
-        this.depth = 0.5 * (a[2] + b[2]);
-      },
-    };
-    return add(it);
-  }
-  /** A polyline through world points. set(points).
-   * @param {Layer} layer
-   * @param {Attrs} attrs
-   * @returns {Polyline}
-   */
-  function polyline(layer, attrs) {
-    const el = svg("polyline", { fill: "none", "vector-effect": "non-scaling-stroke", "stroke-linejoin": "round",
-      "stroke-linecap": "round", ...attrs }, layers[layer]);
-    /** @type {Polyline} */
-    const it = {
-      el, layer, visible: true, depth: 0, pts: [],
-      set(pts) { this.pts = pts; this.visible = pts.every(finite3); return this; },
-      draw(pr) {
-        put(el, "visibility", this.visible ? "visible" : "hidden");
-        if (!this.visible) return;
-        let d = 0;
-        put(el, "points", this.pts.map((p) => {
-          const a = pr(p);
-          d += a[2];
-          return `${a[0].toFixed(2)},${a[1].toFixed(2)}`;
-        }).join(" "));
-        this.depth = d / Math.max(1, this.pts.length);
-      },
-    };
-    return add(it);
-  }
-  /** An arrow from p along the world vector v; its head (px) drawn on screen. set(p, v).
-   * @param {Layer} layer
-   * @param {string} color
-   * @param {number} [width]
-   * @param {number} [headPx]
-   * @returns {Arrow3}
-   */
-  function arrow(layer, color, width = 2.5, headPx = 11) {
-    const g = svg("g", { fill: color, stroke: color }, layers[layer]);
-    const line = svg("line", { "stroke-width": width, "vector-effect": "non-scaling-stroke",
-      "stroke-linecap": "round" }, g);
-    const head = svg("polygon", { stroke: "none" }, g);
-    /** @type {Arrow3} */
-    const it = {
-      el: g, layer, visible: true, depth: 0, p: [0, 0, 0], v: [0, 0, 0],
-      set(p, v) { this.p = p; this.v = v; this.visible = finite3(p) && finite3(v); return this; },
-      draw(pr) {
-        const a = pr(this.p), b = pr([this.p[0] + this.v[0], this.p[1] + this.v[1], this.p[2] + this.v[2]]);
-        const dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy);
-        const show = this.visible && L > 1e-6;
-        put(g, "visibility", show ? "visible" : "hidden");
-        this.depth = 0.5 * (a[2] + b[2]);
-        if (!show) return;
-        const ux = dx / L, uy = dy / L, h = Math.min(headPx, 0.5 * L), w = 0.45 * h;
-        const bx = b[0] - h * ux, by = b[1] - h * uy;
-        put(line, "x1", a[0].toFixed(2)); put(line, "y1", a[1].toFixed(2));
-        put(line, "x2", bx.toFixed(2)); put(line, "y2", by.toFixed(2));
-        put(head, "points", `${b[0].toFixed(2)},${b[1].toFixed(2)} ${(bx - w * uy).toFixed(2)},`
-          + `${(by + w * ux).toFixed(2)} ${(bx + w * uy).toFixed(2)},${(by - w * ux).toFixed(2)}`);
-      },
-    };
-    return add(it);
-  }
-  /** A text label at a world point (offset in SVG units). set(p, text?).
-   * @param {Layer} layer
-   * @param {string} text
-   * @param {Attrs} [attrs]
-   * @returns {Label}
-   */
-  function label(layer, text, attrs = {}) {
-    const el = svg("text", { "text-anchor": "middle", "dominant-baseline": "central", "paint-order": "stroke",
-      stroke: PALETTE.bg, "stroke-width": 4, "stroke-linejoin": "round", ...attrs }, layers[layer]);
-    el.textContent = text;
-    let font = 0; // its font size in SVG units, read once it is shown (a deck's style may change it)
-    /** @type {Label} */
-    const it = {
-      el, layer, visible: true, depth: 0, p: [0, 0, 0], dx: 0, dy: 0,
-      moveTo(x, y) {
-        put(el, "x", x.toFixed(2));
-        put(el, "y", y.toFixed(2));
-      },
-      set(p, t = null, dx = 0, dy = 0) {
-        this.p = p; this.dx = dx; this.dy = dy; this.visible = finite3(p);
-        if (t !== null && el.textContent !== t) el.textContent = t;
-        return this;
-      },
-      draw(pr) {
-        put(el, "visibility", this.visible ? "visible" : "hidden");
-        if (!this.visible) return;
-        const a = pr(this.p);
-        if (!font) font = parseFloat(getComputedStyle(el).fontSize) || FONT;
-        // a glyph is about 0.6 em wide; the box is what declutter keeps apart
-        this.box = { x: a[0] + this.dx, y: a[1] + this.dy, hw: 0.3 * font * (el.textContent || "").length + 1,
-          hh: 0.5 * font };
-        this.moveTo?.(this.box.x, this.box.y);
-        this.depth = a[2];
-      },
-    };
-    return add(it);
-  }
-  /** A dot (screen radius in SVG units) at a world point. set(p).
-   * @param {Layer} layer
-   * @param {Attrs} attrs
-   * @returns {Dot}
-   */
-  function dot(layer, attrs) {
-    const el = svg("circle", { "vector-effect": "non-scaling-stroke", ...attrs }, layers[layer]);
-    const r = Number(attrs.r) || 0;
-    /** @type {Dot} */
-    const it = {
-      el, layer, visible: true, depth: 0, p: [0, 0, 0],
-      set(p) { this.p = p; this.visible = finite3(p); return this; },
-      moveTo(x, y) {
-        put(el, "cx", x.toFixed(2));
-        put(el, "cy", y.toFixed(2));
-      },
-      draw(pr) {
-        put(el, "visibility", this.visible ? "visible" : "hidden");
-        if (!this.visible) return;
-        const a = pr(this.p);
-        put(el, "cx", a[0].toFixed(2)); put(el, "cy", a[1].toFixed(2));
-        // a dot of the front layer is a key that labels must not cover; a joint of the arm is not
-        if (layer === "front") this.box = { x: a[0], y: a[1], hw: r, hh: r };
-        this.depth = a[2];
-      },
-    };
-    return add(it);
-  }
-  /** A circle of world radius about `c`, in the plane normal to unit `n`, as a closed polyline. set(c, n, radius).
-   * @param {Layer} layer
-   * @param {Attrs} attrs
-   * @param {number} [segments]
-   * @returns {Ring}
-   */
-  function ring(layer, attrs, segments = 40) {
-    const line = polyline(layer, attrs);
-    const base = line.set;
-    const it = /** @type {Ring} */ (/** @type {unknown} */ (line));
-    /** @param {Point} c @param {Point} n @param {number} radius */
-    it.set = function set(c, n, radius) {
-      // two unit vectors e1, e2 normal to n
-      const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
-      const k = dot3(a, n);
-      let e1 = [a[0] - k * n[0], a[1] - k * n[1], a[2] - k * n[2]];
-      const L = Math.hypot(...e1);
-      e1 = e1.map((x) => x / L);
-      const e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
-      /** @type {Vec3[]} */
-      const pts = [];
-      for (let s = 0; s <= segments; s++) {
-        const t = (2 * Math.PI * s) / segments, cs = radius * Math.cos(t), sn = radius * Math.sin(t);
-        pts.push([c[0] + cs * e1[0] + sn * e2[0], c[1] + cs * e1[1] + sn * e2[1], c[2] + cs * e1[2] + sn * e2[2]]);
-      }
-      base.call(line, pts);
-      return it;
-    };
-    return it;
-  }
+  /** @type {(layer: Layer, attrs: Attrs) => Segment} */
+  const segment = (layer, attrs) => add(segmentItem(layers[layer], layer, attrs));
+  /** @type {(layer: Layer, attrs: Attrs) => Polyline} */
+  const polyline = (layer, attrs) => add(polylineItem(layers[layer], layer, attrs));
+  /** @type {(layer: Layer, color: string, width?: number, headPx?: number) => Arrow3} */
+  const arrow = (layer, color, width, headPx) => add(arrowItem(layers[layer], layer, color, width, headPx));
+  /** @type {(layer: Layer, text: string, attrs?: Attrs) => Label} */
+  const label = (layer, text, attrs) => add(labelItem(layers[layer], layer, text, attrs));
+  /** @type {(layer: Layer, attrs: Attrs) => Dot} */
+  const dot = (layer, attrs) => add(dotItem(layers[layer], layer, attrs));
+  /** @type {(layer: Layer, attrs: Attrs, segments?: number) => Ring} */
+  const ring = (layer, attrs, segments) => add(ringItem(layers[layer], layer, attrs, segments));
   return {
     svg: root, box, help, layers, camera, items, project, render, setCamera, segment, polyline, arrow, label, dot,
     ring, scale,
@@ -448,6 +285,190 @@ export function createView3D(parent, options) {
   };
 }
 
+
+/** A segment p–q (world), stroke in px. set(p, q).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {Attrs} attrs
+ * @returns {Segment}
+ */
+function segmentItem(parent, layer, attrs) {
+  const el = svg("line", { "vector-effect": "non-scaling-stroke", "stroke-linecap": "round", ...attrs },
+    parent);
+  /** @type {Segment} */
+  const it = {
+    el, layer, visible: true, depth: 0, p: [0, 0, 0], q: [0, 0, 0],
+    set(p, q) { this.p = p; this.q = q; this.visible = finite3(p) && finite3(q); return this; },
+    draw(pr) {
+      put(el, "visibility", this.visible ? "visible" : "hidden");
+      if (!this.visible) return;
+      const a = pr(this.p), b = pr(this.q);
+      put(el, "x1", a[0].toFixed(2)); put(el, "y1", a[1].toFixed(2));
+      put(el, "x2", b[0].toFixed(2)); put(el, "y2", b[1].toFixed(2));
+      this.depth = 0.5 * (a[2] + b[2]);
+    },
+  };
+  return it;
+}
+/** A polyline through world points. set(points).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {Attrs} attrs
+ * @returns {Polyline}
+ */
+function polylineItem(parent, layer, attrs) {
+  const el = svg("polyline", { fill: "none", "vector-effect": "non-scaling-stroke", "stroke-linejoin": "round",
+    "stroke-linecap": "round", ...attrs }, parent);
+  /** @type {Polyline} */
+  const it = {
+    el, layer, visible: true, depth: 0, pts: [],
+    set(pts) { this.pts = pts; this.visible = pts.every(finite3); return this; },
+    draw(pr) {
+      put(el, "visibility", this.visible ? "visible" : "hidden");
+      if (!this.visible) return;
+      let d = 0;
+      put(el, "points", this.pts.map((p) => {
+        const a = pr(p);
+        d += a[2];
+        return `${a[0].toFixed(2)},${a[1].toFixed(2)}`;
+      }).join(" "));
+      this.depth = d / Math.max(1, this.pts.length);
+    },
+  };
+  return it;
+}
+/** An arrow from p along the world vector v; its head (px) drawn on screen. set(p, v).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {string} color
+ * @param {number} [width]
+ * @param {number} [headPx]
+ * @returns {Arrow3}
+ */
+function arrowItem(parent, layer, color, width = 2.5, headPx = 11) {
+  const g = svg("g", { fill: color, stroke: color }, parent);
+  const line = svg("line", { "stroke-width": width, "vector-effect": "non-scaling-stroke",
+    "stroke-linecap": "round" }, g);
+  const head = svg("polygon", { stroke: "none" }, g);
+  /** @type {Arrow3} */
+  const it = {
+    el: g, layer, visible: true, depth: 0, p: [0, 0, 0], v: [0, 0, 0],
+    set(p, v) { this.p = p; this.v = v; this.visible = finite3(p) && finite3(v); return this; },
+    draw(pr) {
+      const a = pr(this.p), b = pr([this.p[0] + this.v[0], this.p[1] + this.v[1], this.p[2] + this.v[2]]);
+      const dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy);
+      const show = this.visible && L > 1e-6;
+      put(g, "visibility", show ? "visible" : "hidden");
+      this.depth = 0.5 * (a[2] + b[2]);
+      if (!show) return;
+      const ux = dx / L, uy = dy / L, h = Math.min(headPx, 0.5 * L), w = 0.45 * h;
+      const bx = b[0] - h * ux, by = b[1] - h * uy;
+      put(line, "x1", a[0].toFixed(2)); put(line, "y1", a[1].toFixed(2));
+      put(line, "x2", bx.toFixed(2)); put(line, "y2", by.toFixed(2));
+      put(head, "points", `${b[0].toFixed(2)},${b[1].toFixed(2)} ${(bx - w * uy).toFixed(2)},`
+        + `${(by + w * ux).toFixed(2)} ${(bx + w * uy).toFixed(2)},${(by - w * ux).toFixed(2)}`);
+    },
+  };
+  return it;
+}
+/** A text label at a world point (offset in SVG units). set(p, text?).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {string} text
+ * @param {Attrs} [attrs]
+ * @returns {Label}
+ */
+function labelItem(parent, layer, text, attrs = {}) {
+  const el = svg("text", { "text-anchor": "middle", "dominant-baseline": "central", "paint-order": "stroke",
+    stroke: PALETTE.bg, "stroke-width": 4, "stroke-linejoin": "round", ...attrs }, parent);
+  el.textContent = text;
+  let font = 0; // its font size in SVG units, read once it is shown (a deck's style may change it)
+  /** @type {Label} */
+  const it = {
+    el, layer, visible: true, depth: 0, p: [0, 0, 0], dx: 0, dy: 0,
+    moveTo(x, y) {
+      put(el, "x", x.toFixed(2));
+      put(el, "y", y.toFixed(2));
+    },
+    set(p, t = null, dx = 0, dy = 0) {
+      this.p = p; this.dx = dx; this.dy = dy; this.visible = finite3(p);
+      if (t !== null && el.textContent !== t) el.textContent = t;
+      return this;
+    },
+    draw(pr) {
+      put(el, "visibility", this.visible ? "visible" : "hidden");
+      if (!this.visible) return;
+      const a = pr(this.p);
+      if (!font) font = parseFloat(getComputedStyle(el).fontSize) || FONT;
+      // a glyph is about 0.6 em wide; the box is what declutter keeps apart
+      this.box = { x: a[0] + this.dx, y: a[1] + this.dy, hw: 0.3 * font * (el.textContent || "").length + 1,
+        hh: 0.5 * font };
+      this.moveTo?.(this.box.x, this.box.y);
+      this.depth = a[2];
+    },
+  };
+  return it;
+}
+/** A dot (screen radius in SVG units) at a world point. set(p).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {Attrs} attrs
+ * @returns {Dot}
+ */
+function dotItem(parent, layer, attrs) {
+  const el = svg("circle", { "vector-effect": "non-scaling-stroke", ...attrs }, parent);
+  const r = Number(attrs.r) || 0;
+  /** @type {Dot} */
+  const it = {
+    el, layer, visible: true, depth: 0, p: [0, 0, 0],
+    set(p) { this.p = p; this.visible = finite3(p); return this; },
+    moveTo(x, y) {
+      put(el, "cx", x.toFixed(2));
+      put(el, "cy", y.toFixed(2));
+    },
+    draw(pr) {
+      put(el, "visibility", this.visible ? "visible" : "hidden");
+      if (!this.visible) return;
+      const a = pr(this.p);
+      put(el, "cx", a[0].toFixed(2)); put(el, "cy", a[1].toFixed(2));
+      // a dot of the front layer is a key that labels must not cover; a joint of the arm is not
+      if (layer === "front") this.box = { x: a[0], y: a[1], hw: r, hh: r };
+      this.depth = a[2];
+    },
+  };
+  return it;
+}
+/** A circle of world radius about `c`, in the plane normal to unit `n`, as a closed polyline. set(c, n, radius).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {Attrs} attrs
+ * @param {number} [segments]
+ * @returns {Ring}
+ */
+function ringItem(parent, layer, attrs, segments = 40) {
+  const line = polylineItem(parent, layer, attrs);
+  const base = line.set;
+  const it = /** @type {Ring} */ (/** @type {unknown} */ (line));
+  /** @param {Point} c @param {Point} n @param {number} radius */
+  it.set = function set(c, n, radius) {
+    // two unit vectors e1, e2 normal to n
+    const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+    const k = dot3(a, n);
+    let e1 = [a[0] - k * n[0], a[1] - k * n[1], a[2] - k * n[2]];
+    const L = Math.hypot(...e1);
+    e1 = e1.map((x) => x / L);
+    const e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
+    /** @type {Vec3[]} */
+    const pts = [];
+    for (let s = 0; s <= segments; s++) {
+      const t = (2 * Math.PI * s) / segments, cs = radius * Math.cos(t), sn = radius * Math.sin(t);
+      pts.push([c[0] + cs * e1[0] + sn * e2[0], c[1] + cs * e1[1] + sn * e2[1], c[2] + cs * e1[2] + sn * e2[2]]);
+    }
+    base.call(line, pts);
+    return it;
+  };
+  return it;
+}
 
 /**
  * Arrows of a frame and its name ("{s}", placed below its origin); axis letters x, y, z when `letters`.
