@@ -1,3 +1,5 @@
+// @ts-check
+// @ts-check
 // The columns explorer, live: which joints move which
 // column of J_s and of J_b, on the spatial 5R arm of the notes. One slider per
 // joint; the arm and its joint (screw) axes in a 3-D view the reader turns;
@@ -22,6 +24,28 @@ import {
 } from "./ui.js";
 import { CSS as CSS3D, createView3D, frameItems, groundGrid } from "./view3d.js";
 
+/** @typedef {import("./host.js").Model} Model */
+/** @typedef {import("./linalg.js").Mat} Mat */
+/** @typedef {import("./ui.js").SubText} SubText */
+/** @typedef {import("./ui.js").MatrixTable} MatrixTable */
+/** @typedef {import("./view3d.js").Segment} Segment */
+/** @typedef {import("./view3d.js").Dot} Dot */
+/** @typedef {import("./view3d.js").Label} Label */
+/**
+ * What the view shows, and what changed when a joint last moved (el.jacLive, read by the tests).
+ * @typedef {object} ColumnsState
+ * @property {number[] | null} theta
+ * @property {number | null} column 1-based
+ * @property {Mat | null} Js
+ * @property {Mat | null} Jb
+ * @property {number[]} moved the joints (1-based) that moved
+ * @property {number[]} changedS the columns of J_s that changed
+ * @property {number[]} changedB the columns of J_b that changed
+ * @property {string | null} changeKey
+ * @property {Mat} [T]
+ * @property {number[][]} [points]
+ */
+
 const CHANGE_TOL = 1e-12; // as jacobians.widgets.columns: a column "changed" if an entry moved by more
 const DEFAULT_PALETTE = { space: PALETTE.space, body: PALETTE.body, link: PALETTE.link, joint: PALETTE.joint,
   muted: PALETTE.muted };
@@ -40,6 +64,7 @@ const CSS = `
 .jl-columns td.jl-watch,.jl-columns th.jl-watch{outline:2px solid var(--jl-ink);outline-offset:-2px}
 `;
 
+/** @param {{model: Model, el: HTMLElement}} args */
 function render({ model, el }) {
   const doc = el.ownerDocument;
   injectStyle(doc, "jac-live-style", BASE_CSS);
@@ -73,18 +98,23 @@ function render({ model, el }) {
   const sFrame = frameItems(view, "{s}", 0.35 * reach / 2, { letters: true });
   const eye = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
   sFrame.set(eye, [0, 0, 0]);
+  /** @type {Segment[]} */
   const links = [];
   for (let k = 0; k < n; k++) {
     links.push(view.segment("solid", { stroke: pal.link, "stroke-width": 7, class: `jl-link jl-link-${k + 1}` }));
   }
+  /** @type {Segment[]} */
   const axes = [];
   for (let i = 0; i < n; i++) axes.push(view.segment("solid", { "stroke-width": 4, class: `jl-axis jl-axis-${i + 1}` }));
+  /** @type {Dot[]} */
   const joints = [];
   for (let i = 0; i < n; i++) {
     joints.push(view.dot("solid", { r: 7, fill: PALETTE.bg, stroke: pal.joint, "stroke-width": 2.5 }));
   }
   const bFrame = frameItems(view, "{b}", 0.35 * reach / 2);
+  /** @type {Dot[]} */
   const axisDots = [];
+  /** @type {Label[]} */
   const axisNums = [];
   for (let i = 0; i < n; i++) {
     axisDots.push(view.dot("front", { r: 13, stroke: PALETTE.fg, "stroke-width": 1.5, class: "jl-axis-key" }));
@@ -96,8 +126,11 @@ function render({ model, el }) {
   const colLabel = html("label", { for: `${uid}-col` }, side, "Watch column");
   const select = html("select", { id: `${uid}-col`, class: "jl-column" }, colLabel);
   for (let i = 1; i <= n; i++) html("option", { value: i }, select, `${i}`);
+  /** @type {HTMLInputElement[]} */
   const sliders = [];
+  /** @type {HTMLOutputElement[]} */
   const values = [];
+  /** @type {HTMLSpanElement[]} */
   const keys = [];
   const theta0 = model.get("theta");
   for (let i = 0; i < n; i++) {
@@ -135,10 +168,14 @@ function render({ model, el }) {
     const c = Math.round(Number(model.get("column")));
     return c >= 1 && c <= n ? c : 1;
   }
+  /** @type {ColumnsState} */
   const state = { theta: null, column: null, Js: null, Jb: null, moved: [], changedS: [], changedB: [], changeKey: null };
+  /** @type {(k: number, i: number) => string} the colour of axis k when column i is watched */
   const roleColor = (k, i) => (k < i ? pal.space : k > i ? pal.body : PALETTE.fg);
 
+  /** @param {Mat | null} A @param {Mat} B @returns {number[]} the columns (1-based) that differ */
   function changedColumns(A, B) {
+    /** @type {number[]} */
     const out = [];
     if (!A || !B) return out;
     for (let c = 0; c < n; c++) {
@@ -148,6 +185,7 @@ function render({ model, el }) {
     }
     return out;
   }
+  /** @param {number[]} xs */
   const list = (xs) => (xs.length ? xs.join(", ") : "none");
 
   function draw() {
@@ -156,7 +194,8 @@ function render({ model, el }) {
     const e = evaluate(chain, th);
     const pts = e.points;
     // what changed since the last drawing
-    const moved = state.theta ? th.map((t, k) => (t !== state.theta[k] ? k + 1 : 0)).filter(Boolean) : [];
+    const last = state.theta;
+    const moved = last ? th.map((t, k) => (t !== last[k] ? k + 1 : 0)).filter(Boolean) : [];
     if (moved.length) {
       state.changedS = changedColumns(state.Js, e.Js);
       state.changedB = changedColumns(state.Jb, e.Jb);
@@ -185,7 +224,9 @@ function render({ model, el }) {
     bFrame.set(R, pts[n]);
     view.render();
     // numbers
-    for (const [t, J, changed, colour] of [[tS, e.Js, state.changedS, pal.space], [tB, e.Jb, state.changedB, pal.body]]) {
+    /** @type {[MatrixTable, Mat, number[], string][]} */
+    const shown = [[tS, e.Js, state.changedS, pal.space], [tB, e.Jb, state.changedB, pal.body]];
+    for (const [t, J, changed, colour] of shown) {
       for (let c = 0; c < n; c++) {
         const isChanged = changed.includes(c + 1);
         const isWatched = c + 1 === col;
@@ -219,6 +260,7 @@ function render({ model, el }) {
     el.dataset.changedB = state.changedB.join(",");
   }
 
+  /** @param {number} col */
   function legendFor(col) {
     const before = Array.from({ length: col - 1 }, (_, k) => k + 1);
     const after = Array.from({ length: n - col }, (_, k) => col + k + 1);
@@ -253,10 +295,12 @@ function render({ model, el }) {
   }
 
   // ---- input -> state
+  /** @param {Event} ev */
   const onInput = (ev) => {
     const th = readTheta();
-    const i = Number(ev.target.dataset.joint) - 1;
-    const v = Number(ev.target.value);
+    const target = /** @type {HTMLInputElement} */ (ev.target);
+    const i = Number(target.dataset.joint) - 1;
+    const v = Number(target.value);
     if (!Number.isFinite(v)) return;
     th[i] = v;
     model.set("theta", th);
@@ -272,8 +316,7 @@ function render({ model, el }) {
   model.on("change:column", draw);
   draw();
   suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
-  el.jacLive = state;
-  el.jacView = view;
+  Object.assign(el, { jacLive: state, jacView: view });
   return () => {
     model.off("change:theta", draw);
     model.off("change:column", draw);

@@ -177,6 +177,7 @@ export function sub(parent, label) {
 }
 
 /** The rows of a twist or of a 6×n Jacobian: ω_x, ω_y, ω_z, v_x, v_y, v_z. */
+/** @type {ReadonlyArray<readonly [string, string]>} */
 export const TWIST_ROWS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
 
 /**
