@@ -22,6 +22,9 @@ import {
 
 /** @typedef {import("./ui.js").Point2} Point2 */
 
+const RUN_HELP = "Keys in the view: P play/pause, → or . one step on, ← or , one step back.";
+const PEN_HELP = "Drawing: drag on the picture, or with the picture focused move the pen (+) with the arrow keys "
+  + "(Shift: finer), Enter adds a point, Backspace removes one; the button again uses the path, Escape cancels.";
 export const PATHS = ["circle", "to full reach", "close past the base"];
 const METHODS = { pinv: "pseudo-inverse", dls: "damped least squares" };
 const KEYS_ON = new Set(["ArrowRight", "."]);
@@ -91,6 +94,120 @@ export function simulate(chain, { path, drawn, method, damping, nSteps, duration
   if (starts) starts.set(key, theta0);
   const run = resolvedRate(chain, theta0, x, t[1] - t[0], method, damping, gain, v);
   return { t, xd: x, theta0, run };
+}
+
+/**
+ * The drawing pad of the path (bind): the Draw button shows a pad over the picture; a drag draws a stroke, or, with
+ * the picture focused, the arrow keys move a pen (Shift: finer), Enter places a point, Backspace takes one back, the
+ * button uses the points placed, Escape cancels. A stroke of two distinct points or more goes to run.use.
+ * Returns the listeners to add, as [target, type, handler].
+ * @param {{root: SVGSVGElement, ink: SVGPolylineElement, pen: SVGPathElement, pad: SVGRectElement,
+ *   drawBtn: HTMLButtonElement, help: HTMLElement, say: (text: string) => void, reach: number, R: number}} parts
+ * @param {{tool: () => ArrayLike<number> | null, stop: () => void, use: (pts: Point2[]) => void}} run
+ * @returns {[EventTarget, string, (ev: any) => void][]}
+ */
+function drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, run) {
+  /** @type {[EventTarget, string, (ev: any) => void][]} */
+  const on = [];
+let drawing = false;
+/** @type {Point2[] | null} */
+let stroke = null; // a pointer's stroke, while the pointer is down
+/** @type {Point2[]} */
+let keyed = []; // the points placed with the keyboard
+/** @type {Point2} */
+let penAt = [0, 0];
+const rootLabel = root.getAttribute("aria-label") || "";
+/** @param {Point2[]} P */
+const inkPoints = (P) => ink.setAttribute("points", P.map((q) => `${q[0]},${q[1]}`).join(" "));
+const showPen = () => {
+  const d = 0.05 * reach;
+  pen.setAttribute("d", `M${penAt[0] - d},${penAt[1]} h${2 * d} M${penAt[0]},${penAt[1] - d} v${2 * d}`);
+  inkPoints(keyed.length ? [...keyed, penAt] : []);
+};
+/** @param {boolean} d */
+const setDrawing = (d) => {
+  drawing = d;
+  keyed = [];
+  pad.setAttribute("visibility", d ? "visible" : "hidden");
+  pen.setAttribute("visibility", d ? "visible" : "hidden");
+  drawBtn.setAttribute("aria-pressed", String(d));
+  drawBtn.textContent = d ? "✎ Use the path drawn" : "✎ Draw a path";
+  help.textContent = d ? PEN_HELP : RUN_HELP;
+  if (d) {
+    const tool = run.tool();
+    penAt = tool ? [Math.round(tool[0] * 100) / 100, Math.round(tool[1] * 100) / 100] : [0, 0];
+    showPen();
+    root.setAttribute("tabindex", "0");
+    root.setAttribute("aria-label", `${rootLabel}. Drawing pad: the pen starts at the tool. ${PEN_HELP}`);
+  } else {
+    ink.setAttribute("points", "");
+    root.removeAttribute("tabindex");
+    root.setAttribute("aria-label", rootLabel);
+  }
+};
+/** Use a drawn stroke as the path (at least two distinct points), then stop drawing. @param {Point2[]} pts */
+const commit = (pts) => {
+  setDrawing(false);
+  if (resample(pts, 2)) run.use(pts);
+};
+on.push([drawBtn, "click", () => {
+  run.stop();
+  if (!drawing) {
+    setDrawing(true);
+    root.focus();
+  } else if (keyed.length >= 2) commit(keyed);
+  else setDrawing(false);
+}]);
+/** @type {Record<string, Point2>} */
+const PEN_MOVES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+on.push([root, "keydown", (/** @type {KeyboardEvent} */ ev) => {
+  if (!drawing) return;
+  const where = () => `(${fixed(penAt[0], 2)}, ${fixed(penAt[1], 2)}) m`;
+  const move = PEN_MOVES[ev.key];
+  if (move) {
+    const h = ev.shiftKey ? 0.01 * reach : 0.05 * reach;
+    penAt = /** @type {Point2} */ (penAt.map((x, i) => Math.max(-R, Math.min(R, Math.round((x + h * move[i]) * 1e4) / 1e4))));
+    say(`pen at ${where()}`);
+  } else if (ev.key === "Enter" || ev.key === " ") {
+    keyed.push(penAt);
+    say(`point ${keyed.length} at ${where()}`);
+  } else if (ev.key === "Backspace") {
+    keyed.pop();
+    say(`${keyed.length} points`);
+  } else if (ev.key === "Escape") {
+    setDrawing(false);
+    drawBtn.focus();
+    say("drawing cancelled");
+  } else return;
+  if (drawing) showPen();
+  ev.preventDefault();
+  ev.stopPropagation(); // the view's own keys (step, play) and a deck's wait until the drawing ends
+}]);
+on.push([pad, "pointerdown", (ev) => {
+  const p = toWorld(root, ev);
+  if (!p) return;
+  capture(pad, ev);
+  stroke = [p];
+  inkPoints(stroke);
+  ev.preventDefault();
+}]);
+on.push([pad, "pointermove", (ev) => {
+  const p = stroke && toWorld(root, ev);
+  if (!p || !stroke) return;
+  stroke.push(p);
+  inkPoints(stroke);
+}]);
+/** @param {PointerEvent} ev */
+const finish = (ev) => {
+  if (!stroke) return;
+  const last = ev.type === "pointerup" && toWorld(root, ev);
+  if (last) stroke.push(last); // a touch's last move can come only with the lift
+  const pts = stroke;
+  stroke = null;
+  commit(pts);
+};
+on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
+  return on;
 }
 
 function render({ model, el }) {
@@ -174,9 +291,6 @@ function render({ model, el }) {
   const back = html("button", { type: "button", class: "jr-back", "aria-label": "one step back" }, row2, "◀ step");
   const play = html("button", { type: "button", class: "jl-play", "aria-pressed": "false" }, row2, "▶ Play");
   const fwd = html("button", { type: "button", class: "jr-fwd", "aria-label": "one step on" }, row2, "step ▶");
-  const RUN_HELP = "Keys in the view: P play/pause, → or . one step on, ← or , one step back.";
-  const PEN_HELP = "Drawing: drag on the picture, or with the picture focused move the pen (+) with the arrow keys "
-    + "(Shift: finer), Enter adds a point, Backspace removes one; the button again uses the path, Escape cancels.";
   const help = html("p", { class: "jl-status jr-help" }, side, RUN_HELP);
   const status = html("p", { class: "jl-status" }, side);
   const say = announcer(side);  // the key numbers, once a run or a drag has stopped
@@ -312,107 +426,15 @@ function render({ model, el }) {
     }],
   ];
   // drawing a path: press "Draw a path", then drag over the arm's picture, or move a pen with the keys
-  let drawing = false;
-  /** @type {Point2[] | null} */
-  let stroke = null; // a pointer's stroke, while the pointer is down
-  /** @type {Point2[]} */
-  let keyed = []; // the points placed with the keyboard
-  /** @type {Point2} */
-  let penAt = [0, 0];
-  const rootLabel = root.getAttribute("aria-label") || "";
-  /** @param {Point2[]} P */
-  const inkPoints = (P) => ink.setAttribute("points", P.map((q) => `${q[0]},${q[1]}`).join(" "));
-  const showPen = () => {
-    const d = 0.05 * reach;
-    pen.setAttribute("d", `M${penAt[0] - d},${penAt[1]} h${2 * d} M${penAt[0]},${penAt[1] - d} v${2 * d}`);
-    inkPoints(keyed.length ? [...keyed, penAt] : []);
-  };
-  /** @param {boolean} d */
-  const setDrawing = (d) => {
-    drawing = d;
-    keyed = [];
-    pad.setAttribute("visibility", d ? "visible" : "hidden");
-    pen.setAttribute("visibility", d ? "visible" : "hidden");
-    drawBtn.setAttribute("aria-pressed", String(d));
-    drawBtn.textContent = d ? "✎ Use the path drawn" : "✎ Draw a path";
-    help.textContent = d ? PEN_HELP : RUN_HELP;
-    if (d) {
-      const tool = state.sim ? state.sim.run.positions[state.step] : null;
-      penAt = tool ? [Math.round(tool[0] * 100) / 100, Math.round(tool[1] * 100) / 100] : [0, 0];
-      showPen();
-      root.setAttribute("tabindex", "0");
-      root.setAttribute("aria-label", `${rootLabel}. Drawing pad: the pen starts at the tool. ${PEN_HELP}`);
-    } else {
-      ink.setAttribute("points", "");
-      root.removeAttribute("tabindex");
-      root.setAttribute("aria-label", rootLabel);
-    }
-  };
-  /** Use a drawn stroke as the path (at least two distinct points), then stop drawing. @param {Point2[]} pts */
-  const commit = (pts) => {
-    setDrawing(false);
-    if (!resample(pts, 2)) return;
-    model.set("drawn", pts.map((p) => [Math.round(p[0] * 1e4) / 1e4, Math.round(p[1] * 1e4) / 1e4]));
-    put("path", "drawn");
-    restart();
-  };
-  on.push([drawBtn, "click", () => {
-    stop();
-    if (!drawing) {
-      setDrawing(true);
-      root.focus();
-    } else if (keyed.length >= 2) commit(keyed);
-    else setDrawing(false);
-  }]);
-  /** @type {Record<string, Point2>} */
-  const PEN_MOVES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
-  on.push([root, "keydown", (/** @type {KeyboardEvent} */ ev) => {
-    if (!drawing) return;
-    const where = () => `(${fixed(penAt[0], 2)}, ${fixed(penAt[1], 2)}) m`;
-    const move = PEN_MOVES[ev.key];
-    if (move) {
-      const h = ev.shiftKey ? 0.01 * reach : 0.05 * reach;
-      penAt = /** @type {Point2} */ (penAt.map((x, i) => Math.max(-R, Math.min(R, Math.round((x + h * move[i]) * 1e4) / 1e4))));
-      say(`pen at ${where()}`);
-    } else if (ev.key === "Enter" || ev.key === " ") {
-      keyed.push(penAt);
-      say(`point ${keyed.length} at ${where()}`);
-    } else if (ev.key === "Backspace") {
-      keyed.pop();
-      say(`${keyed.length} points`);
-    } else if (ev.key === "Escape") {
-      setDrawing(false);
-      drawBtn.focus();
-      say("drawing cancelled");
-    } else return;
-    if (drawing) showPen();
-    ev.preventDefault();
-    ev.stopPropagation(); // the view's own keys (step, play) and a deck's wait until the drawing ends
-  }]);
-  on.push([pad, "pointerdown", (ev) => {
-    const p = toWorld(root, ev);
-    if (!p) return;
-    capture(pad, ev);
-    stroke = [p];
-    inkPoints(stroke);
-    ev.preventDefault();
-  }]);
-  on.push([pad, "pointermove", (ev) => {
-    const p = stroke && toWorld(root, ev);
-    if (!p || !stroke) return;
-    stroke.push(p);
-    inkPoints(stroke);
-  }]);
-  /** @param {PointerEvent} ev */
-  const finish = (ev) => {
-    if (!stroke) return;
-    const last = ev.type === "pointerup" && toWorld(root, ev);
-    if (last) stroke.push(last); // a touch's last move can come only with the lift
-    const pts = stroke;
-    stroke = null;
-    commit(pts);
-  };
-  on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
+  on.push(...drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, {
+    tool: () => (state.sim ? state.sim.run.positions[state.step] : null),
+    stop,
+    use(pts) {
+      model.set("drawn", pts.map((p) => [Math.round(p[0] * 1e4) / 1e4, Math.round(p[1] * 1e4) / 1e4]));
+      put("path", "drawn");
+      restart();
+    },
+  }));
   for (const [t, e, f] of on) t.addEventListener(e, f);
   const unhold = holdTouch(pad); // the pad is there only while drawing
   const keys = ["path", "drawn", "method", "damping", "step"].map((k) => `change:${k}`).join(" ");
