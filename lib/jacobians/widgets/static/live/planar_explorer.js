@@ -56,6 +56,78 @@ function linearColumns(e, frame, n) {
 }
 
 
+// tool drag: θ moves by damped least-squares steps on J_v towards the pointer (never NaN: DLS is bounded)
+function solve(chain, th, target, reach) {
+  const damping = 0.05 * reach;
+  const n = chain.n;
+  for (let k = 0; k < 60; k++) {
+    const e = evaluate(chain, th);
+    const err = [target[0] - e.T[0][3], target[1] - e.T[1][3]];
+    if (Math.hypot(err[0], err[1]) < 1e-7 * reach) break;
+    const d = dlsRates([e.Jg[3], e.Jg[4]], err, damping);
+    const big = Math.max(...d.map(Math.abs));
+    const scale = big > MAX_STEP ? MAX_STEP / big : 1; // small steps: the arm follows the pointer continuously
+    for (let i = 0; i < n; i++) th[i] = clamp(th[i] + scale * d[i]);
+  }
+  return th;
+}
+// joint drag: joint k's point turns about joint k-1 towards the pointer (θ_{k-1} changes alone)
+function turn(chain, th, k, target, reach) {
+  const pts = evaluate(chain, th).points;
+  const a = pts[k - 1];
+  const b = pts[k];
+  const d = Math.atan2(target[1] - a[1], target[0] - a[0]) - Math.atan2(b[1] - a[1], b[0] - a[0]);
+  if (Math.hypot(target[0] - a[0], target[1] - a[1]) < 1e-6 * reach || !Number.isFinite(d)) return th;
+  const wz = chain.joints[k - 1].w[2] < 0 ? -1 : 1;
+  let t = th[k - 1] + wz * Math.atan2(Math.sin(d), Math.cos(d));
+  if (t > Math.PI) t -= 2 * Math.PI;
+  if (t < -Math.PI) t += 2 * Math.PI;
+  th[k - 1] = clamp(t);
+  return th;
+}
+
+/**
+ * Dragging the tool's ring or a joint (bind): the pointer's world point sets theta through solve or turn.
+ * Returns the remover of the listeners.
+ */
+function bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop }) {
+let drag = null;
+const onDown = (ev) => {
+  const k = ev.currentTarget === handle ? -1 : Number(ev.currentTarget.dataset.joint) - 1;
+  drag = k;
+  stop();
+  capture(ev.currentTarget, ev);
+  ev.preventDefault();
+};
+const onMove = (ev) => {
+  if (drag === null) return;
+  const target = toWorld(root, ev);
+  if (!target) return;
+  setTheta(drag < 0 ? solve(chain, readTheta(), target, reach) : turn(chain, readTheta(), drag, target, reach));
+};
+const onUp = (ev) => {
+  if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
+  drag = null;
+};
+const draggable = [handle, ...joints.slice(1)];
+const unhold = draggable.map(holdTouch);
+for (const h of draggable) {
+  h.addEventListener("pointerdown", onDown);
+  h.addEventListener("pointermove", onMove);
+  h.addEventListener("pointerup", onUp);
+  h.addEventListener("pointercancel", onUp);
+}
+  return () => {
+    for (const h of draggable) {
+      h.removeEventListener("pointerdown", onDown);
+      h.removeEventListener("pointermove", onMove);
+      h.removeEventListener("pointerup", onUp);
+      h.removeEventListener("pointercancel", onUp);
+    }
+    unhold.forEach((f) => f());
+  };
+}
+
 function render({ model, el }) {
   const doc = el.ownerDocument;
   injectStyle(doc, "jac-live-style", BASE_CSS);
@@ -282,62 +354,7 @@ function render({ model, el }) {
     model.set("frame", select.value);
     model.save_changes();
   };
-  // tool drag: θ moves by damped least-squares steps on J_v towards the pointer (never NaN: DLS is bounded)
-  const damping = 0.05 * reach;
-  function solve(target) {
-    const th = readTheta();
-    for (let k = 0; k < 60; k++) {
-      const e = evaluate(chain, th);
-      const err = [target[0] - e.T[0][3], target[1] - e.T[1][3]];
-      if (Math.hypot(err[0], err[1]) < 1e-7 * reach) break;
-      const d = dlsRates([e.Jg[3], e.Jg[4]], err, damping);
-      const big = Math.max(...d.map(Math.abs));
-      const scale = big > MAX_STEP ? MAX_STEP / big : 1; // small steps: the arm follows the pointer continuously
-      for (let i = 0; i < n; i++) th[i] = clamp(th[i] + scale * d[i]);
-    }
-    return th;
-  }
-  // joint drag: joint k's point turns about joint k-1 towards the pointer (θ_{k-1} changes alone)
-  function turn(k, target) {
-    const th = readTheta();
-    const pts = evaluate(chain, th).points;
-    const a = pts[k - 1];
-    const b = pts[k];
-    const d = Math.atan2(target[1] - a[1], target[0] - a[0]) - Math.atan2(b[1] - a[1], b[0] - a[0]);
-    if (Math.hypot(target[0] - a[0], target[1] - a[1]) < 1e-6 * reach || !Number.isFinite(d)) return th;
-    const wz = chain.joints[k - 1].w[2] < 0 ? -1 : 1;
-    let t = th[k - 1] + wz * Math.atan2(Math.sin(d), Math.cos(d));
-    if (t > Math.PI) t -= 2 * Math.PI;
-    if (t < -Math.PI) t += 2 * Math.PI;
-    th[k - 1] = clamp(t);
-    return th;
-  }
-  let drag = null;
-  const onDown = (ev) => {
-    const k = ev.currentTarget === handle ? -1 : Number(ev.currentTarget.dataset.joint) - 1;
-    drag = k;
-    stop();
-    capture(ev.currentTarget, ev);
-    ev.preventDefault();
-  };
-  const onMove = (ev) => {
-    if (drag === null) return;
-    const target = toWorld(root, ev);
-    if (!target) return;
-    setTheta(drag < 0 ? solve(target) : turn(drag, target));
-  };
-  const onUp = (ev) => {
-    if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
-    drag = null;
-  };
-  const draggable = [handle, ...joints.slice(1)];
-  const unhold = draggable.map(holdTouch);
-  for (const h of draggable) {
-    h.addEventListener("pointerdown", onDown);
-    h.addEventListener("pointermove", onMove);
-    h.addEventListener("pointerup", onUp);
-    h.addEventListener("pointercancel", onUp);
-  }
+  const unbindDrags = bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop });
   // Play: sweep one joint, PLAY_STEP a frame, up to LIMIT, then from -LIMIT again
   let timer = null;
   function tick() {
@@ -372,13 +389,7 @@ function render({ model, el }) {
     model.off("change:theta", draw);
     model.off("change:frame", draw);
     sliders.forEach((s) => s.removeEventListener("input", onInput));
-    for (const h of draggable) {
-      h.removeEventListener("pointerdown", onDown);
-      h.removeEventListener("pointermove", onMove);
-      h.removeEventListener("pointerup", onUp);
-      h.removeEventListener("pointercancel", onUp);
-    }
-    unhold.forEach((f) => f());
+    unbindDrags();
     play.removeEventListener("click", onPlay);
     select.removeEventListener("change", onFrame);
     el.textContent = "";
