@@ -137,7 +137,6 @@ test-numerics: setup browser
 
 bench: setup
 	$(PY) -m tools.bench
-	$(PY) -m tools.bench_widgets
 	$(PY) -m tools.bench_live
 	$(PY) -m tools.bench_live_spatial
 	$(PY) -m tools.bench_grade

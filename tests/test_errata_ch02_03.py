@@ -58,19 +58,13 @@ def prf_block(text: str, kind: str, label: str | None = None, after: str | None 
 # ---------------------------------------------------------------- chapter 2: the explorer animation
 
 def _explorer_frames(sweep):
-    from jacobians import widgets
+    """The 2R arm's J_s and the semi-axes of J_v at 9 poses from (0, 1.2), joint `sweep` (1-based) over [-π, π]."""
     arm = jac.robots.planar_2r(1.0, 1.0)
-    anim = widgets.planar_arm_explorer_animation(arm, theta=[0.0, 1.2], rates=[0.5, 0.5], frame="space",
-                                                 sweep=sweep, frames=9, dpi=40)
-    ex = anim.explorer
-    frame, n = anim.draw, anim.n_frames
-    J, sig = [], []
-    for k in range(n):
-        frame(k)
-        J.append(ex.jacobian.copy())
-        sig.append(ex.sigma.copy())
-    ex.close_figure()
-    return arm, np.array(J), np.array(sig)
+    path = np.tile([0.0, 1.2], (9, 1))
+    path[:, sweep - 1] = np.linspace(-np.pi, np.pi, 9)
+    J = np.array([jac.space_jacobian(arm, th) for th in path])
+    sig = np.array([jac.analysis.velocity_ellipsoid(jac.geometric_jacobian(arm, th)[3:5])[0] for th in path])
+    return arm, J, sig
 
 
 def test_ch02_explorer_sweeps_joint_1_so_the_J_s_table_changes():

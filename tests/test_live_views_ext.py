@@ -74,7 +74,7 @@ def test_resolved_rate_model_and_directive_options():
     chain = jac.robots.planar_3r()
     assert np.array_equal(m["S"], chain.screw_axes) and m["reach"] == pytest.approx(3.0)
     assert (m["path"], m["method"], m["damping"], m["step"], m["drawn"]) == ("circle", "dls", 0.05, 0, None)
-    assert (m["n_steps"], m["duration"], m["gain"]) == (160, 4.0, 2.0)  # ResolvedRateExplorer's run
+    assert (m["n_steps"], m["duration"], m["gain"]) == (160, 4.0, 2.0)  # the run of widgets.live.planar_path
     for options, message in [({"path": "spiral"}, "Expected path one of circle, to full reach, close past the base"),
                              ({"method": "newton"}, "Expected method 'pinv' or 'dls', got 'newton'"),
                              ({"damping": "0"}, "Expected damping λ in [0.001, 1] m, got 0.0"),

@@ -14,6 +14,8 @@ import pytest
 
 import jacobians as jac
 from jacobians.plotting.style import PALETTE
+from jacobians.testing import random_chain
+from jacobians.widgets.live_spatial import VIEW_MARGIN, reach_bounds
 
 
 def test_columns_model_is_the_library_chain():
@@ -23,11 +25,36 @@ def test_columns_model_is_the_library_chain():
     assert np.array_equal(m["Q"], chain.axis_points())
     assert m["theta"] == [0.1, 0.2, 0.3, 0.4, 0.5] and m["column"] == 2
     assert m["palette"]["space"] == PALETTE["space"] and m["palette"]["body"] == PALETTE["body"]
-    # the view's sphere holds the arm at every sampled pose, less a margin for rare stretched poses
+    # the view's sphere (less the keys' dot) holds the arm, its axes' keys and {b}'s arrows at every pose: random
+    # poses, and the stretched ones (every joint at 0 or pi), where a bound is reached if anywhere
     rng = np.random.default_rng(1)
-    P = chain.joint_positions(rng.uniform(-np.pi, np.pi, (500, 5)))
-    assert np.percentile(np.linalg.norm(P - np.array(m["center"]), axis=-1), 90) < m["extent"]
+    corners = np.array(np.meshgrid(*[[0.0, np.pi]] * 5)).reshape(5, -1).T
+    poses = np.vstack([corners, rng.uniform(-np.pi, np.pi, (4000, 5))])
+    P = chain.joint_positions(poses)
+    w = np.stack([jac.space_jacobian(chain, th)[:3].T for th in poses])  # each joint's axis direction at the pose
+    tips = P[:, :-1] + 1.25 * m["axis_length"] * w
+    inside = (1 - VIEW_MARGIN) * m["extent"]
+    assert np.linalg.norm(np.concatenate([P, tips], axis=1) - m["center"], axis=-1).max() <= inside
     json.dumps(m, allow_nan=False)
+
+
+def test_reach_bounds_hold_on_random_arms():
+    """A counterexample search for the bound of reach_bounds: random revolute arms at random poses, and the bound
+    is reached (within rounding) by the arm stretched away from the fixed point it turns about."""
+    rng = np.random.default_rng(7)
+    worst = 0.0
+    for _ in range(60):
+        chain = random_chain(rng, prismatic_probability=0.0, pitch_probability=0.0)
+        c, B = reach_bounds(chain)
+        P = chain.joint_positions(rng.uniform(-np.pi, np.pi, (400, chain.dof)))
+        r = np.linalg.norm(P - c, axis=-1)
+        # rounding: distances of a few metres computed through n products of rotations, 1e-12 m is far above it
+        assert (r <= B + 1e-12).all(), (chain.name, (r - B).max())
+        moving = B > 0  # the fixed points stay at their bound
+        worst = max(worst, float((r[:, moving] / B[moving]).max()))
+    assert worst > 0.9  # the bound is not loose for nothing: some sampled pose comes near it
+    with pytest.raises(ValueError, match="revolute joints with no pitch"):
+        reach_bounds(jac.robots.scara())
 
 
 def test_gimbal_model_holds_both_wrists():

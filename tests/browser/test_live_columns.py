@@ -37,7 +37,7 @@ READ_JS = """(el) => ({
   hotCellsS: el.querySelectorAll("table.jl-space td.jl-changed").length,
   hotCellsB: el.querySelectorAll("table.jl-body td.jl-changed").length,
   watch: [...el.querySelectorAll("table.jl-space thead th.jl-watch")].map((c) => +c.textContent),
-  axisColors: [1, 2, 3, 4, 5].map((i) => el.querySelector(`line.jl-axis-${i}`).getAttribute("stroke")),
+  axisColors: [1, 2, 3, 4, 5].map((i) => getComputedStyle(el.querySelector(`line.jl-axis-${i}`)).stroke),
   changes: el.querySelector(".jl-changes").textContent,
   text: el.innerText, markup: el.innerHTML,
 })"""
@@ -152,19 +152,26 @@ def test_keyboard_slider_changes_the_columns_the_rule_says(harness, joint):
     assert seen["console"] == []
 
 
+def _rgb(hex_colour: str) -> str:
+    """A #RRGGBB colour as the browser's computed style writes it."""
+    r, g, b = (int(hex_colour[i:i + 2], 16) for i in (1, 3, 5))
+    return f"rgb({r}, {g}, {b})"
+
+
 def test_watched_column_colours_the_axes_by_role(harness):
     page, open_view, seen, _ = harness
     model = spatial.columns_model(column=3)
     el = open_view("columns_explorer", model)
-    # the library's orange and sky blue, drawn darker on the view's white ground (ui.js graphic: >= 3:1)
+    # the library's orange and sky blue, drawn darker on the view's light ground (palette.js: >= 3:1)
     on_white = {"#E69F00": "#B07800", "#56B4E9": "#3388BB"}
-    pal = {k: on_white.get(v.upper(), v) for k, v in model["palette"].items()}
+    pal = {k: _rgb(on_white.get(v.upper(), v)) for k, v in model["palette"].items()}
+    black = _rgb("#000000")
     got = el.evaluate(READ_JS)
-    assert got["axisColors"] == [pal["space"], pal["space"], "#000000", pal["body"], pal["body"]]
+    assert got["axisColors"] == [pal["space"], pal["space"], black, pal["body"], pal["body"]]
     el.query_selector("select.jl-column").select_option("1")
     got = _check_state(el, jac.robots.spatial_5r(), model)
     assert got["column"] == 1 and got["watch"] == [1]
-    assert got["axisColors"] == ["#000000"] + [pal["body"]] * 4
+    assert got["axisColors"] == [black] + [pal["body"]] * 4
     assert "axes none (before 1)" in got["text"] and "axes 2, 3, 4, 5 (after 1)" in got["text"]
     page.evaluate(SET_JS, [el, 4, -3.14])  # the joint limit
     _check_state(el, jac.robots.spatial_5r(), model)

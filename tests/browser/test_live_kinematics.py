@@ -450,7 +450,7 @@ def test_no_console_error_and_no_foreign_request(kin_page):
 
 
 # The resolved-rate view's own functions (lib/jacobians/widgets/static/live/resolved_rate.js): the preset paths, the start
-# configuration and the whole run of a preset, against jacobians.widgets.path_following and velocity.
+# configuration and the whole run of a preset, against jacobians.widgets.live and velocity.
 RR_JS = """({S, M, reach, cases, targets}) => {
   const K = window.K, RR = window.RR, chain = K.makeChain(S, M);
   return {
@@ -465,8 +465,7 @@ RR_JS = """({S, M, reach, cases, targets}) => {
 
 @pytest.mark.parametrize("name", list(PLANAR))
 def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
-    from jacobians.widgets.live import ResolvedRate, resample
-    from jacobians.widgets.path_following import ResolvedRateExplorer, _planar_path
+    from jacobians.widgets.live import PATHS, ResolvedRate, planar_path, resample, start_configuration
 
     page = kin_page[0]
     arm = ARMS[name]()
@@ -474,7 +473,7 @@ def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
     rng = np.random.default_rng(7)
     # reachable targets: the tool at random configurations
     targets = [arm.fk(th)[:2, 3] for th in rng.uniform(-np.pi, np.pi, (N_CONFIGS, arm.dof))]
-    cases = [(p, m, lam) for p in ResolvedRateExplorer.PATHS for m, lam in (("pinv", 0.1), ("dls", 0.02), ("dls", 0.3))]
+    cases = [(p, m, lam) for p in PATHS for m, lam in (("pinv", 0.1), ("dls", 0.02), ("dls", 0.3))]
     got = page.evaluate(RR_JS, {"S": arm.screw_axes.tolist(), "M": arm.home.tolist(), "reach": reach,
                                 "cases": cases, "targets": [t.tolist() for t in targets]})
     worst: dict[str, float] = {}
@@ -482,13 +481,12 @@ def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
     def note(key: str, value: float) -> None:
         worst[key] = max(worst.get(key, 0.0), value)
 
-    for p, js in zip(ResolvedRateExplorer.PATHS, got["paths"], strict=True):
-        t, x, v = _planar_path(p, reach, 160)
+    for p, js in zip(PATHS, got["paths"], strict=True):
+        t, x, v = planar_path(p, reach, 160)
         note("path t", _err(js["t"], t))
         note("path x", _err(js["x"], x))
         note("path v", _err(js["v"], v))
-    fake = type("Start", (), {"chain": arm})()
-    # The start: Newton steps with 1 mm of damping (ResolvedRateExplorer._start_configuration, RR.startConfiguration).
+    # The start: Newton steps with 1 mm of damping (live.start_configuration, RR.startConfiguration).
     # Each step of the module, from each iterate θ_j of the library's own sequence, is compared with the library's
     # step (a DLS solve: fp_bounds.solve_bound); the two stopping tests (|e| < 1e-12 m) may stop one step apart,
     # so the ends are compared by where the tool is: within 1e-12 m of the target, plus the rounding of fk.
@@ -502,7 +500,7 @@ def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
             iterates.append(th)
             newton_targets.append(x0)
             th = th + jac.velocity.dls_rates(jac.geometric_jacobian(arm, th)[3:5], x0 - arm.fk(th)[:2, 3], 1e-3)
-        lib_start = ResolvedRateExplorer._start_configuration(fake, x0)  # type: ignore[arg-type]
+        lib_start = start_configuration(arm, x0)
         assert np.array_equal(th, lib_start), "the test's copy of the library's Newton loop is not the library's"
     js_newton = page.evaluate("""({S, M, thetas, targets}) => {
       const K = window.K, chain = K.makeChain(S, M);
@@ -523,7 +521,7 @@ def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
         assert err <= allowed, f"{name}: a Newton step from θ={th.tolist()} differs by {err:.1e}, allowed {allowed:.1e}"
         note("start: one Newton step", err)
     for x0, js in zip(targets, got["starts"], strict=True):
-        ref = ResolvedRateExplorer._start_configuration(fake, x0)  # type: ignore[arg-type]
+        ref = start_configuration(arm, x0)
         lib_miss = float(np.linalg.norm(arm.fk(ref)[:2, 3] - x0))
         js_miss = float(np.linalg.norm(arm.fk(np.array(js))[:2, 3] - x0))
         assert js_miss <= max(lib_miss, 1e-12) + 2 * g * reach, (x0, js_miss, lib_miss)
@@ -535,7 +533,7 @@ def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
         w = ResolvedRate(arm, p, m, lam)
         t, x, v = (np.asarray(a, dtype=float) for a in w.target())
         note("run path", _err(js["xd"], x))
-        th0 = ResolvedRateExplorer._start_configuration(fake, x[0])  # type: ignore[arg-type]
+        th0 = start_configuration(arm, x[0])
         # both starts put the tool within 1e-12 m of x[0] (their stopping test), up to the rounding of fk
         start_gap = float(np.abs(arm.fk(np.array(js["theta0"]))[:2, 3] - arm.fk(th0)[:2, 3]).max())
         assert start_gap <= 2e-12 + 2 * g * reach, (p, m, lam, start_gap)
@@ -543,7 +541,7 @@ def test_resolved_rate_view_paths_start_and_runs_match_library(kin_page, name):
         steps = [{"rate": run["rates"][k], "position": run["positions"][k], "sigmaMin": run["sigmaMin"][k]}
                  for k in range(len(run["thetas"]))]
         js_path = np.asarray(js["xd"], dtype=float)
-        js_vel = np.asarray(got["paths"][ResolvedRateExplorer.PATHS.index(p)]["v"], dtype=float)
+        js_vel = np.asarray(got["paths"][PATHS.index(p)]["v"], dtype=float)
         ambiguous += _check_steps(f"{name} {p} {m} λ={lam}", arm, reach, np.asarray(run["thetas"], dtype=float),
                                   js_path, js_vel, float(js["t"][1] - js["t"][0]), m, lam, steps,
                                   worst, widened, gain=2.0, theta_from_js=True)

@@ -407,6 +407,39 @@ def test_resolved_rate_follows_a_drawn_path(harness):
     assert seen["console"] == []
 
 
+def test_resolved_rate_path_drawn_with_the_keyboard(harness):
+    """Draw a path without a pointer: the button gives the picture the focus and a pen at the tool; arrow keys
+    move it 0.05 reach (Shift 0.01), Enter places a point, Backspace takes one back, the button uses the path."""
+    page, open_view, seen, _ = harness
+    model = _rr_model(path="circle", method="dls", damping=0.05)
+    el = open_view(None, None, None, view="resolved_rate", model=model)
+    tool = page.evaluate("(el) => el.jacLive.sim.run.positions[0]", el)
+    el.query_selector("button.jr-draw").focus()
+    page.keyboard.press("Enter")
+    assert page.evaluate("(el) => document.activeElement === el.querySelector('svg')", el)
+    assert "Enter adds a point" in el.query_selector("svg").get_attribute("aria-label")
+    reach = 2.0  # planar_2r
+    h, fine = 0.05 * reach, 0.01 * reach
+    keys = ["Enter", "ArrowUp", "ArrowUp", "ArrowUp", "Enter", "ArrowLeft", "ArrowLeft", "Shift+ArrowLeft", "Enter",
+            "ArrowDown", "Enter", "Backspace"]
+    for key in keys:
+        page.keyboard.press(key)
+    assert int(el.evaluate("(el) => el.jacLive.step")) == 0  # the arrows moved the pen, not the run
+    start = np.round(np.array(tool), 2)
+    want = [start, start + [0, 3 * h], start + [-2 * h - fine, 3 * h]]
+    el.query_selector("button.jr-draw").focus()
+    page.keyboard.press("Enter")  # use the path
+    recorded = np.array(page.evaluate("(el) => el.jacLive.drawn", el))
+    assert np.allclose(recorded, want, atol=1e-4), recorded  # the view keeps 4 decimals
+    assert el.query_selector("select.jr-path").input_value() == "drawn"
+    model.update(path="drawn", drawn=recorded.tolist())
+    page.evaluate("(el) => { const s = el.querySelector('input.jr-step'); s.value = '60';"
+                  " s.dispatchEvent(new Event('input', {bubbles: true})); }", el)
+    _rr_check(el, model)  # the run along the keyed path is the library's
+    assert el.query_selector("svg").get_attribute("tabindex") is None  # the pad leaves the tab order
+    assert seen["console"] == []
+
+
 def test_resolved_rate_fits_a_phone(harness):
     page, open_view, seen, _ = harness
     el = open_view(None, None, None, view="resolved_rate", model=_rr_model(), width=390)

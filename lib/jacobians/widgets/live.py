@@ -53,16 +53,16 @@ from .. import robots
 from .. import velocity as _velocity
 from ..chain import SerialChain
 from ..frames import check_frame
-from ..jacobian import analytic_jacobian, jacobian
+from ..jacobian import analytic_jacobian, geometric_jacobian, jacobian
 from ..plotting import arm_reach, check_planar
 
 __all__ = ["LiveView", "PlanarExplorer", "ResolvedRate", "module_source", "live_dir", "planar_model",
-           "resolved_rate_model", "resample", "MODELS", "ROBOTS"]
+           "resolved_rate_model", "resample", "planar_path", "start_configuration", "MODELS", "ROBOTS"]
 
 ROBOTS: dict[str, Callable[[], SerialChain]] = {"planar_2r": robots.planar_2r, "planar_3r": robots.planar_3r}
 PLANAR_FRAMES = ("space", "body", "geometric", "analytic")
 PATHS = ("circle", "to full reach", "close past the base")
-SING_TOL = 0.08  # x reach: PlanarArmExplorer.sing_tol
+SING_TOL = 0.08  # x reach: sigma_min(J_v) below this is "near a singularity" in the planar views
 VEL_SCALE = 0.35  # drawn metres per m/s
 LIMIT = 3.14  # the views' slider range, rad
 _IMPORT = re.compile(r"""(\bfrom\s*|\bimport\s*)(["'])\./([A-Za-z0-9_]+\.js)\2""")
@@ -155,7 +155,7 @@ def planar_model(robot: str | SerialChain = "planar_2r", theta: Sequence[float] 
 
 def resolved_rate_model(robot: str | SerialChain = "planar_2r", path: str = "close past the base",
                         method: str = "pinv", damping: float = 0.1, step: int = 0) -> dict[str, Any]:
-    """The model of ``resolved_rate``: the run of ``ResolvedRateExplorer`` (160 steps over 4 s, K = 2/s).
+    """The model of ``resolved_rate``: a run of 160 steps over 4 s, K = 2/s, along a path of :func:`planar_path`.
 
     >>> m = resolved_rate_model("planar_2r", "circle", "dls", 0.05)
     >>> m["path"], m["method"], m["damping"], m["n_steps"], m["duration"], m["gain"]
@@ -171,6 +171,45 @@ def resolved_rate_model(robot: str | SerialChain = "planar_2r", path: str = "clo
         raise ValueError(f"Expected damping λ in [0.001, 1] m, got {damping!r}")
     return {**_chain_model(chain), "path": path, "drawn": None, "method": method, "damping": lam,
             "step": int(step), "n_steps": 160, "duration": 4.0, "gain": 2.0, "rate_limit": 8.0}
+
+
+def planar_path(kind: str, reach: float,
+                n_steps: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """A preset path of the resolved-rate view (resolved_rate.js ``planarPath``): times t (N) over [0, 4 s], desired
+    tool positions (N×2) and their exact velocities (N×2), for an arm of reach ``reach``."""
+    T = 4.0
+    t = np.linspace(0.0, T, n_steps)
+    if kind == "circle":
+        c, r = np.array([0.45 * reach, 0.2 * reach]), 0.3 * reach
+        w = 2 * np.pi / T
+        x = c + r * np.column_stack([np.cos(w * t), np.sin(w * t)])
+        v = r * w * np.column_stack([-np.sin(w * t), np.cos(w * t)])
+    elif kind == "to full reach":
+        a, b = np.array([0.3 * reach, 0.5 * reach]), np.array([reach, 0.0])
+        x = a + np.outer(t / T, b - a)
+        v = np.tile((b - a) / T, (n_steps, 1))
+    elif kind == "close past the base":
+        a, b = np.array([0.6 * reach, 0.03 * reach]), np.array([-0.6 * reach, 0.03 * reach])
+        x = a + np.outer(t / T, b - a)
+        v = np.tile((b - a) / T, (n_steps, 1))
+    else:
+        raise ValueError(f"Expected path 'circle', 'to full reach' or 'close past the base', got {kind!r}")
+    return t, x, v
+
+
+def start_configuration(chain: SerialChain, x0: Sequence[float] | NDArray[np.float64]) -> NDArray[np.float64]:
+    """Joint angles that put the tool of a planar arm at ``x0`` (resolved_rate.js ``startConfiguration``): Newton
+    steps with 1 mm of damping from (0.3, 0.9, 0.9, ...), until the error is below 1e-12 m or 200 steps."""
+    n = chain.dof
+    x = np.asarray(x0, dtype=float)
+    th = np.array([0.3] + [0.9] * (n - 1))[:n]
+    for _ in range(200):
+        J = geometric_jacobian(chain, th)[3:5]
+        e = x - chain.fk(th)[:2, 3]
+        if np.linalg.norm(e) < 1e-12:
+            break
+        th = th + _velocity.dls_rates(J, e, 1e-3)
+    return th
 
 
 def resample(points: Sequence[Sequence[float]], n: int) -> NDArray[np.float64] | None:
@@ -274,21 +313,17 @@ class ResolvedRate(LiveView):
 
     def target(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None]:
         """The times t (N), desired positions (N×2) and velocities (N×2, None for a drawn path) of the run."""
-        from .path_following import _planar_path
-
         n = int(self.n_steps)
         drawn = resample(self.drawn, n) if self.path == "drawn" and self.drawn else None
         if drawn is not None:  # as the view: evenly along the drawn line over the run, forward differences
             return np.linspace(0.0, float(self.duration), n), drawn, None
-        return _planar_path(self.path if self.path in PATHS else "circle", arm_reach(self.chain), n)
+        return planar_path(self.path if self.path in PATHS else "circle", arm_reach(self.chain), n)
 
     @property
     def run(self) -> _velocity.ResolvedRateResult:
         """``velocity.resolved_rate`` of the current path, method and λ from the view's start (as the view)."""
-        from .path_following import ResolvedRateExplorer
-
         t, x, v = self.target()
-        th0 = ResolvedRateExplorer._start_configuration(self, x[0])  # uses self.chain only
+        th0 = start_configuration(self.chain, x[0])
         return _velocity.resolved_rate(self.chain, th0, x, t[1] - t[0], method=self.method, damping=self.damping,
                                        gain=self.gain, target_velocities=v)
 

@@ -41,9 +41,10 @@ from ..chain import SerialChain
 from ..jacobian import analytic_jacobian, body_jacobian, geometric_jacobian, pose_coordinates, space_jacobian
 from ..plotting import arm_reach
 from ..plotting.style import COLUMN_COLORS, PALETTE
-from .live import LiveView
+from .live import LIMIT, LiveView
 
-__all__ = ["ColumnsExplorer", "GimbalLock", "columns_model", "gimbal_model", "SPATIAL_MODELS", "SPATIAL_VIEWS",
+__all__ = ["ColumnsExplorer", "GimbalLock", "columns_model", "gimbal_model", "reach_bounds", "SPATIAL_MODELS",
+           "SPATIAL_VIEWS",
            "COLUMN_ROBOTS", "WRISTS", "WRIST_TOOL", "REPS"]
 
 SPATIAL_VIEWS = ("columns_explorer", "gimbal_lock")
@@ -52,7 +53,7 @@ WRIST_TOOL = 0.3  # m, as jacobians.widgets.gimbal
 WRISTS: dict[str, Callable[[], SerialChain]] = {"zyz_wrist": lambda: robots.zyz_wrist(WRIST_TOOL),
                                                 "zyx_wrist": lambda: robots.zyx_wrist(WRIST_TOOL)}
 REPS = ("zyx", "zyz")
-LIMIT = 3.14  # the sliders' range, rad (as the planar explorer)
+VIEW_MARGIN = 13 / 200  # the axis keys' dot radius, as a share of the 3-D view's half-width (view3d.js)
 GIMBAL_LIMIT_DEG = 180.0  # the gimbal view's sliders, degrees
 NEAR_LOCK = 0.1  # |det B| below this: "near gimbal lock" (jacobians.widgets.gimbal's margin)
 WRIST_SINGULAR = 1e-3  # sigma_min of J's angular rows below this: the wrist itself is singular
@@ -79,6 +80,37 @@ def _theta(theta: Sequence[float] | NDArray[np.float64] | None, default: Sequenc
     return th
 
 
+def reach_bounds(chain: SerialChain) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """A point c and, for each drawn point of a revolute chain (joint points, then the tool), a radius about c
+    that the point never leaves, whatever the joint angles: ``(c, B)``.
+
+    Why it holds: the joint points ``p_i`` (``chain.joint_positions``) lie on their joint's axis, so joint i
+    turns everything after it about a line through ``p_i``; the distance ``d_i = |p_{i+1} - p_i|`` is then the
+    same at every pose (joints before i move both points rigidly, joint i fixes ``p_i``, joints after i fix
+    ``p_{i+1}``). A point ``p_j`` that lies on every axis before it (at home) never moves. From such a fixed
+    point, the triangle inequality gives ``|p_k - c| <= |p_j - c| + d_j + ... + d_{k-1}``; B takes the least
+    of these over the fixed points, and c is the last fixed point (the arm turns about it).
+    tests/test_live_views_spatial_ext.py searches random arms and poses for a point outside its bound.
+    """
+    S = chain.screw_axes
+    pitch = np.abs(np.einsum("ij,ij->j", S[:3], S[3:]))
+    if not np.all(np.linalg.norm(S[:3], axis=0) > 0.5) or not np.all(pitch <= 1e-12 * (1 + np.abs(S[3:]).max())):
+        raise ValueError("Expected a chain of revolute joints with no pitch: a joint that slides has no such bound")
+    P = chain.joint_positions(np.zeros(chain.dof))
+    W = S[:3].T
+
+    def on_axis(p: NDArray[np.float64], i: int) -> bool:
+        r = p - P[i]
+        return bool(np.linalg.norm(r - W[i] * (W[i] @ r)) <= 1e-9 * max(1.0, float(np.linalg.norm(p))))
+
+    fixed = [j for j in range(chain.dof + 1) if all(on_axis(P[j], i) for i in range(min(j, chain.dof)))]
+    c = P[fixed[-1]].copy()
+    d = np.linalg.norm(np.diff(P, axis=0), axis=1)
+    B = np.array([min(float(np.linalg.norm(P[j] - c)) + float(d[j:k].sum()) for j in fixed if j <= k)
+                  for k in range(chain.dof + 1)])
+    return c, B
+
+
 def columns_model(robot: str = "spatial_5r", theta: Sequence[float] | None = None, column: int = 3) -> dict[str, Any]:
     """The model of the columns explorer, as ``lib/jacobians/widgets/static/live/columns_explorer.js`` reads it.
 
@@ -94,13 +126,15 @@ def columns_model(robot: str = "spatial_5r", theta: Sequence[float] | None = Non
     if isinstance(column, bool) or not isinstance(column, int | np.integer) or not 1 <= column <= n:
         raise ValueError(f"Expected column as an integer from 1 to {n}, got {column!r}")
     reach = arm_reach(chain)
-    # the view turns about the middle of the joints' heights; it must hold every pose and the axes drawn
-    z = [float(q[2]) for q in chain.axis_points()]
-    center = np.array([0.0, 0.0, 0.5 * (min(z) + max(z))])
-    rng = np.random.default_rng(0)
-    poses = np.vstack([np.zeros(n), rng.uniform(-np.pi, np.pi, (256, n))])
-    radius = float(np.linalg.norm(chain.joint_positions(poses) - center, axis=-1).max())
     axis_length = 0.22 * reach
+    # The view turns about the point the arm turns about, and its sphere holds what it draws at every pose
+    # (reach_bounds): a joint's axis and its numbered key reach 1.25 axis_length past the joint point, the frame
+    # {b}'s arrows 0.175 reach past the tool, {s}'s letters 0.22 reach past the origin. The key's dot is 13 SVG
+    # units of the 200 from the centre to the edge: the sphere is that much larger.
+    center, bounds = reach_bounds(chain)
+    drawn = np.concatenate([bounds[:-1] + 1.25 * axis_length, [bounds[-1] + 0.175 * reach],
+                            [float(np.linalg.norm(center)) + 0.22 * reach]])
+    extent = float(drawn.max()) / (1.0 - VIEW_MARGIN)
     return {
         "name": chain.name,
         "S": chain.screw_axes.tolist(),
@@ -112,7 +146,7 @@ def columns_model(robot: str = "spatial_5r", theta: Sequence[float] | None = Non
         "step": 0.01,
         "reach": reach,
         "center": center.tolist(),
-        "extent": 0.85 * radius + 0.3 * axis_length,  # a rare far-stretched pose may touch the edge
+        "extent": extent,
         "axis_length": axis_length,
         "palette": _palette(),
     }

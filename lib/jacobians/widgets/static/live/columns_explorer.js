@@ -1,3 +1,5 @@
+// @ts-check
+// @ts-check
 // The columns explorer, live: which joints move which
 // column of J_s and of J_b, on the spatial 5R arm of the notes. One slider per
 // joint; the arm and its joint (screw) axes in a 3-D view the reader turns;
@@ -16,53 +18,70 @@
 // Never throws on a reachable input, never shows NaN.
 
 import { evaluate, makeChain } from "./kinematics.js";
-import { graphic, suppressShortcuts } from "./ui.js";
-import { CSS as CSS3D, createView3D, fixed, frameItems, groundGrid, html, injectStyle, put, sub, text } from "./view3d.js";
+import {
+  BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, matrixTable, put, sub, suppressShortcuts, text,
+  tint,
+} from "./ui.js";
+import { CSS as CSS3D, createView3D, frameItems, groundGrid } from "./view3d.js";
 
-const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
+/** @typedef {import("./host.js").Model} Model */
+/** @typedef {import("./linalg.js").Mat} Mat */
+/** @typedef {import("./ui.js").SubText} SubText */
+/** @typedef {import("./ui.js").MatrixTable} MatrixTable */
+/** @typedef {import("./view3d.js").Segment} Segment */
+/** @typedef {import("./view3d.js").Dot} Dot */
+/** @typedef {import("./view3d.js").Label} Label */
+/**
+ * What the view shows, and what changed when a joint last moved (el.jacLive, read by the tests).
+ * @typedef {object} ColumnsState
+ * @property {number[] | null} theta
+ * @property {number | null} column 1-based
+ * @property {Mat | null} Js
+ * @property {Mat | null} Jb
+ * @property {number[]} moved the joints (1-based) that moved
+ * @property {number[]} changedS the columns of J_s that changed
+ * @property {number[]} changedB the columns of J_b that changed
+ * @property {string | null} changeKey
+ * @property {Mat} [T]
+ * @property {number[][]} [points]
+ */
+
 const CHANGE_TOL = 1e-12; // as jacobians.widgets.columns: a column "changed" if an entry moved by more
-const DEFAULT_PALETTE = { space: "#E69F00", body: "#56B4E9", link: "#0072B2", joint: "#000000", muted: "#999999" };
+const DEFAULT_PALETTE = { space: PALETTE.space, body: PALETTE.body, link: PALETTE.link, joint: PALETTE.joint,
+  muted: PALETTE.muted };
+// what this view draws differently from the shared style (ui.js), scoped by its class
 const CSS = `
-.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:content}
-.jac-live *{box-sizing:border-box}
-.jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
-.jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
-.jac-live .jl-side{flex:1 1 280px;min-width:0}
-.jac-live label{display:block;font-size:16px}
-.jac-live input[type=range]{width:100%;margin:2px 0 8px}
-.jac-live select{font-size:16px;margin-left:6px}
-.jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
-.jac-live table.jl-matrix{table-layout:fixed;width:21.4em}
-.jac-live table.jl-matrix th[scope=col]:first-child{width:2.4em}
-.jac-live td,.jac-live th{padding:1px 6px;text-align:right;border:0}
-.jac-live caption{caption-side:top;text-align:left;font-size:15px}
-.jac-live sub{font-size:14px;line-height:1}
-.jac-live .jl-key{display:inline-block;width:14px;height:14px;border-radius:50%;vertical-align:-2px;margin-right:6px;
-  border:1px solid #000000}
-.jac-live .jl-changes{font-size:15px;margin:6px 0;min-height:2.7em}
-.jac-live .jl-legend{font-size:14px;margin:4px 0 0;padding:0;list-style:none}
-.jac-live .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
-.jac-live td.jl-watch,.jac-live th.jl-watch{outline:2px solid #000000;outline-offset:-2px}
+.jac-live.jl-columns{contain:content}
+.jl-columns .jl-side{flex:1 1 280px}
+.jl-columns select{max-width:none}
+.jl-columns table.jl-matrix{table-layout:fixed;width:21.4em}
+.jl-columns table.jl-matrix th[scope=col]:first-child{width:2.4em}
+.jl-columns td,.jl-columns th{padding:1px 6px}
+.jl-columns td{min-width:0}
+.jl-columns .jl-key{width:14px;height:14px;border-radius:50%;vertical-align:-2px;border:1px solid var(--jl-ink)}
+.jl-columns .jl-changes{font-size:15px;margin:6px 0;min-height:2.7em}
+.jl-columns .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
+.jl-columns td.jl-watch,.jl-columns th.jl-watch{outline:2px solid var(--jl-ink);outline-offset:-2px}
 `;
 
+/** @param {{model: Model, el: HTMLElement}} args */
 function render({ model, el }) {
   const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style-columns", CSS + CSS3D);
-  el.classList.add("jac-live");
+  injectStyle(doc, "jac-live-style", BASE_CSS);
+  injectStyle(doc, "jac-live-style-3d", CSS3D);
+  injectStyle(doc, "jac-live-style-columns", CSS);
+  el.classList.add("jac-live", "jl-columns");
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
   const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
-  // the library's Okabe–Ito colours, darkened where a line on white needs it (ui.js graphic)
+  // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
   const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
-  const limit = Number(model.get("limit")) || 3.14;
+  const limit = Number(model.get("limit")) || LIMIT;
   const step = Number(model.get("step")) || 0.01;
   const reach = Number(model.get("reach")) || 1;
   const axisLen = Number(model.get("axis_length")) || 0.15 * reach;
   const name = model.get("name") || `${n}-joint arm`;
   const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
-  // translucent backgrounds of the changed columns, from the palette's space and body colours
-  const tint = (hex, a) => `rgba(${parseInt(hex.slice(1, 3), 16)},${parseInt(hex.slice(3, 5), 16)},`
-    + `${parseInt(hex.slice(5, 7), 16)},${a})`;
 
   const wrap = html("div", { class: "jl-wrap" }, el);
   const plot = html("div", { class: "jl-plot" }, wrap);
@@ -79,30 +98,39 @@ function render({ model, el }) {
   const sFrame = frameItems(view, "{s}", 0.35 * reach / 2, { letters: true });
   const eye = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
   sFrame.set(eye, [0, 0, 0]);
+  /** @type {Segment[]} */
   const links = [];
   for (let k = 0; k < n; k++) {
     links.push(view.segment("solid", { stroke: pal.link, "stroke-width": 7, class: `jl-link jl-link-${k + 1}` }));
   }
+  /** @type {Segment[]} */
   const axes = [];
   for (let i = 0; i < n; i++) axes.push(view.segment("solid", { "stroke-width": 4, class: `jl-axis jl-axis-${i + 1}` }));
+  /** @type {Dot[]} */
   const joints = [];
   for (let i = 0; i < n; i++) {
-    joints.push(view.dot("solid", { r: 7, fill: "#ffffff", stroke: pal.joint, "stroke-width": 2.5 }));
+    joints.push(view.dot("solid", { r: 7, fill: PALETTE.bg, stroke: pal.joint, "stroke-width": 2.5 }));
   }
   const bFrame = frameItems(view, "{b}", 0.35 * reach / 2);
+  /** @type {Dot[]} */
   const axisDots = [];
+  /** @type {Label[]} */
   const axisNums = [];
   for (let i = 0; i < n; i++) {
-    axisDots.push(view.dot("front", { r: 13, stroke: "#000000", "stroke-width": 1.5, class: "jl-axis-key" }));
+    axisDots.push(view.dot("front", { r: 13, stroke: PALETTE.fg, "stroke-width": 1.5, class: "jl-axis-key" }));
     axisNums.push(view.label("front", String(i + 1), { "font-weight": "bold", stroke: "none", class: "jl-axis-num" }));
+    axisNums[i].anchor = axisDots[i]; // the number sits on its dot
   }
 
   // ---- the controls
   const colLabel = html("label", { for: `${uid}-col` }, side, "Watch column");
   const select = html("select", { id: `${uid}-col`, class: "jl-column" }, colLabel);
   for (let i = 1; i <= n; i++) html("option", { value: i }, select, `${i}`);
+  /** @type {HTMLInputElement[]} */
   const sliders = [];
+  /** @type {HTMLOutputElement[]} */
   const values = [];
+  /** @type {HTMLSpanElement[]} */
   const keys = [];
   const theta0 = model.get("theta");
   for (let i = 0; i < n; i++) {
@@ -119,20 +147,11 @@ function render({ model, el }) {
   const legend = html("ul", { class: "jl-legend" }, side);
   const changes = html("p", { class: "jl-changes", "aria-live": "polite" }, side);
   const tables = html("div", { class: "jl-tables" }, side);
+  /** @param {SubText} symbol @param {string} cls @param {string} words */
   function makeTable(symbol, cls, words) {
-    const table = html("table", { class: `jl-matrix ${cls}` }, tables);
-    const caption = html("caption", {}, table);
-    sub(caption, symbol).append(`(θ), ${words}`);
-    const hr = html("tr", {}, html("thead", {}, table));
-    html("th", { scope: "col" }, hr, "");
-    const heads = Array.from({ length: n }, (_, i) => html("th", { scope: "col" }, hr, `${i + 1}`));
-    const tbody = html("tbody", {}, table);
-    const cells = ROW_LABELS.map((lab) => {
-      const tr = html("tr", {}, tbody);
-      sub(html("th", { scope: "row" }, tr), lab);
-      return Array.from({ length: n }, () => html("td", {}, tr, ""));
-    });
-    return { table, heads, cells };
+    const t = matrixTable(tables, cls, TWIST_ROWS, Array.from({ length: n }, (_, i) => `${i + 1}`));
+    sub(t.caption, symbol).append(`(θ), ${words}`);
+    return t;
   }
   const tS = makeTable(["J", "s"], "jl-space", "space Jacobian");
   const tB = makeTable(["J", "b"], "jl-body", "body Jacobian");
@@ -149,10 +168,14 @@ function render({ model, el }) {
     const c = Math.round(Number(model.get("column")));
     return c >= 1 && c <= n ? c : 1;
   }
+  /** @type {ColumnsState} */
   const state = { theta: null, column: null, Js: null, Jb: null, moved: [], changedS: [], changedB: [], changeKey: null };
-  const roleColor = (k, i) => (k < i ? pal.space : k > i ? pal.body : "#000000");
+  /** @type {(k: number, i: number) => string} the colour of axis k when column i is watched */
+  const roleColor = (k, i) => (k < i ? pal.space : k > i ? pal.body : PALETTE.fg);
 
+  /** @param {Mat | null} A @param {Mat} B @returns {number[]} the columns (1-based) that differ */
   function changedColumns(A, B) {
+    /** @type {number[]} */
     const out = [];
     if (!A || !B) return out;
     for (let c = 0; c < n; c++) {
@@ -162,6 +185,7 @@ function render({ model, el }) {
     }
     return out;
   }
+  /** @param {number[]} xs */
   const list = (xs) => (xs.length ? xs.join(", ") : "none");
 
   function draw() {
@@ -170,7 +194,8 @@ function render({ model, el }) {
     const e = evaluate(chain, th);
     const pts = e.points;
     // what changed since the last drawing
-    const moved = state.theta ? th.map((t, k) => (t !== state.theta[k] ? k + 1 : 0)).filter(Boolean) : [];
+    const last = state.theta;
+    const moved = last ? th.map((t, k) => (t !== last[k] ? k + 1 : 0)).filter(Boolean) : [];
     if (moved.length) {
       state.changedS = changedColumns(state.Js, e.Js);
       state.changedB = changedColumns(state.Jb, e.Jb);
@@ -189,16 +214,19 @@ function render({ model, el }) {
       joints[i].set(q);
       const tip = [q[0] + 1.25 * axisLen * w[0], q[1] + 1.25 * axisLen * w[1], q[2] + 1.25 * axisLen * w[2]];
       axisDots[i].set(tip);
-      put(axisDots[i].el, "fill", i + 1 === col ? "#ffffff" : c);
+      put(axisDots[i].el, "fill", i + 1 === col ? PALETTE.bg : c);
       axisNums[i].set(tip);
-      put(keys[i], "style", `background:${i + 1 === col ? "#ffffff" : c}`);
-      put(sliders[i], "style", `accent-color:${i + 1 === col ? "#000000" : c}`);
+      put(axisNums[i].el, "fill", i + 1 === col ? PALETTE.fg : PALETTE.onColour);
+      put(keys[i], "style", `background:${i + 1 === col ? PALETTE.bg : c}`);
+      put(sliders[i], "style", `accent-color:${i + 1 === col ? PALETTE.fg : c}`);
     }
     const R = [e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)];
     bFrame.set(R, pts[n]);
     view.render();
     // numbers
-    for (const [t, J, changed, colour] of [[tS, e.Js, state.changedS, pal.space], [tB, e.Jb, state.changedB, pal.body]]) {
+    /** @type {[MatrixTable, Mat, number[], string][]} */
+    const shown = [[tS, e.Js, state.changedS, pal.space], [tB, e.Jb, state.changedB, pal.body]];
+    for (const [t, J, changed, colour] of shown) {
       for (let c = 0; c < n; c++) {
         const isChanged = changed.includes(c + 1);
         const isWatched = c + 1 === col;
@@ -232,6 +260,7 @@ function render({ model, el }) {
     el.dataset.changedB = state.changedB.join(",");
   }
 
+  /** @param {number} col */
   function legendFor(col) {
     const before = Array.from({ length: col - 1 }, (_, k) => k + 1);
     const after = Array.from({ length: n - col }, (_, k) => col + k + 1);
@@ -245,7 +274,7 @@ function render({ model, el }) {
     l2.append(`axes ${list(after)} (after ${col}): they move column ${col} of `);
     sub(l2, ["J", "b"]);
     const l3 = html("li", {}, legend);
-    html("span", { class: "jl-key", style: "background:#ffffff" }, l3);
+    html("span", { class: "jl-key", style: `background:${PALETTE.bg}` }, l3);
     l3.append(`axis ${col}, outlined in the tables: it moves neither`);
   }
 
@@ -266,10 +295,12 @@ function render({ model, el }) {
   }
 
   // ---- input -> state
+  /** @param {Event} ev */
   const onInput = (ev) => {
     const th = readTheta();
-    const i = Number(ev.target.dataset.joint) - 1;
-    const v = Number(ev.target.value);
+    const target = /** @type {HTMLInputElement} */ (ev.target);
+    const i = Number(target.dataset.joint) - 1;
+    const v = Number(target.value);
     if (!Number.isFinite(v)) return;
     th[i] = v;
     model.set("theta", th);
@@ -285,8 +316,7 @@ function render({ model, el }) {
   model.on("change:column", draw);
   draw();
   suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
-  el.jacLive = state;
-  el.jacView = view;
+  Object.assign(el, { jacLive: state, jacView: view });
   return () => {
     model.off("change:theta", draw);
     model.off("change:column", draw);

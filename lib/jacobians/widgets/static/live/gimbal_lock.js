@@ -19,39 +19,32 @@
 import {
   analyticJacobian, coordinatesFromRotation, evaluate, makeChain, rateToAngularVelocity, singularValues,
 } from "./kinematics.js";
-import { graphic, suppressShortcuts } from "./ui.js";
-import { CSS as CSS3D, FONT, createView3D, fixed, frameItems, html, injectStyle, put, sub, svg, text } from "./view3d.js";
+import {
+  BASE_CSS, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, ink, matrixTable, put, sub, suppressShortcuts, svg,
+  text,
+} from "./ui.js";
+import { CSS as CSS3D, FONT, createView3D, frameItems } from "./view3d.js";
 
-const ROW_LABELS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
+/** @typedef {import("./ui.js").SubText} SubText */
+/** @typedef {import("./ui.js").MatrixTable} MatrixTable */
 const REPS = { zyx: "ZYX (yaw, pitch, roll)", zyz: "ZYZ Euler" };
 const DET = { zyx: "−cos φ", zyz: "−sin φ" };
-const DEFAULT_PALETTE = { analytic: "#CC79A7", geometric: "#009E73", link: "#0072B2", joint: "#000000",
-  singular: "#D55E00", warning: "#E69F00", space: "#E69F00", muted: "#999999" };
-const DEFAULT_COLUMNS = ["#D55E00", "#0072B2", "#009E73"];
+const DEFAULT_PALETTE = { analytic: PALETTE.analytic, geometric: PALETTE.geometric, link: PALETTE.link,
+  joint: PALETTE.joint, singular: PALETTE.singular, warning: PALETTE.warning, space: PALETTE.space, muted: PALETTE.muted };
+const DEFAULT_COLUMNS = ["vermillion", "blue", "green"];
 const CHART = { w: 400, h: 190, left: 52, right: 24, top: 12, bottom: 46, lo: -2, hi: 3 }; // log10 range
 const N_CURVE = 121; // θ2 every 3°
 const LOCK_TOL = 1e-9; // kinematics.analyticJacobian's tol (the library's)
+// what this view draws differently from the shared style (ui.js), scoped by its class
 const CSS = `
-.jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:content}
-.jac-live *{box-sizing:border-box}
-.jac-live .jl-wrap{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
-.jac-live .jl-plot{flex:1 1 300px;max-width:460px;min-width:0}
-.jac-live .jl-side{flex:1 1 280px;min-width:0}
-.jac-live label{display:block;font-size:16px}
-.jac-live input[type=range]{width:100%;margin:2px 0 8px}
-.jac-live select{font-size:16px;margin-left:6px;max-width:100%}
-.jac-live table{border-collapse:collapse;margin:8px 0;font-size:15px;font-variant-numeric:tabular-nums}
-.jac-live table.jl-matrix{table-layout:fixed;width:15em}
-.jac-live table.jl-matrix th[scope=col]:first-child{width:2.4em}
-.jac-live td,.jac-live th{padding:1px 6px;text-align:right;border:0}
-.jac-live caption{caption-side:top;text-align:left;font-size:15px}
-.jac-live sub{font-size:14px;line-height:1}
-.jac-live .jl-status{font-size:15px;margin:4px 0}
-.jac-live .jl-banner{font-size:16px;font-weight:bold;padding:4px 8px;border:3px solid;border-radius:6px;margin:6px 0}
-.jac-live .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
-.jac-live .jl-chart svg{width:100%;height:auto;display:block;margin-top:8px}
-.jac-live .jl-legend{font-size:14px;margin:4px 0 0;padding:0;list-style:none}
-.jac-live .jl-key{display:inline-block;width:18px;height:4px;vertical-align:middle;margin-right:6px}
+.jac-live.jl-gimbal{contain:content}
+.jl-gimbal .jl-side{flex:1 1 280px}
+.jl-gimbal table.jl-matrix{table-layout:fixed;width:15em}
+.jl-gimbal table.jl-matrix th[scope=col]:first-child{width:2.4em}
+.jl-gimbal td,.jl-gimbal th{padding:1px 6px}
+.jl-gimbal td{min-width:0}
+.jl-gimbal .jl-tables{display:flex;flex-wrap:wrap;column-gap:16px;align-items:flex-start}
+.jl-gimbal .jl-chart svg{width:100%;height:auto;display:block;margin-top:8px}
 `;
 
 const det3 = (A) => A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
@@ -75,30 +68,8 @@ export function cell(x) {
   return x.toExponential(2).replace("-", "\u2212").replace("e+", "e");
 }
 
-function render({ model, el }) {
-  const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style-gimbal", CSS + CSS3D);
-  el.classList.add("jac-live");
-  const wristModels = model.get("wrists");
-  const chains = {};
-  for (const [k, w] of Object.entries(wristModels)) chains[k] = makeChain(w.S, w.M, w.Q || null);
-  const keys = Object.keys(chains);
-  const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
-  // the library's Okabe–Ito colours, darkened where a line on white needs it (ui.js graphic)
-  const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
-  const colColors = model.get("column_colors") || DEFAULT_COLUMNS;
-  const limitDeg = Number(model.get("limit_deg")) || 180;
-  const stepDeg = Number(model.get("step_deg")) || 0.5;
-  const tool = Number(model.get("tool")) || 0.3;
-  const near = Number(model.get("near")) || 0.1;
-  const wristSingular = Number(model.get("wrist_singular")) || 1e-3;
-  const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
-
-  const wrap = html("div", { class: "jl-wrap" }, el);
-  const plot = html("div", { class: "jl-plot" }, wrap);
-  const side = html("div", { class: "jl-side" }, wrap);
-
-  // ---- the 3-D drawing
+/** The 3-D drawing of the wrist: its axes, rings, the frames, the columns of B(φ) (build). */
+function buildScene(plot, { uid, tool, pal, colColors }) {
   const R0 = 1.55 * tool; // the tool frame stays inside at every pose
   const view = createView3D(plot, {
     id: uid, center: [0, 0, 0], extent: R0, azimuth: -0.95, elevation: 0.4,
@@ -108,23 +79,27 @@ function render({ model, el }) {
   const sFrame = frameItems(view, "{s}", 0.45 * tool, { letters: true, width: 1.5 });
   sFrame.set([[1, 0, 0], [0, 1, 0], [0, 0, 1]], [0, 0, 0]);
   const rings = [0, 1, 2].map((i) => view.ring("solid", { stroke: colColors[i], "stroke-width": 3,
-    "stroke-opacity": 0.85, class: `jl-ring jl-ring-${i + 1}` }));
+    class: `jl-ring jl-ring-${i + 1}` }));
   const axes = [0, 1, 2].map((i) => view.segment("solid", { stroke: colColors[i], "stroke-width": 4,
     class: `jl-axis jl-axis-${i + 1}` }));
-  const axisNums = [0, 1, 2].map((i) => view.label("front", String(i + 1), { fill: colColors[i],
+  const axisNums = [0, 1, 2].map((i) => view.label("front", String(i + 1), { fill: ink(colColors[i]),
     "font-weight": "bold" }));
   const link = view.segment("solid", { stroke: pal.link, "stroke-width": 6, class: "jl-link" });
-  const centre = view.dot("solid", { r: 6, fill: "#ffffff", stroke: pal.joint, "stroke-width": 2.5 });
+  const centre = view.dot("solid", { r: 6, fill: PALETTE.bg, stroke: pal.joint, "stroke-width": 2.5 });
   const bFrame = frameItems(view, "{b}", 0.4 * tool, { letters: true });
   const bCols = [0, 1, 2].map(() => view.arrow("solid", pal.analytic, 3, 12));
   bCols.forEach((a, k) => a.el.setAttribute("class", `jl-bcol jl-bcol-${k + 1}`));
   bCols.forEach((a) => a.el.querySelector("line").setAttribute("stroke-dasharray", "7 5"));
   const bLabels = [0, 1, 2].map((k) => view.label("front", `φ${String.fromCharCode(0x2081 + k)}`,
-    { fill: "#7a3d63", "font-style": "italic" }));
+    { fill: ink("plum"), "font-style": "italic" }));
 
-  // ---- the chart: ‖J_a‖, ‖J‖, |det B| along θ2 (log scale)
+  return { view, rings, axes, axisNums, link, centre, bFrame, bCols, bLabels };
+}
+
+/** The chart of ‖J_a‖, ‖J‖ and |det B| along θ2, log scale (build): its scales and the lines update() moves. */
+function buildChart(plot, { pal, limitDeg }) {
   const chartBox = html("div", { class: "jl-chart" }, plot);
-  const chart = svg("svg", { viewBox: `0 0 ${CHART.w} ${CHART.h}`, role: "img", "font-size": FONT - 2,
+  const chart = svg("svg", { viewBox: `0 0 ${CHART.w} ${CHART.h}`, role: "img", "font-size": FONT - 2, fill: PALETTE.fg,
     "aria-label": "Along θ2 with θ1 and θ3 fixed: the size of J_a, of J, and |det B|, log scale; a line at the current θ2" },
   chartBox);
   const X = (d) => CHART.left + ((d + limitDeg) / (2 * limitDeg)) * (CHART.w - CHART.left - CHART.right);
@@ -135,9 +110,9 @@ function render({ model, el }) {
   };
   const yBottom = CHART.h - CHART.bottom;
   svg("rect", { x: CHART.left, y: CHART.top, width: CHART.w - CHART.left - CHART.right, height: yBottom - CHART.top,
-    fill: "none", stroke: "#bbbbbb" }, chart);
+    fill: "none", stroke: PALETTE.border }, chart);
   for (let p = CHART.lo; p <= CHART.hi; p++) {
-    svg("line", { x1: CHART.left, x2: CHART.w - CHART.right, y1: Y(10 ** p), y2: Y(10 ** p), stroke: "#eeeeee" }, chart);
+    svg("line", { x1: CHART.left, x2: CHART.w - CHART.right, y1: Y(10 ** p), y2: Y(10 ** p), stroke: PALETTE.faint }, chart);
     svg("text", { x: CHART.left - 4, y: Y(10 ** p), "text-anchor": "end", "dominant-baseline": "central" }, chart)
       .textContent = p === 0 ? "1" : `10${p < 0 ? "⁻" : ""}${"⁰¹²³⁴⁵⁶⁷⁸⁹"[Math.abs(p)]}`;
   }
@@ -150,20 +125,24 @@ function render({ model, el }) {
   const curveA = svg("polyline", { fill: "none", stroke: pal.analytic, "stroke-width": 2.5, class: "jl-curve-a" }, chart);
   const curveJ = svg("polyline", { fill: "none", stroke: pal.geometric, "stroke-width": 2.5, "stroke-dasharray": "6 4",
     class: "jl-curve-j" }, chart);
-  const curveD = svg("polyline", { fill: "none", stroke: "#000000", "stroke-width": 2, "stroke-dasharray": "2 3",
+  const curveD = svg("polyline", { fill: "none", stroke: PALETTE.fg, "stroke-width": 2, "stroke-dasharray": "2 3",
     class: "jl-curve-d" }, chart);
-  const cursor = svg("line", { y1: CHART.top, y2: yBottom, stroke: "#000000", "stroke-width": 1.2, class: "jl-cursor" },
+  const cursor = svg("line", { y1: CHART.top, y2: yBottom, stroke: PALETTE.fg, "stroke-width": 1.2, class: "jl-cursor" },
     chart);
   const legend = html("ul", { class: "jl-legend" }, chartBox);
   for (const [colour, dash, words] of [[pal.analytic, "", ["‖J", "a‖ (Frobenius), undefined at the lock"]],
-    [pal.geometric, "dashed", ["‖J‖, the geometric Jacobian", ""]], ["#000000", "dotted", ["|det B(φ)|", ""]]]) {
+    [pal.geometric, "dashed", ["‖J‖, the geometric Jacobian", ""]], [PALETTE.fg, "dotted", ["|det B(φ)|", ""]]]) {
     const li = html("li", {}, legend);
     html("span", { class: "jl-key", style: dash ? `border-top:3px ${dash} ${colour};height:0` : `background:${colour}` },
       li);
     sub(li, words);
   }
 
-  // ---- the controls
+  return { X, Y, curveA, curveJ, curveD, cursor };
+}
+
+/** The selects, the sliders, the banner and status, the tables of B, J and J_a (build). */
+function buildControls(side, { uid, wristModels, keys, limitDeg, stepDeg, colColors, theta0 }) {
   const wristLabel = html("label", { for: `${uid}-wrist` }, side, "Wrist:");
   const wristSelect = html("select", { id: `${uid}-wrist`, class: "jl-wrist" }, wristLabel);
   for (const k of keys) html("option", { value: k }, wristSelect, wristModels[k].name || k);
@@ -172,7 +151,6 @@ function render({ model, el }) {
   for (const [k, words] of Object.entries(REPS)) html("option", { value: k }, repSelect, words);
   const sliders = [];
   const values = [];
-  const theta0 = model.get("theta");
   for (let i = 0; i < 3; i++) {
     const id = `${uid}-t${i + 1}`;
     const lab = html("label", { for: id }, side);
@@ -186,30 +164,165 @@ function render({ model, el }) {
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
   const tables = html("div", { class: "jl-tables" }, side);
-  function makeTable(cls, rows, cols) {
-    const table = html("table", { class: `jl-matrix ${cls}` }, tables);
-    const caption = html("caption", {}, table);
-    const hr = html("tr", {}, html("thead", {}, table));
-    html("th", { scope: "col" }, hr, "");
-    cols.forEach((c) => sub(html("th", { scope: "col" }, hr), c));
-    const tbody = html("tbody", {}, table);
-    const cells = rows.map((lab) => {
-      const tr = html("tr", {}, tbody);
-      sub(html("th", { scope: "row" }, tr), lab);
-      return cols.map(() => html("td", {}, tr, ""));
-    });
-    return { table, caption, cells };
-  }
+  /** @type {(cls: string, rows: ReadonlyArray<SubText>, cols: ReadonlyArray<SubText>) => MatrixTable} */
+  const makeTable = (cls, rows, cols) => matrixTable(tables, cls, rows, cols);
   const rateCols = [["φ̇", "1"], ["φ̇", "2"], ["φ̇", "3"]];
   const jointCols = [["θ̇", "1"], ["θ̇", "2"], ["θ̇", "3"]];
-  const tB = makeTable("jl-B", ROW_LABELS.slice(0, 3), rateCols);
-  const tJ = makeTable("jl-J", ROW_LABELS, jointCols);
+  const tB = makeTable("jl-B", TWIST_ROWS.slice(0, 3), rateCols);
+  const tJ = makeTable("jl-J", TWIST_ROWS, jointCols);
   const tA = makeTable("jl-Ja", [["φ̇", "1"], ["φ̇", "2"], ["φ̇", "3"], ["ṗ", "x"], ["ṗ", "y"], ["ṗ", "z"]], jointCols);
   sub(tJ.caption, ["J", ""]).append("(θ), geometric");
   tB.caption.append("B(φ), ω");
   sub(tB.caption, ["", "s"]).append(" = B(φ) φ̇");
 
-  // ---- state -> picture
+  return { wristSelect, repSelect, sliders, values, banner, status, tB, tJ, tA };
+}
+
+// One sweep per point: J from evaluate, φ from its R, then J_a's angular rows B(φ)⁻¹ J_ω
+// (the same J_a as analyticJacobian; test_live_gimbal.py reads the curves back against the library).
+function curves(chain, th, rep, limitDeg, { X, Y, curveA, curveJ, curveD }) {
+  const A = [], G = [], D = [];
+  for (let k = 0; k < N_CURVE; k++) {
+    const d = -limitDeg + (2 * limitDeg * k) / (N_CURVE - 1);
+    const t = [th[0], (d * Math.PI) / 180, th[2]];
+    const e = evaluate(chain, t);
+    const J = e.Jg;
+    const phi = coordinatesFromRotation([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], rep);
+    const margin = rep === "zyx" ? Math.abs(Math.cos(phi[1])) : Math.abs(Math.sin(phi[1]));
+    let lin = 0, ang = 0;
+    for (let r = 3; r < 6; r++) for (let c = 0; c < 3; c++) lin += J[r][c] * J[r][c];
+    for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) ang += J[r][c] * J[r][c];
+    const x = X(d).toFixed(1);
+    G.push(`${x},${Y(Math.sqrt(lin + ang)).toFixed(1)}`);
+    D.push(`${x},${Y(margin).toFixed(1)}`); // |det B| = the margin, |cos φ2| or |sin φ2|
+    if (margin < LOCK_TOL) {
+      A.push(`${x},${Y(1e9).toFixed(1)}`); // off the top: undefined at the lock
+      continue;
+    }
+    const B = rateToAngularVelocity(phi, rep);
+    const Bi = inverse3(B);
+    let sa = 0;
+    for (let c = 0; c < 3; c++) {
+      for (let i = 0; i < 3; i++) {
+        const y = Bi[i][0] * J[0][c] + Bi[i][1] * J[1][c] + Bi[i][2] * J[2][c];
+        sa += y * y;
+      }
+    }
+    A.push(`${x},${Y(Math.sqrt(sa + lin)).toFixed(1)}`);
+  }
+  put(curveA, "points", A.join(" "));
+  put(curveJ, "points", G.join(" "));
+  put(curveD, "points", D.join(" "));
+}
+
+/** Put the wrist's axes, rings, B(φ)'s columns and the frames where e (evaluate) and B say, and redraw (update). */
+function drawScene({ view, rings, axes, axisNums, link, centre, bFrame, bCols, bLabels }, e, B, tool) {
+  const L = [0.95 * tool, 0.95 * tool, 0.95 * tool];
+  const radius = [0.8 * tool, 0.66 * tool, 0.52 * tool];
+  for (let i = 0; i < 3; i++) {
+    const u = [e.Jg[0][i], e.Jg[1][i], e.Jg[2][i]];
+    axes[i].set(u.map((x) => -L[i] * x), u.map((x) => L[i] * x));
+    axisNums[i].set(u.map((x) => 1.12 * L[i] * x));
+    rings[i].set([0, 0, 0], u, radius[i]);
+    const b = [B[0][i], B[1][i], B[2][i]];
+    bCols[i].set([0, 0, 0], b.map((x) => 0.75 * tool * x));
+    bLabels[i].set(b.map((x) => 0.75 * tool * x), null, 14 * (i - 1), -14);
+  }
+  const p = [e.T[0][3], e.T[1][3], e.T[2][3]];
+  link.set([0, 0, 0], p);
+  centre.set([0, 0, 0]);
+  bFrame.set([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], p);
+  view.render();
+}
+
+/** The status lines: φ, det B(φ), σ_min of J's ω rows, ‖J‖ and ‖J_a‖ (update; rewritten only when they change). */
+function writeStatus(status, state, { rep, phi, detB, sigmaMin, wristSing, normJ, normA }) {
+  const statusKey = [rep, ...phi.map((x) => fixed(deg(x), 1)), fixed(detB, 4), fixed(sigmaMin, 3), wristSing,
+    fixed(normJ, 2), normA === null ? "u" : cell(normA)].join("|");
+  if (statusKey !== state.statusKey) {
+    state.statusKey = statusKey;
+    status.textContent = "";
+    status.append(`φ (${rep.toUpperCase()}) = (${phi.map((x) => `${fixed(deg(x), 1)}°`).join(", ")})`);
+    html("br", {}, status);
+    status.append(`det B(φ) = ${DET[rep]}`);
+    sub(status, ["", "2"]).append(` = ${fixed(detB, 4)}`);
+    html("br", {}, status);
+    sub(status, ["σ", "min"]).append(" of J's ω rows = ");
+    status.append(`${fixed(sigmaMin, 3)}${wristSing ? " (the wrist is singular)" : ""}`);
+    html("br", {}, status);
+    status.append(`‖J‖ = ${fixed(normJ, 2)}, ‖J`);
+    sub(status, ["", "a"]).append(`‖ = ${normA === null ? "undefined" : cell(normA)}`);
+  }
+}
+
+/**
+ * The reader's input -> the model: a slider sets theta (degrees shown, radians kept), the selects the wrist and the
+ * coordinates; a change of the model redraws (bind). Returns the remover of all of it.
+ */
+function bind(model, { wristSelect, repSelect, sliders }, readTheta, draw) {
+const onInput = (ev) => {
+  const th = readTheta();
+  const i = Number(ev.target.dataset.joint) - 1;
+  const v = Number(ev.target.value);
+  if (!Number.isFinite(v)) return;
+  th[i] = (v * Math.PI) / 180;
+  model.set("theta", th);
+  model.save_changes();
+};
+const onWrist = () => {
+  model.set("wrist", wristSelect.value);
+  model.save_changes();
+};
+const onRep = () => {
+  model.set("rep", repSelect.value);
+  model.save_changes();
+};
+sliders.forEach((s) => s.addEventListener("input", onInput));
+wristSelect.addEventListener("change", onWrist);
+repSelect.addEventListener("change", onRep);
+for (const k of ["theta", "wrist", "rep"]) model.on(`change:${k}`, draw);
+  return () => {
+    for (const k of ["theta", "wrist", "rep"]) model.off(`change:${k}`, draw);
+    sliders.forEach((s) => s.removeEventListener("input", onInput));
+    wristSelect.removeEventListener("change", onWrist);
+    repSelect.removeEventListener("change", onRep);
+  };
+}
+
+function render({ model, el }) {
+  const doc = el.ownerDocument;
+  injectStyle(doc, "jac-live-style", BASE_CSS);
+  injectStyle(doc, "jac-live-style-3d", CSS3D);
+  injectStyle(doc, "jac-live-style-gimbal", CSS);
+  el.classList.add("jac-live", "jl-gimbal");
+  const wristModels = model.get("wrists");
+  const chains = {};
+  for (const [k, w] of Object.entries(wristModels)) chains[k] = makeChain(w.S, w.M, w.Q || null);
+  const keys = Object.keys(chains);
+  const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
+  // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
+  const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
+  /** @type {string[]} */
+  const colColors = (model.get("column_colors") || DEFAULT_COLUMNS).map(graphic);
+  const limitDeg = Number(model.get("limit_deg")) || 180;
+  const stepDeg = Number(model.get("step_deg")) || 0.5;
+  const tool = Number(model.get("tool")) || 0.3;
+  const near = Number(model.get("near")) || 0.1;
+  const wristSingular = Number(model.get("wrist_singular")) || 1e-3;
+  const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
+
+  const wrap = html("div", { class: "jl-wrap" }, el);
+  const plot = html("div", { class: "jl-plot" }, wrap);
+  const side = html("div", { class: "jl-side" }, wrap);
+
+  const opts = { uid, tool, pal, colColors, limitDeg, stepDeg, wristModels, keys, theta0: model.get("theta") };
+  const scene = buildScene(plot, opts);
+  const view = scene.view;
+  const chartParts = buildChart(plot, opts);
+  const { X, cursor } = chartParts;
+  const { wristSelect, repSelect, sliders, values, banner, status, tB, tJ, tA } = buildControls(side, opts);
+
+  // ---- state -> picture (update)
   function readWrist() {
     const w = model.get("wrist");
     return keys.includes(w) ? w : keys[0];
@@ -228,43 +341,6 @@ function render({ model, el }) {
   }
   const state = { theta: null, wrist: null, rep: null, curveKey: null };
 
-  // One sweep per point: J from evaluate, φ from its R, then J_a's angular rows B(φ)⁻¹ J_ω
-  // (the same J_a as analyticJacobian; test_live_gimbal.py reads the curves back against the library).
-  function curves(chain, th, rep) {
-    const A = [], G = [], D = [];
-    for (let k = 0; k < N_CURVE; k++) {
-      const d = -limitDeg + (2 * limitDeg * k) / (N_CURVE - 1);
-      const t = [th[0], (d * Math.PI) / 180, th[2]];
-      const e = evaluate(chain, t);
-      const J = e.Jg;
-      const phi = coordinatesFromRotation([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], rep);
-      const margin = rep === "zyx" ? Math.abs(Math.cos(phi[1])) : Math.abs(Math.sin(phi[1]));
-      let lin = 0, ang = 0;
-      for (let r = 3; r < 6; r++) for (let c = 0; c < 3; c++) lin += J[r][c] * J[r][c];
-      for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) ang += J[r][c] * J[r][c];
-      const x = X(d).toFixed(1);
-      G.push(`${x},${Y(Math.sqrt(lin + ang)).toFixed(1)}`);
-      D.push(`${x},${Y(margin).toFixed(1)}`); // |det B| = the margin, |cos φ2| or |sin φ2|
-      if (margin < LOCK_TOL) {
-        A.push(`${x},${Y(1e9).toFixed(1)}`); // off the top: undefined at the lock
-        continue;
-      }
-      const B = rateToAngularVelocity(phi, rep);
-      const Bi = inverse3(B);
-      let sa = 0;
-      for (let c = 0; c < 3; c++) {
-        for (let i = 0; i < 3; i++) {
-          const y = Bi[i][0] * J[0][c] + Bi[i][1] * J[1][c] + Bi[i][2] * J[2][c];
-          sa += y * y;
-        }
-      }
-      A.push(`${x},${Y(Math.sqrt(sa + lin)).toFixed(1)}`);
-    }
-    put(curveA, "points", A.join(" "));
-    put(curveJ, "points", G.join(" "));
-    put(curveD, "points", D.join(" "));
-  }
-
   function draw() {
     const w = readWrist();
     const rep = readRep();
@@ -278,30 +354,14 @@ function render({ model, el }) {
     const sigmaMin = sv[2];
     const normJ = frob(e.Jg);
     const normA = a.singular ? null : frob(a.J);
-    // 3-D
-    const L = [0.95 * tool, 0.95 * tool, 0.95 * tool];
-    const radius = [0.8 * tool, 0.66 * tool, 0.52 * tool];
-    for (let i = 0; i < 3; i++) {
-      const u = [e.Jg[0][i], e.Jg[1][i], e.Jg[2][i]];
-      axes[i].set(u.map((x) => -L[i] * x), u.map((x) => L[i] * x));
-      axisNums[i].set(u.map((x) => 1.12 * L[i] * x));
-      rings[i].set([0, 0, 0], u, radius[i]);
-      const b = [B[0][i], B[1][i], B[2][i]];
-      bCols[i].set([0, 0, 0], b.map((x) => 0.75 * tool * x));
-      bLabels[i].set(b.map((x) => 0.75 * tool * x), null, 14 * (i - 1), -14);
-    }
-    const p = [e.T[0][3], e.T[1][3], e.T[2][3]];
-    link.set([0, 0, 0], p);
-    centre.set([0, 0, 0]);
-    bFrame.set([e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)], p);
-    view.render();
+    drawScene(scene, e, B, tool);
     // chart
     // Along θ2 the three norms do not depend on θ1: joint 1 turns the whole wrist about z, which turns J's
     // columns about z and adds θ1 to φ1 (both ZYX and ZYZ start with a turn about z), and B(φ) = R_z(φ1) B(0, φ2, φ3).
     // So the chart is redone only when θ3, the wrist or the coordinates change (the test checks it at any θ1).
     const key = `${w}|${rep}|${th[2]}`;
     if (key !== state.curveKey) {
-      curves(chain, th, rep);
+      curves(chain, th, rep, limitDeg, chartParts);
       state.curveKey = key;
     }
     const cx = X(deg(th[1])).toFixed(1);
@@ -342,22 +402,7 @@ function render({ model, el }) {
     text(banner, word);
     banner.hidden = word === "";
     put(banner, "style", `border-color:${level === "warning" ? pal.warning : pal.singular}`);
-    const statusKey = [rep, ...a.phi.map((x) => fixed(deg(x), 1)), fixed(detB, 4), fixed(sigmaMin, 3), wristSing,
-      fixed(normJ, 2), normA === null ? "u" : cell(normA)].join("|");
-    if (statusKey !== state.statusKey) {
-      state.statusKey = statusKey;
-      status.textContent = "";
-      status.append(`φ (${rep.toUpperCase()}) = (${a.phi.map((x) => `${fixed(deg(x), 1)}°`).join(", ")})`);
-      html("br", {}, status);
-      status.append(`det B(φ) = ${DET[rep]}`);
-      sub(status, ["", "2"]).append(` = ${fixed(detB, 4)}`);
-      html("br", {}, status);
-      sub(status, ["σ", "min"]).append(" of J's ω rows = ");
-      status.append(`${fixed(sigmaMin, 3)}${wristSing ? " (the wrist is singular)" : ""}`);
-      html("br", {}, status);
-      status.append(`‖J‖ = ${fixed(normJ, 2)}, ‖J`);
-      sub(status, ["", "a"]).append(`‖ = ${normA === null ? "undefined" : cell(normA)}`);
-    }
+    writeStatus(status, state, { rep, phi: a.phi, detB, sigmaMin, wristSing, normJ, normA });
     for (let i = 0; i < 3; i++) {
       text(values[i], `${fixed(deg(th[i]), 1)}°`);
       put(sliders[i], "aria-valuetext", `${fixed(deg(th[i]), 1)} degrees`);  // what the page shows
@@ -375,36 +420,13 @@ function render({ model, el }) {
   }
 
   // ---- input -> state
-  const onInput = (ev) => {
-    const th = readTheta();
-    const i = Number(ev.target.dataset.joint) - 1;
-    const v = Number(ev.target.value);
-    if (!Number.isFinite(v)) return;
-    th[i] = (v * Math.PI) / 180;
-    model.set("theta", th);
-    model.save_changes();
-  };
-  const onWrist = () => {
-    model.set("wrist", wristSelect.value);
-    model.save_changes();
-  };
-  const onRep = () => {
-    model.set("rep", repSelect.value);
-    model.save_changes();
-  };
-  sliders.forEach((s) => s.addEventListener("input", onInput));
-  wristSelect.addEventListener("change", onWrist);
-  repSelect.addEventListener("change", onRep);
-  for (const k of ["theta", "wrist", "rep"]) model.on(`change:${k}`, draw);
+  const unbind = bind(model, { wristSelect, repSelect, sliders }, readTheta, draw);
   draw();
   suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
   el.jacLive = state;
   el.jacView = view;
   return () => {
-    for (const k of ["theta", "wrist", "rep"]) model.off(`change:${k}`, draw);
-    sliders.forEach((s) => s.removeEventListener("input", onInput));
-    wristSelect.removeEventListener("change", onWrist);
-    repSelect.removeEventListener("change", onRep);
+    unbind();
     view.destroy();
     el.textContent = "";
   };

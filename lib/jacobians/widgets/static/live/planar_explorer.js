@@ -5,8 +5,8 @@
 // geometric, or the analytic Jacobian in (x, y, φ)), the linear parts of its
 // columns as arrows, the velocity and force ellipses of J_v (the x, y rows of
 // the geometric Jacobian) and σ_min(J_v), with a banner near a singularity.
-// What is drawn follows the book's matplotlib explorer
-// (jacobians.widgets.planar, jacobians.plotting.planar.column_arrows).
+// The column arrows are drawn as the book's figures draw them
+// (jacobians.plotting.planar.column_arrows).
 //
 // anywidget-compatible: `export default { render }`; render({model, el}) reads
 // model.get(key) for S (6×n), M (4×4), Q (n×3 joint axis points), theta (n, rad),
@@ -18,18 +18,17 @@
 
 import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "./kinematics.js";
 import {
-  PALETTE, announcer, capture, ink, columnColor, fixed, html, injectStyle, makeArrow, planarCanvas, setArrow, setEllipse, sub,
-  holdTouch, suppressShortcuts, svg, toWorld,
+  BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, announcer, capture, ink, columnColor, fixed, html, injectStyle, legendItem,
+  makeArrow, planarCanvas, setArrow, setEllipse, sub, holdTouch, suppressShortcuts, svg, text as setText, toWorld,
 } from "./ui.js";
 
 export { fixed };
 export const FRAMES = ["space", "body", "geometric", "analytic"];
 const SYMBOLS = { space: ["J", "s"], body: ["J", "b"], geometric: ["J", ""], analytic: ["J", "a"] };
-const TWIST_ROWS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
 const ANALYTIC_ROWS = [["ẋ", ""], ["ẏ", ""], ["φ̇", ""]];
 const STEP = 0.01; // rad, as the matplotlib explorer's sliders
 const MAX_STEP = 0.2; // rad, largest joint change of one DLS iteration of a tool drag
-const LIMIT = 3.14; // slider range ±LIMIT rad (a multiple of STEP: the initial θ keeps its value)
+// the slider range ±LIMIT rad (palette.js) is a multiple of STEP: the initial θ keeps its value
 const PLAY_STEP = 0.02; // rad per frame of Play: from -LIMIT it passes 0 exactly (the singularity of a stretched arm)
 const PLAY_MS = 30;
 
@@ -56,22 +55,82 @@ function linearColumns(e, frame, n) {
   return { P, V };
 }
 
-/** Set a node's text only when it changes (no needless layout). */
-function setText(node, text) {
-  if (node.textContent !== text) node.textContent = text;
+
+// tool drag: θ moves by damped least-squares steps on J_v towards the pointer (never NaN: DLS is bounded)
+function solve(chain, th, target, reach) {
+  const damping = 0.05 * reach;
+  const n = chain.n;
+  for (let k = 0; k < 60; k++) {
+    const e = evaluate(chain, th);
+    const err = [target[0] - e.T[0][3], target[1] - e.T[1][3]];
+    if (Math.hypot(err[0], err[1]) < 1e-7 * reach) break;
+    const d = dlsRates([e.Jg[3], e.Jg[4]], err, damping);
+    const big = Math.max(...d.map(Math.abs));
+    const scale = big > MAX_STEP ? MAX_STEP / big : 1; // small steps: the arm follows the pointer continuously
+    for (let i = 0; i < n; i++) th[i] = clamp(th[i] + scale * d[i]);
+  }
+  return th;
+}
+// joint drag: joint k's point turns about joint k-1 towards the pointer (θ_{k-1} changes alone)
+function turn(chain, th, k, target, reach) {
+  const pts = evaluate(chain, th).points;
+  const a = pts[k - 1];
+  const b = pts[k];
+  const d = Math.atan2(target[1] - a[1], target[0] - a[0]) - Math.atan2(b[1] - a[1], b[0] - a[0]);
+  if (Math.hypot(target[0] - a[0], target[1] - a[1]) < 1e-6 * reach || !Number.isFinite(d)) return th;
+  const wz = chain.joints[k - 1].w[2] < 0 ? -1 : 1;
+  let t = th[k - 1] + wz * Math.atan2(Math.sin(d), Math.cos(d));
+  if (t > Math.PI) t -= 2 * Math.PI;
+  if (t < -Math.PI) t += 2 * Math.PI;
+  th[k - 1] = clamp(t);
+  return th;
 }
 
-function legendItem(ul, color, parts, dashed = false) {
-  const li = html("li", {}, ul);
-  const style = dashed ? `border-top:3px dashed ${color};height:0` : `background:${color}`;
-  html("span", { class: "jl-key", style }, li);
-  for (const p of parts) (Array.isArray(p) ? sub(li, p) : li.append(p));
-  return li;
+/**
+ * Dragging the tool's ring or a joint (bind): the pointer's world point sets theta through solve or turn.
+ * Returns the remover of the listeners.
+ */
+function bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop }) {
+let drag = null;
+const onDown = (ev) => {
+  const k = ev.currentTarget === handle ? -1 : Number(ev.currentTarget.dataset.joint) - 1;
+  drag = k;
+  stop();
+  capture(ev.currentTarget, ev);
+  ev.preventDefault();
+};
+const onMove = (ev) => {
+  if (drag === null) return;
+  const target = toWorld(root, ev);
+  if (!target) return;
+  setTheta(drag < 0 ? solve(chain, readTheta(), target, reach) : turn(chain, readTheta(), drag, target, reach));
+};
+const onUp = (ev) => {
+  if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
+  drag = null;
+};
+const draggable = [handle, ...joints.slice(1)];
+const unhold = draggable.map(holdTouch);
+for (const h of draggable) {
+  h.addEventListener("pointerdown", onDown);
+  h.addEventListener("pointermove", onMove);
+  h.addEventListener("pointerup", onUp);
+  h.addEventListener("pointercancel", onUp);
+}
+  return () => {
+    for (const h of draggable) {
+      h.removeEventListener("pointerdown", onDown);
+      h.removeEventListener("pointermove", onMove);
+      h.removeEventListener("pointerup", onUp);
+      h.removeEventListener("pointercancel", onUp);
+    }
+    unhold.forEach((f) => f());
+  };
 }
 
 function render({ model, el }) {
   const doc = el.ownerDocument;
-  injectStyle(doc);
+  injectStyle(doc, "jac-live-style", BASE_CSS);
   el.classList.add("jac-live");
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
@@ -107,7 +166,7 @@ function render({ model, el }) {
   const by = makeArrow(world, PALETTE.muted, 1.5);
   const joints = [];
   for (let i = 0; i < n; i++) {
-    joints.push(svg("circle", { r: 0.045 * reach, fill: "white", stroke: PALETTE.joint, "stroke-width": 2.2,
+    joints.push(svg("circle", { r: 0.045 * reach, fill: PALETTE.bg, stroke: PALETTE.joint, "stroke-width": 2.2,
       "vector-effect": "non-scaling-stroke", class: i ? "jl-joint-handle" : "jl-joint", "data-joint": i + 1 }, world));
     if (i) svg("title", {}, joints[i]).textContent = `drag joint ${i + 1}: turns joint ${i}`;
   }
@@ -115,7 +174,7 @@ function render({ model, el }) {
   const cols = [];
   for (let i = 0; i < n; i++) cols.push(makeArrow(world, columnColor(i), 3));
   cols.forEach((a, i) => a.g.setAttribute("class", `jl-col jl-col-${i + 1}`));
-  const handle = svg("circle", { r: 0.1 * reach, fill: "#000000", "fill-opacity": 0.06, stroke: PALETTE.joint,
+  const handle = svg("circle", { r: 0.1 * reach, fill: PALETTE.fg, "fill-opacity": 0.06, stroke: PALETTE.joint,
     "stroke-opacity": 0.5, "stroke-dasharray": "3 3", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke",
     class: "jl-handle" }, world);
   svg("title", {}, handle).textContent = "drag the tool (inverse kinematics by damped least squares)";
@@ -295,62 +354,7 @@ function render({ model, el }) {
     model.set("frame", select.value);
     model.save_changes();
   };
-  // tool drag: θ moves by damped least-squares steps on J_v towards the pointer (never NaN: DLS is bounded)
-  const damping = 0.05 * reach;
-  function solve(target) {
-    const th = readTheta();
-    for (let k = 0; k < 60; k++) {
-      const e = evaluate(chain, th);
-      const err = [target[0] - e.T[0][3], target[1] - e.T[1][3]];
-      if (Math.hypot(err[0], err[1]) < 1e-7 * reach) break;
-      const d = dlsRates([e.Jg[3], e.Jg[4]], err, damping);
-      const big = Math.max(...d.map(Math.abs));
-      const scale = big > MAX_STEP ? MAX_STEP / big : 1; // small steps: the arm follows the pointer continuously
-      for (let i = 0; i < n; i++) th[i] = clamp(th[i] + scale * d[i]);
-    }
-    return th;
-  }
-  // joint drag: joint k's point turns about joint k-1 towards the pointer (θ_{k-1} changes alone)
-  function turn(k, target) {
-    const th = readTheta();
-    const pts = evaluate(chain, th).points;
-    const a = pts[k - 1];
-    const b = pts[k];
-    const d = Math.atan2(target[1] - a[1], target[0] - a[0]) - Math.atan2(b[1] - a[1], b[0] - a[0]);
-    if (Math.hypot(target[0] - a[0], target[1] - a[1]) < 1e-6 * reach || !Number.isFinite(d)) return th;
-    const wz = chain.joints[k - 1].w[2] < 0 ? -1 : 1;
-    let t = th[k - 1] + wz * Math.atan2(Math.sin(d), Math.cos(d));
-    if (t > Math.PI) t -= 2 * Math.PI;
-    if (t < -Math.PI) t += 2 * Math.PI;
-    th[k - 1] = clamp(t);
-    return th;
-  }
-  let drag = null;
-  const onDown = (ev) => {
-    const k = ev.currentTarget === handle ? -1 : Number(ev.currentTarget.dataset.joint) - 1;
-    drag = k;
-    stop();
-    capture(ev.currentTarget, ev);
-    ev.preventDefault();
-  };
-  const onMove = (ev) => {
-    if (drag === null) return;
-    const target = toWorld(root, ev);
-    if (!target) return;
-    setTheta(drag < 0 ? solve(target) : turn(drag, target));
-  };
-  const onUp = (ev) => {
-    if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
-    drag = null;
-  };
-  const draggable = [handle, ...joints.slice(1)];
-  const unhold = draggable.map(holdTouch);
-  for (const h of draggable) {
-    h.addEventListener("pointerdown", onDown);
-    h.addEventListener("pointermove", onMove);
-    h.addEventListener("pointerup", onUp);
-    h.addEventListener("pointercancel", onUp);
-  }
+  const unbindDrags = bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop });
   // Play: sweep one joint, PLAY_STEP a frame, up to LIMIT, then from -LIMIT again
   let timer = null;
   function tick() {
@@ -385,13 +389,7 @@ function render({ model, el }) {
     model.off("change:theta", draw);
     model.off("change:frame", draw);
     sliders.forEach((s) => s.removeEventListener("input", onInput));
-    for (const h of draggable) {
-      h.removeEventListener("pointerdown", onDown);
-      h.removeEventListener("pointermove", onMove);
-      h.removeEventListener("pointerup", onUp);
-      h.removeEventListener("pointercancel", onUp);
-    }
-    unhold.forEach((f) => f());
+    unbindDrags();
     play.removeEventListener("click", onPlay);
     select.removeEventListener("change", onFrame);
     el.textContent = "";

@@ -1,5 +1,5 @@
 // Resolved-rate motion of a planar arm, live: the tool follows a
-// path the reader picks (the presets of jacobians.widgets.path_following) or
+// path the reader picks (the presets of jacobians.widgets.live.planar_path) or
 // draws with the pointer, by θ̇ = J_v^# (ṗ_d + K (p_d − p)) with the
 // pseudo-inverse or damped least squares (λ on a slider); the joint rates are
 // plotted as the run goes. Play, pause and step from the buttons or the keys
@@ -15,16 +15,22 @@
 
 import { dlsRates, evaluate, makeChain, resolvedRate } from "./kinematics.js";
 import {
-  PALETTE, announcer, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub, suppressShortcuts, svg,
+  BASE_CSS, PALETTE, announcer, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub,
+  suppressShortcuts, svg,
   toWorld,
 } from "./ui.js";
 
+/** @typedef {import("./ui.js").Point2} Point2 */
+
+const RUN_HELP = "Keys in the view: P play/pause, → or . one step on, ← or , one step back.";
+const PEN_HELP = "Drawing: drag on the picture, or with the picture focused move the pen (+) with the arrow keys "
+  + "(Shift: finer), Enter adds a point, Backspace removes one; the button again uses the path, Escape cancels.";
 export const PATHS = ["circle", "to full reach", "close past the base"];
 const METHODS = { pinv: "pseudo-inverse", dls: "damped least squares" };
 const KEYS_ON = new Set(["ArrowRight", "."]);
 const KEYS_BACK = new Set(["ArrowLeft", ","]);
 
-/** The preset paths of path_following._planar_path: {t, x, v} (N times, N×2 positions and velocities). */
+/** The preset paths of jacobians.widgets.live.planar_path: {t, x, v} (N times, N×2 positions and velocities). */
 export function planarPath(kind, reach, nSteps, duration = 4.0) {
   const T = duration;
   const t = Array.from({ length: nSteps }, (_, k) => (nSteps > 1 ? (T * k) / (nSteps - 1) : 0));
@@ -59,7 +65,7 @@ export function resample(points, nSteps) {
   return out;
 }
 
-/** The run's start, as ResolvedRateExplorer._start_configuration: 200 DLS (λ = 1 mm) Newton steps to x0. */
+/** The run's start, as jacobians.widgets.live.start_configuration: 200 DLS (λ = 1 mm) Newton steps to x0. */
 export function startConfiguration(chain, x0) {
   const n = chain.n;
   const th = [0.3, 0.9, 0.9, 0.9, 0.9, 0.9, 0.9].slice(0, n);
@@ -90,9 +96,123 @@ export function simulate(chain, { path, drawn, method, damping, nSteps, duration
   return { t, xd: x, theta0, run };
 }
 
+/**
+ * The drawing pad of the path (bind): the Draw button shows a pad over the picture; a drag draws a stroke, or, with
+ * the picture focused, the arrow keys move a pen (Shift: finer), Enter places a point, Backspace takes one back, the
+ * button uses the points placed, Escape cancels. A stroke of two distinct points or more goes to run.use.
+ * Returns the listeners to add, as [target, type, handler].
+ * @param {{root: SVGSVGElement, ink: SVGPolylineElement, pen: SVGPathElement, pad: SVGRectElement,
+ *   drawBtn: HTMLButtonElement, help: HTMLElement, say: (text: string) => void, reach: number, R: number}} parts
+ * @param {{tool: () => ArrayLike<number> | null, stop: () => void, use: (pts: Point2[]) => void}} run
+ * @returns {[EventTarget, string, (ev: any) => void][]}
+ */
+function drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, run) {
+  /** @type {[EventTarget, string, (ev: any) => void][]} */
+  const on = [];
+let drawing = false;
+/** @type {Point2[] | null} */
+let stroke = null; // a pointer's stroke, while the pointer is down
+/** @type {Point2[]} */
+let keyed = []; // the points placed with the keyboard
+/** @type {Point2} */
+let penAt = [0, 0];
+const rootLabel = root.getAttribute("aria-label") || "";
+/** @param {Point2[]} P */
+const inkPoints = (P) => ink.setAttribute("points", P.map((q) => `${q[0]},${q[1]}`).join(" "));
+const showPen = () => {
+  const d = 0.05 * reach;
+  pen.setAttribute("d", `M${penAt[0] - d},${penAt[1]} h${2 * d} M${penAt[0]},${penAt[1] - d} v${2 * d}`);
+  inkPoints(keyed.length ? [...keyed, penAt] : []);
+};
+/** @param {boolean} d */
+const setDrawing = (d) => {
+  drawing = d;
+  keyed = [];
+  pad.setAttribute("visibility", d ? "visible" : "hidden");
+  pen.setAttribute("visibility", d ? "visible" : "hidden");
+  drawBtn.setAttribute("aria-pressed", String(d));
+  drawBtn.textContent = d ? "✎ Use the path drawn" : "✎ Draw a path";
+  help.textContent = d ? PEN_HELP : RUN_HELP;
+  if (d) {
+    const tool = run.tool();
+    penAt = tool ? [Math.round(tool[0] * 100) / 100, Math.round(tool[1] * 100) / 100] : [0, 0];
+    showPen();
+    root.setAttribute("tabindex", "0");
+    root.setAttribute("aria-label", `${rootLabel}. Drawing pad: the pen starts at the tool. ${PEN_HELP}`);
+  } else {
+    ink.setAttribute("points", "");
+    root.removeAttribute("tabindex");
+    root.setAttribute("aria-label", rootLabel);
+  }
+};
+/** Use a drawn stroke as the path (at least two distinct points), then stop drawing. @param {Point2[]} pts */
+const commit = (pts) => {
+  setDrawing(false);
+  if (resample(pts, 2)) run.use(pts);
+};
+on.push([drawBtn, "click", () => {
+  run.stop();
+  if (!drawing) {
+    setDrawing(true);
+    root.focus();
+  } else if (keyed.length >= 2) commit(keyed);
+  else setDrawing(false);
+}]);
+/** @type {Record<string, Point2>} */
+const PEN_MOVES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+on.push([root, "keydown", (/** @type {KeyboardEvent} */ ev) => {
+  if (!drawing) return;
+  const where = () => `(${fixed(penAt[0], 2)}, ${fixed(penAt[1], 2)}) m`;
+  const move = PEN_MOVES[ev.key];
+  if (move) {
+    const h = ev.shiftKey ? 0.01 * reach : 0.05 * reach;
+    penAt = /** @type {Point2} */ (penAt.map((x, i) => Math.max(-R, Math.min(R, Math.round((x + h * move[i]) * 1e4) / 1e4))));
+    say(`pen at ${where()}`);
+  } else if (ev.key === "Enter" || ev.key === " ") {
+    keyed.push(penAt);
+    say(`point ${keyed.length} at ${where()}`);
+  } else if (ev.key === "Backspace") {
+    keyed.pop();
+    say(`${keyed.length} points`);
+  } else if (ev.key === "Escape") {
+    setDrawing(false);
+    drawBtn.focus();
+    say("drawing cancelled");
+  } else return;
+  if (drawing) showPen();
+  ev.preventDefault();
+  ev.stopPropagation(); // the view's own keys (step, play) and a deck's wait until the drawing ends
+}]);
+on.push([pad, "pointerdown", (ev) => {
+  const p = toWorld(root, ev);
+  if (!p) return;
+  capture(pad, ev);
+  stroke = [p];
+  inkPoints(stroke);
+  ev.preventDefault();
+}]);
+on.push([pad, "pointermove", (ev) => {
+  const p = stroke && toWorld(root, ev);
+  if (!p || !stroke) return;
+  stroke.push(p);
+  inkPoints(stroke);
+}]);
+/** @param {PointerEvent} ev */
+const finish = (ev) => {
+  if (!stroke) return;
+  const last = ev.type === "pointerup" && toWorld(root, ev);
+  if (last) stroke.push(last); // a touch's last move can come only with the lift
+  const pts = stroke;
+  stroke = null;
+  commit(pts);
+};
+on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
+  return on;
+}
+
 function render({ model, el }) {
   const doc = el.ownerDocument;
-  injectStyle(doc);
+  injectStyle(doc, "jac-live-style", BASE_CSS);
   el.classList.add("jac-live");
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
@@ -117,12 +237,13 @@ function render({ model, el }) {
   const actLine = svg("polyline", { ...ns, stroke: PALETTE.velocity, "stroke-width": 2, class: "jr-actual" }, world);
   const link = svg("polyline", { ...ns, stroke: PALETTE.link, "stroke-width": 6, "stroke-linejoin": "round",
     "stroke-linecap": "round", class: "jl-link" }, world);
-  const joints = Array.from({ length: n }, () => svg("circle", { r: 0.045 * reach, fill: "white", stroke: PALETTE.joint,
+  const joints = Array.from({ length: n }, () => svg("circle", { r: 0.045 * reach, fill: PALETTE.bg, stroke: PALETTE.joint,
     "stroke-width": 2.2, "vector-effect": "non-scaling-stroke" }, world));
   const target = svg("path", { ...ns, stroke: PALETTE.path, "stroke-width": 3, class: "jr-target" }, world);
   const ink = svg("polyline", { ...ns, stroke: PALETTE.joint, "stroke-width": 2, class: "jr-ink" }, world);
   const pad = svg("rect", { x: -R, y: -R, width: 2 * R, height: 2 * R, fill: "transparent", class: "jl-draw",
     visibility: "hidden" }, world);
+  const pen = svg("path", { ...ns, stroke: PALETTE.fg, "stroke-width": 2, class: "jr-pen", visibility: "hidden" }, world);
 
   // the joint-rate plot: t on [0, duration], rates on [-rateLimit, rateLimit], in a 400 × 300 box
   const W = 400, H = 300, X0 = 52, X1 = 392, Y0 = 12, Y1 = 262;
@@ -130,9 +251,9 @@ function render({ model, el }) {
   const py = (r) => Y0 + ((Y1 - Y0) * (rateLimit - Math.max(-rateLimit, Math.min(rateLimit, r)))) / (2 * rateLimit);
   const rp = svg("svg", { viewBox: `0 0 ${W} ${H}`, role: "img", class: "jr-rates",
     "aria-label": "joint rates against time, as the run goes" }, right);
-  const axes = svg("g", { stroke: "#888888", "stroke-width": 1, "font-size": 16, fill: "#000000" }, rp);
+  const axes = svg("g", { stroke: PALETTE.muted, "stroke-width": 1, "font-size": 16, fill: PALETTE.fg }, rp);
   for (const r of [-rateLimit, -rateLimit / 2, 0, rateLimit / 2, rateLimit]) {
-    svg("line", { x1: X0, x2: X1, y1: py(r), y2: py(r), stroke: r === 0 ? "#888888" : "#e2e2e2" }, axes);
+    svg("line", { x1: X0, x2: X1, y1: py(r), y2: py(r), stroke: r === 0 ? PALETTE.muted : PALETTE.faint }, axes);
     svg("text", { x: X0 - 6, y: py(r) + 5, "text-anchor": "end", stroke: "none" }, axes).textContent = fixed(r, 0);
   }
   for (let s = 0; s <= duration + 1e-9; s += 1) {
@@ -142,7 +263,7 @@ function render({ model, el }) {
   svg("text", { x: X0 + 4, y: Y0 + 14, stroke: "none" }, axes).textContent = "θ̇ (rad/s)";
   const rateLines = Array.from({ length: n }, (_, i) => svg("polyline", { fill: "none", stroke: columnColor(i),
     "stroke-width": 2.5, class: `jr-rate jr-rate-${i + 1}` }, rp));
-  const cursor = svg("line", { y1: Y0, y2: Y1, stroke: "#4d4d4d", "stroke-width": 1.5 }, rp);
+  const cursor = svg("line", { y1: Y0, y2: Y1, stroke: PALETTE.soft, "stroke-width": 1.5 }, rp);
   const key = html("ul", { class: "jl-legend" }, right);
   for (let i = 0; i < n; i++) {
     const li = html("li", { style: "display:inline-block;margin-right:12px" }, key);
@@ -170,8 +291,7 @@ function render({ model, el }) {
   const back = html("button", { type: "button", class: "jr-back", "aria-label": "one step back" }, row2, "◀ step");
   const play = html("button", { type: "button", class: "jl-play", "aria-pressed": "false" }, row2, "▶ Play");
   const fwd = html("button", { type: "button", class: "jr-fwd", "aria-label": "one step on" }, row2, "step ▶");
-  const help = html("p", { class: "jl-status" }, side,
-    "Keys in the view: P play/pause, → or . one step on, ← or , one step back.");
+  const help = html("p", { class: "jl-status jr-help" }, side, RUN_HELP);
   const status = html("p", { class: "jl-status" }, side);
   const say = announcer(side);  // the key numbers, once a run or a drag has stopped
   const statusT = doc.createTextNode("");
@@ -305,44 +425,16 @@ function render({ model, el }) {
       ev.preventDefault();
     }],
   ];
-  // drawing a path: press "Draw a path", then drag over the arm's picture
-  let drawing = false;
-  let stroke = null;
-  const setDrawing = (d) => {
-    drawing = d;
-    pad.setAttribute("visibility", d ? "visible" : "hidden");
-    drawBtn.setAttribute("aria-pressed", String(d));
-    drawBtn.textContent = d ? "✎ Drag on the picture…" : "✎ Draw a path";
-  };
-  on.push([drawBtn, "click", () => { stop(); setDrawing(!drawing); }]);
-  on.push([pad, "pointerdown", (ev) => {
-    const p = toWorld(root, ev);
-    if (!p) return;
-    capture(pad, ev);
-    stroke = [p];
-    ink.setAttribute("points", `${p[0]},${p[1]}`);
-    ev.preventDefault();
-  }]);
-  on.push([pad, "pointermove", (ev) => {
-    const p = stroke && toWorld(root, ev);
-    if (!p) return;
-    stroke.push(p);
-    ink.setAttribute("points", stroke.map((q) => `${q[0]},${q[1]}`).join(" "));
-  }]);
-  const finish = (ev) => {
-    if (!stroke) return;
-    const last = ev.type === "pointerup" && toWorld(root, ev);
-    if (last) stroke.push(last); // a touch's last move can come only with the lift
-    const pts = stroke;
-    stroke = null;
-    ink.setAttribute("points", "");
-    setDrawing(false);
-    if (!resample(pts, 2)) return;
-    model.set("drawn", pts.map((p) => [Math.round(p[0] * 1e4) / 1e4, Math.round(p[1] * 1e4) / 1e4]));
-    put("path", "drawn");
-    restart();
-  };
-  on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
+  // drawing a path: press "Draw a path", then drag over the arm's picture, or move a pen with the keys
+  on.push(...drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, {
+    tool: () => (state.sim ? state.sim.run.positions[state.step] : null),
+    stop,
+    use(pts) {
+      model.set("drawn", pts.map((p) => [Math.round(p[0] * 1e4) / 1e4, Math.round(p[1] * 1e4) / 1e4]));
+      put("path", "drawn");
+      restart();
+    },
+  }));
   for (const [t, e, f] of on) t.addEventListener(e, f);
   const unhold = holdTouch(pad); // the pad is there only while drawing
   const keys = ["path", "drawn", "method", "damping", "step"].map((k) => `change:${k}`).join(" ");

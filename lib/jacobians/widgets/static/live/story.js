@@ -22,13 +22,14 @@
 
 import { evaluate, makeChain } from "./kinematics.js";
 import {
-  columnColor, fixed, graphic, html, injectStyle, ink, makeArrow, setArrow, sub, suppressShortcuts, svg,
+  BASE_CSS, PALETTE, columnColor, fixed, graphic, html, injectStyle, ink, legendItem, makeArrow, setArrow, sub,
+  suppressShortcuts, svg, text as setText,
 } from "./ui.js";
 
 export const STORIES = ["fixed_axis", "body_columns", "three_velocities"];
-// orange and sky blue darkened to 3:1 on white (ui.js graphic)
-const C = { orange: graphic("#E69F00"), blue: "#0072B2", vermillion: "#D55E00", green: "#009E73", sky: graphic("#56B4E9"),
-  black: "#000000" };
+// the palette's colours as the page's mode draws them (palette.js)
+const C = { orange: graphic("orange"), blue: graphic("blue"), vermillion: graphic("vermillion"), green: graphic("green"),
+  sky: graphic("sky"), black: graphic("ink") };
 
 const CSS = `
 .jac-live .js-plot{flex:1 1 300px;max-width:460px;min-width:0;display:flex;flex-wrap:wrap;gap:8px}
@@ -92,11 +93,12 @@ export function storyState(chain, m, t) {
 /** An SVG drawing of box [x0, x1, y0, y1] (m, y up): {root, world (y flipped), label(x, y, text)}. */
 function panel(parent, box, label) {
   const [x0, x1, y0, y1] = box;
-  const root = svg("svg", { viewBox: `${x0} ${-y1} ${x1 - x0} ${y1 - y0}`, role: "img", "aria-label": label }, parent);
-  svg("rect", { x: x0, y: -y1, width: x1 - x0, height: y1 - y0, fill: "white", stroke: "#bbbbbb",
+  const root = svg("svg", { viewBox: `${x0} ${-y1} ${x1 - x0} ${y1 - y0}`, role: "img", "aria-label": label,
+    fill: PALETTE.fg }, parent);
+  svg("rect", { x: x0, y: -y1, width: x1 - x0, height: y1 - y0, fill: PALETTE.bg, stroke: PALETTE.border,
     "vector-effect": "non-scaling-stroke" }, root);
   const world = svg("g", { transform: "scale(1,-1)" }, root);
-  const grid = svg("g", { stroke: "#dddddd", "stroke-width": 1 }, world);
+  const grid = svg("g", { stroke: PALETTE.grid, "stroke-width": 1 }, world);
   for (let k = Math.ceil(x0); k <= x1; k++) svg("line", { x1: k, y1: y0, x2: k, y2: y1, "vector-effect": "non-scaling-stroke" }, grid);
   for (let k = Math.ceil(y0); k <= y1; k++) svg("line", { x1: x0, y1: k, x2: x1, y2: k, "vector-effect": "non-scaling-stroke" }, grid);
   const font = 0.045 * (x1 - x0); // ≥ 14 px when the drawing is ≥ 312 px wide
@@ -138,27 +140,13 @@ function line(parent, color, width, extra = {}) {
 
 const pts = (P) => P.map((q) => `${q[0]},${q[1]}`).join(" ");
 
-function legendItem(ul, color, parts, dashed = false) {
-  const li = html("li", {}, ul);
-  const style = dashed ? `border-top:3px dashed ${color};height:0` : `background:${color}`;
-  html("span", { class: "jl-key", style }, li);
-  for (const p of parts) (Array.isArray(p) ? sub(li, p) : li.append(p));
-  return li;
-}
-
-function setText(node, text) {
-  if (node.textContent !== text) node.textContent = text;
-}
 
 const vec = (v, d = 2) => `(${v.map((x) => fixed(x, d)).join(", ")})`;
 
 function render({ model, el }) {
   const doc = el.ownerDocument;
-  injectStyle(doc);
-  if (!doc.getElementById("jac-story-style")) {
-    const s = html("style", { id: "jac-story-style" }, doc.head);
-    s.textContent = CSS;
-  }
+  injectStyle(doc, "jac-live-style", BASE_CSS);
+  injectStyle(doc, "jac-story-style", CSS);
   el.classList.add("jac-live");
   const get = (k) => model.get(k);
   const m = {};
@@ -249,11 +237,11 @@ function render({ model, el }) {
     setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [0, L], 0.08, tiny);
     P.text(L + 0.02, -P.font * 1.1, "x");
     P.text(-P.font * 0.9, L + 0.02, "y");
-    const link = line(P.world, graphic("#999999"), 7, { class: "jl-link" });
+    const link = line(P.world, PALETTE.muted, 7, { class: "jl-link" });
     const joints = [];
     const jl = [];
     for (let i = 0; i < n; i++) {
-      joints.push(svg("circle", { r: 0.05, fill: "white", stroke: C.black, "stroke-width": 2, "vector-effect": "non-scaling-stroke" }, P.world));
+      joints.push(svg("circle", { r: 0.05, fill: PALETTE.bg, stroke: C.black, "stroke-width": 2, "vector-effect": "non-scaling-stroke" }, P.world));
       if (m.story === "body_columns") jl.push(P.text(0, 0, `J${i + 1}`));
     }
     const bx = makeArrow(P.world, C.black, 1.5);
@@ -287,8 +275,8 @@ function render({ model, el }) {
       const right = html("div", { class: "js-panel" }, plot);
       html("p", { class: "js-panel-title" }, right, "the same vectors in {b} (to scale)");
       const Rp = panel(right, m.box_right, "The linear parts of the columns of J_b, in {b}-coordinates");
-      line(Rp.world, "#999999", 1, { points: `${m.box_right[0]},0 ${m.box_right[1]},0` });
-      line(Rp.world, "#999999", 1, { points: `0,${m.box_right[2]} 0,${m.box_right[3]}` });
+      line(Rp.world, PALETTE.muted, 1, { points: `${m.box_right[0]},0 ${m.box_right[1]},0` });
+      line(Rp.world, PALETTE.muted, 1, { points: `0,${m.box_right[2]} 0,${m.box_right[3]}` });
       // anchored at the right and top edges, so that a larger font (a slide) grows into the drawing
       Rp.text(m.box_right[1] - 0.3 * Rp.font, -0.3 * Rp.font, "x", "", "b").setAttribute("text-anchor", "end");
       Rp.text(0.08, m.box_right[3] - 0.2 * Rp.font, "y", "", "b").setAttribute("dominant-baseline", "hanging");

@@ -1,25 +1,18 @@
-// Drawing helpers shared by the planar live views: the Okabe–Ito
-// palette of jacobians.plotting.style, one style sheet (text >= 14 px), SVG and
-// HTML element factories, arrows, and number formatting that never shows NaN.
+// @ts-check
+// The helpers every live view shares: the palette (palette.js, re-exported), one style sheet
+// (text >= 14 px), SVG and HTML element factories, redraws that write only what changed, matrix
+// tables, arrows, a polite announcer, and number formatting that never shows NaN.
+
+/** @typedef {Record<string, string | number>} Attrs attributes of a new element */
+/** @typedef {string | readonly [string, string]} SubText text, or [base, subscript] (J_s is ["J", "s"]) */
+/** @typedef {[number, number]} Point2 a point of a planar drawing, world metres, y up */
+/** @typedef {{g: SVGGElement, line: SVGLineElement, head: SVGPolygonElement}} Arrow2 */
+/** @typedef {ReturnType<typeof matrixTable>} MatrixTable */
+
+export { AXIS_COLORS, COLUMN_COLORS, LIMIT, PALETTE, columnColor, graphic, ink, tint } from "./palette.js";
+import { PALETTE, THEME_CSS } from "./palette.js";
 
 export const SVGNS = "http://www.w3.org/2000/svg";
-// Okabe–Ito's orange (#E69F00, 2.2:1 on white) and sky blue (#56B4E9, 2.3:1) are too light for a line
-// on the views' white ground (WCAG asks 3:1 of graphics): the views draw them darker, same hue, and
-// the grey of the frame axes is #767676 (4.5:1), not #999999 (2.8:1).
-const ON_WHITE = { "#E69F00": "#B07800", "#56B4E9": "#3388BB", "#999999": "#767676" };
-/** A colour of the palette as a line or fill on white: at least 3:1. */
-export const graphic = (c) => ON_WHITE[String(c).toUpperCase()] || c;
-// Text in a colour must reach 4.5:1 on white: the darker shade of each hue (same hue, lower lightness).
-const INK = { "#D55E00": "#B35000", "#009E73": "#007A5A", "#CC79A7": "#9E5584", "#E69F00": "#9A6700",
-  "#56B4E9": "#2A6F9E", "#999999": "#767676" };
-/** A colour of the palette as text on white: at least 4.5:1. */
-export const ink = (c) => INK[String(c).toUpperCase()] || c;
-export const PALETTE = {
-  link: "#0072B2", joint: "#000000", muted: graphic("#999999"), velocity: "#D55E00", force: "#009E73",
-  path: graphic("#E69F00"), ok: "#009E73", warning: graphic("#E69F00"), singular: "#D55E00",
-};
-export const COLUMN_COLORS = ["#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"].map(graphic);
-export const columnColor = (i) => COLUMN_COLORS[i % COLUMN_COLORS.length];
 
 const CSS = `
 .jac-live{font-size:16px;line-height:1.35;max-width:100%;box-sizing:border-box;margin:0.5em 0 1.5em;contain:layout}
@@ -46,24 +39,45 @@ const CSS = `
 .jac-live .jl-key{display:inline-block;width:18px;height:4px;vertical-align:middle;margin-right:6px}
 .jac-live .jl-row{display:flex;flex-wrap:wrap;align-items:center;gap:4px}
 .jac-live .jl-sr{display:block;width:1px;height:1px;margin:0 0 -1px;padding:0;overflow:hidden;clip-path:inset(50%);white-space:nowrap;border:0}
-.jac-live input:focus-visible,.jac-live select:focus-visible,.jac-live button:focus-visible{outline:3px solid var(--pst-color-accent,#0072B2);outline-offset:2px}
+.jac-live input:focus-visible,.jac-live select:focus-visible,.jac-live button:focus-visible{outline:3px solid var(--pst-color-accent,var(--jl-blue));outline-offset:2px}
 `;
 
-export function injectStyle(doc) {
-  if (doc.getElementById("jac-live-style")) return;
+/** The style every view shares: the palette's custom properties and the layout above. */
+export const BASE_CSS = THEME_CSS + CSS;
+
+/**
+ * Add a <style id=id> with `css` to the document's head, once (a second view of the same kind finds it).
+ * @param {Document} doc
+ * @param {string} id
+ * @param {string} css
+ */
+export function injectStyle(doc, id, css) {
+  if (doc.getElementById(id)) return;
   const s = doc.createElement("style");
-  s.id = "jac-live-style";
-  s.textContent = CSS;
+  s.id = id;
+  s.textContent = css;
   doc.head.appendChild(s);
 }
 
-/** A number with fixed decimals, never "-0.00" (a true minus sign otherwise), "—" if not finite. */
+/** A number with fixed decimals, never "-0.00" (a true minus sign otherwise), "—" if not finite.
+ * @param {number} x
+ * @param {number} [digits]
+ * @returns {string}
+ */
 export function fixed(x, digits = 2) {
   if (!Number.isFinite(x)) return "—";
   const s = x.toFixed(digits);
   return /^-0\.?0*$/.test(s) ? s.slice(1) : s.replace("-", "\u2212");
 }
 
+/**
+ * A new SVG element with attributes, appended to `parent` if given.
+ * @template {keyof SVGElementTagNameMap} K
+ * @param {K} tag
+ * @param {Attrs} [attrs]
+ * @param {Element | null} [parent]
+ * @returns {SVGElementTagNameMap[K]}
+ */
 export function svg(tag, attrs = {}, parent = null) {
   const e = document.createElementNS(SVGNS, tag);
   for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
@@ -71,6 +85,15 @@ export function svg(tag, attrs = {}, parent = null) {
   return e;
 }
 
+/**
+ * A new HTML element with attributes and text, appended to `parent` if given.
+ * @template {keyof HTMLElementTagNameMap} K
+ * @param {K} tag
+ * @param {Attrs} [attrs]
+ * @param {Element | null} [parent]
+ * @param {string | null} [text]
+ * @returns {HTMLElementTagNameMap[K]}
+ */
 export function html(tag, attrs = {}, parent = null, text = null) {
   const e = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
@@ -84,11 +107,16 @@ export function html(tag, attrs = {}, parent = null, text = null) {
  * A slider dragged or a run playing changes the numbers many times a second; `say` waits until
  * they have been still for `quietMs` and then announces the last text once (never the same text
  * twice in a row), so a listener hears where the view settled, not every step on the way.
+ * @param {Element} parent
+ * @param {number} [quietMs]
+ * @returns {Announcer}
  */
 export function announcer(parent, quietMs = 900) {
   const region = html("p", { class: "jl-sr", "aria-live": "polite", "aria-atomic": "true" }, parent);
+  /** @type {ReturnType<typeof setTimeout> | null} */
   let timer = null;
   let last = "";
+  /** @param {string} text */
   const say = (text) => {
     if (timer !== null) clearTimeout(timer);
     timer = setTimeout(() => {
@@ -96,19 +124,109 @@ export function announcer(parent, quietMs = 900) {
       if (text !== last) region.textContent = last = text;
     }, quietMs);
   };
-  say.region = region;
-  say.cancel = () => { if (timer !== null) clearTimeout(timer); timer = null; };
-  return say;
+  const cancel = () => {
+    if (timer !== null) clearTimeout(timer);
+    timer = null;
+  };
+  return Object.assign(say, { region, cancel });
+}
+/** @typedef {((text: string) => void) & {region: HTMLParagraphElement, cancel: () => void}} Announcer */
+
+/**
+ * el.setAttribute(k, v) only when v differs from what this helper last wrote (a redraw writes little).
+ * @param {Element & {jlAttrs?: Record<string, string>}} el
+ * @param {string} k
+ * @param {string | number} v
+ */
+export function put(el, k, v) {
+  const c = el.jlAttrs || (el.jlAttrs = {});
+  const s = String(v);
+  if (c[k] !== s) {
+    c[k] = s;
+    el.setAttribute(k, s);
+  }
 }
 
-/** Append text with a subscript (e.g. J_s) to `parent`. */
-export function sub(parent, [base, index]) {
+/**
+ * el.textContent = s only when it differs.
+ * @param {Node & {jlText?: string}} el
+ * @param {string} s
+ */
+export function text(el, s) {
+  if (el.jlText !== s) {
+    el.jlText = s;
+    el.textContent = s;
+  }
+}
+
+/** Append text, or text with a subscript (["J", "s"] gives J_s), to `parent`; returns parent.
+ * @template {Element} E
+ * @param {E} parent
+ * @param {SubText} label
+ * @returns {E}
+ */
+export function sub(parent, label) {
+  if (typeof label === "string") {
+    parent.append(label);
+    return parent;
+  }
+  const [base, index] = label;
   parent.append(base);
   if (index) html("sub", {}, parent, index);
   return parent;
 }
 
-/** An arrow (shaft + head) in a <g>; hidden when shorter than `tiny`. */
+/** The rows of a twist or of a 6×n Jacobian: ω_x, ω_y, ω_z, v_x, v_y, v_z. */
+/** @type {ReadonlyArray<readonly [string, string]>} */
+export const TWIST_ROWS = [["ω", "x"], ["ω", "y"], ["ω", "z"], ["v", "x"], ["v", "y"], ["v", "z"]];
+
+/**
+ * A table of a matrix in `parent`: an empty caption (the caller writes it), a header row with an empty
+ * corner and one head per column, a header cell per row; each label is text or [base, subscript].
+ * @param {HTMLElement} parent
+ * @param {string} cls its classes besides jl-matrix
+ * @param {ReadonlyArray<SubText>} rows
+ * @param {ReadonlyArray<SubText>} cols
+ * @returns {{table: HTMLTableElement, caption: HTMLTableCaptionElement, heads: HTMLTableCellElement[],
+ *   cells: HTMLTableCellElement[][]}} cells[r][c]
+ */
+export function matrixTable(parent, cls, rows, cols) {
+  const table = /** @type {HTMLTableElement} */ (html("table", { class: `jl-matrix ${cls}` }, parent));
+  const caption = /** @type {HTMLTableCaptionElement} */ (html("caption", {}, table));
+  const hr = html("tr", {}, html("thead", {}, table));
+  html("th", { scope: "col" }, hr, "");
+  const heads = cols.map((c) => /** @type {HTMLTableCellElement} */ (sub(html("th", { scope: "col" }, hr), c)));
+  const tbody = html("tbody", {}, table);
+  const cells = rows.map((lab) => {
+    const tr = html("tr", {}, tbody);
+    sub(html("th", { scope: "row" }, tr), lab);
+    return cols.map(() => /** @type {HTMLTableCellElement} */ (html("td", {}, tr, "")));
+  });
+  return { table, caption, heads, cells };
+}
+
+/**
+ * An item of a legend: a key of `color` (a bar, or a dashed line), then the parts (text or [base, subscript]).
+ * @param {HTMLUListElement} ul
+ * @param {string} color
+ * @param {ReadonlyArray<SubText>} parts
+ * @param {boolean} [dashed]
+ * @returns {HTMLLIElement}
+ */
+export function legendItem(ul, color, parts, dashed = false) {
+  const li = html("li", {}, ul);
+  const style = dashed ? `border-top:3px dashed ${color};height:0` : `background:${color}`;
+  html("span", { class: "jl-key", style }, li);
+  for (const p of parts) sub(li, p);
+  return li;
+}
+
+/** An arrow (shaft + head) in a <g>; setArrow draws it.
+ * @param {Element} parent
+ * @param {string} color
+ * @param {number} width stroke width, screen pixels
+ * @returns {Arrow2}
+ */
 export function makeArrow(parent, color, width) {
   const g = svg("g", { fill: color, stroke: color }, parent);
   const line = svg("line", { "stroke-width": width, "vector-effect": "non-scaling-stroke", "stroke-linecap": "round" }, g);
@@ -116,6 +234,13 @@ export function makeArrow(parent, color, width) {
   return { g, line, head };
 }
 
+/** Draw arrow `a` from p along d (world units); hidden when shorter than `tiny`.
+ * @param {Arrow2} a
+ * @param {ArrayLike<number>} p
+ * @param {ArrayLike<number>} d
+ * @param {number} headLen
+ * @param {number} tiny
+ */
 export function setArrow(a, p, d, headLen, tiny) {
   const L = Math.hypot(d[0], d[1]);
   if (!(L > tiny)) {
@@ -131,18 +256,25 @@ export function setArrow(a, p, d, headLen, tiny) {
   const bx = tx - h * ux;
   const by = ty - h * uy;
   const w = 0.45 * h;
-  a.line.setAttribute("x1", p[0]);
-  a.line.setAttribute("y1", p[1]);
-  a.line.setAttribute("x2", bx);
-  a.line.setAttribute("y2", by);
+  a.line.setAttribute("x1", String(p[0]));
+  a.line.setAttribute("y1", String(p[1]));
+  a.line.setAttribute("x2", String(bx));
+  a.line.setAttribute("y2", String(by));
   a.head.setAttribute("points", `${tx},${ty} ${bx - w * uy},${by + w * ux} ${bx + w * uy},${by - w * ux}`);
 }
 
-/** An SVG square drawing of half-width R (world metres, y up), a light grid and the base; returns {root, world}. */
+/** An SVG square drawing of half-width R (world metres, y up), a light grid and the base; returns {root, world}.
+ * @param {Element} parent
+ * @param {number} R
+ * @param {number} reach
+ * @param {string} label its aria-label
+ * @returns {{root: SVGSVGElement, world: SVGGElement}}
+ */
 export function planarCanvas(parent, R, reach, label) {
-  const root = svg("svg", { viewBox: `${-R} ${-R} ${2 * R} ${2 * R}`, role: "img", "aria-label": label }, parent);
+  const root = svg("svg", { viewBox: `${-R} ${-R} ${2 * R} ${2 * R}`, role: "img", "aria-label": label,
+    fill: PALETTE.fg }, parent);
   const world = svg("g", { transform: "scale(1,-1)" }, root);
-  const grid = svg("g", { stroke: "#dddddd", "stroke-width": 1 }, world);
+  const grid = svg("g", { stroke: PALETTE.grid, "stroke-width": 1 }, world);
   for (let k = -Math.floor(R); k <= Math.floor(R); k++) {
     svg("line", { x1: k, y1: -R, x2: k, y2: R, "vector-effect": "non-scaling-stroke" }, grid);
     svg("line", { x1: -R, y1: k, x2: R, y2: k, "vector-effect": "non-scaling-stroke" }, grid);
@@ -152,7 +284,11 @@ export function planarCanvas(parent, R, reach, label) {
   return { root, world };
 }
 
-/** Pointer position in the drawing's world coordinates (y up), or null. */
+/** Pointer position in the drawing's world coordinates (y up), or null.
+ * @param {SVGSVGElement} root
+ * @param {{clientX: number, clientY: number}} ev
+ * @returns {Point2 | null}
+ */
 export function toWorld(root, ev) {
   const m = root.getScreenCTM();
   if (!m) return null;
@@ -160,7 +296,10 @@ export function toWorld(root, ev) {
   return Number.isFinite(q.x) && Number.isFinite(q.y) ? [q.x, -q.y] : null;
 }
 
-/** Capture the pointer on `el` (a synthetic event has none to capture). */
+/** Capture the pointer on `el` (a synthetic event has none to capture).
+ * @param {Element} el
+ * @param {PointerEvent} ev
+ */
 export function capture(el, ev) {
   try {
     el.setPointerCapture(ev.pointerId);
@@ -169,13 +308,20 @@ export function capture(el, ev) {
   }
 }
 
-/** Ellipse attributes: centre c, semi-axes a >= b along the unit column u of a 2×2 `directions`. */
+/** Ellipse attributes: centre c, semi-axes a >= b along the unit column u of a 2×2 `directions`.
+ * @param {SVGEllipseElement} e
+ * @param {ArrayLike<number>} c
+ * @param {number} a
+ * @param {number} b
+ * @param {number[][]} directions
+ * @param {number} minAxis
+ */
 export function setEllipse(e, c, a, b, directions, minAxis) {
   const ang = (Math.atan2(directions[1][0], directions[0][0]) * 180) / Math.PI;
-  e.setAttribute("cx", c[0]);
-  e.setAttribute("cy", c[1]);
-  e.setAttribute("rx", Math.max(a, minAxis));
-  e.setAttribute("ry", Math.max(b, minAxis));
+  e.setAttribute("cx", String(c[0]));
+  e.setAttribute("cy", String(c[1]));
+  e.setAttribute("rx", String(Math.max(a, minAxis)));
+  e.setAttribute("ry", String(Math.max(b, minAxis)));
   e.setAttribute("transform", `rotate(${Number.isFinite(ang) ? ang : 0} ${c[0]} ${c[1]})`);
 }
 
@@ -183,6 +329,7 @@ export function setEllipse(e, c, a, b, directions, minAxis) {
  * JupyterLab (Lumino) handles keys before the page does, with bindings whose selectors can match a
  * focused control in an output; the attribute data-lm-suppress-shortcuts on the view and on each of
  * its controls hands the keys to them. A static page ignores it.
+ * @param {Element} el
  */
 export function suppressShortcuts(el) {
   el.setAttribute("data-lm-suppress-shortcuts", "true");
@@ -193,8 +340,11 @@ export function suppressShortcuts(el) {
  * touch-action on an SVG shape is not honoured (Chromium cancels the pointer once the finger pans):
  * a touch that starts on `el` must not scroll the page, so its touchstart is cancelled. The rest of
  * the drawing still scrolls the page. Returns the listener's remover.
+ * @param {Element} el
+ * @returns {() => void}
  */
 export function holdTouch(el) {
+  /** @param {Event} ev */
   const f = (ev) => ev.preventDefault();
   el.addEventListener("touchstart", f, { passive: false });
   return () => el.removeEventListener("touchstart", f);

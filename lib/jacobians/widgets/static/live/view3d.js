@@ -1,3 +1,4 @@
+// @ts-check
 // A small orthographic 3-D view in SVG, shared by the spatial live views
 // (columns_explorer.js, gimbal_lock.js). No dependencies.
 //
@@ -16,7 +17,50 @@
 // change redraws without recomputing the kinematics. Items in the "solid" layer
 // are drawn back to front (painter's order by depth).
 
-const SVGNS = "http://www.w3.org/2000/svg";
+import { AXIS_COLORS, PALETTE, html, ink, put, svg } from "./ui.js";
+
+export { AXIS_COLORS };
+
+/** @typedef {import("./ui.js").Attrs} Attrs */
+/** @typedef {[number, number, number]} Vec3 a world point or vector */
+/** @typedef {ArrayLike<number>} Point a world point (x, y, z) as any array */
+/** @typedef {(p: Point) => Vec3} Projector world -> [x, y (SVG units, y down), depth (larger = nearer)] */
+/** @typedef {{r: Vec3, u: Vec3, d: Vec3}} Basis the camera's right, up and toward-the-viewer directions */
+/** @typedef {{azimuth: number, elevation: number}} Camera */
+/** @typedef {"back" | "solid" | "front"} Layer back: under all; solid: painter's order by depth; front: over all */
+/**
+ * Something drawn in the view: it keeps world data, draw() projects it.
+ * @typedef {object} Item
+ * @property {SVGElement} el
+ * @property {Layer} layer
+ * @property {boolean} visible
+ * @property {number} depth
+ * @property {(pr: Projector, basis: Basis) => void} draw
+ * @property {Box} [box] where a label or a dot sits on screen, once drawn: declutter() keeps these apart
+ * @property {(x: number, y: number) => void} [moveTo] put it elsewhere on screen (declutter)
+ * @property {Item} [anchor] a label drawn on this item (a number on its dot): it moves with it
+ */
+/** @typedef {{x: number, y: number, hw: number, hh: number}} Box a centre and half sizes, SVG units */
+/** @typedef {Item & {p: Point, q: Point, set(p: Point, q: Point): Segment}} Segment */
+/** @typedef {Item & {pts: Point[], set(pts: Point[]): Polyline}} Polyline */
+/** @typedef {Item & {pts: Point[], set(c: Point, n: Point, radius: number): Ring}} Ring */
+/** @typedef {Item & {p: Point, v: Point, set(p: Point, v: Point): Arrow3}} Arrow3 */
+/**
+ * A text label at a world point, offset (dx, dy) SVG units on screen.
+ * @typedef {Item & {el: SVGTextElement, p: Point, dx: number, dy: number,
+ *   set(p: Point, t?: string | null, dx?: number, dy?: number): Label}} Label
+ */
+/** @typedef {Item & {el: SVGCircleElement, p: Point, set(p: Point): Dot}} Dot */
+/**
+ * @typedef {object} ViewOptions
+ * @property {Point} [center] what the camera looks at
+ * @property {number} [extent] the world radius about center that must fit
+ * @property {number} [azimuth] rad
+ * @property {number} [elevation] rad
+ * @property {string} [label] the aria-label: what is drawn
+ * @property {string} [help] a visible line of how to turn it
+ * @property {string} [id] a prefix of the element ids
+ */
 export const VIEWBOX = 400; // SVG units across; strokes are in screen pixels (non-scaling)
 export const FONT = 18; // SVG units: ≥ 14 px when the drawing is ≥ 312 px wide
 const KEY_STEP = (5 * Math.PI) / 180;
@@ -26,82 +70,76 @@ const MAX_ELEVATION = (89 * Math.PI) / 180;
 export const CSS = `
 .jac-live .jl-view3d{position:relative}
 .jac-live .jl-view3d svg{width:100%;height:auto;display:block;touch-action:none;cursor:grab;user-select:none;
-  -webkit-user-select:none;border:1px solid #cccccc;border-radius:6px;background:#ffffff}
+  -webkit-user-select:none;border:1px solid var(--jl-border);border-radius:6px;background:var(--jl-paper)}
 .jac-live .jl-view3d svg:focus{outline:none}
-.jac-live .jl-view3d svg:focus-visible{outline:3px solid #0072B2;outline-offset:2px}
+.jac-live .jl-view3d svg:focus-visible{outline:3px solid var(--jl-blue);outline-offset:2px}
 .jac-live .jl-view3d svg.jl-dragging{cursor:grabbing}
-.jac-live .jl-help{font-size:14px;margin:4px 0 0;color:#333333}
+.jac-live .jl-help{font-size:14px;margin:4px 0 0;color:var(--jl-soft-text)}
 `;
 
-export function svg(tag, attrs = {}, parent = null) {
-  const e = document.createElementNS(SVGNS, tag);
-  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
-  if (parent) parent.appendChild(e);
-  return e;
-}
-
-export function html(tag, attrs = {}, parent = null, text = null) {
-  const e = document.createElement(tag);
-  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
-  if (text !== null) e.textContent = text;
-  if (parent) parent.appendChild(e);
-  return e;
-}
-
-/** Append text with a subscript (e.g. ["J", "s"] gives J_s) to `parent`. */
-export function sub(parent, [base, index]) {
-  parent.append(base);
-  if (index) html("sub", {}, parent, index);
-  return parent;
-}
-
-/** A number with fixed decimals, never "−0.00"; a true minus sign; "—" for a non-finite number. */
-export function fixed(x, digits = 2) {
-  if (!Number.isFinite(x)) return "—";
-  const s = x.toFixed(digits);
-  return /^-0\.?0*$/.test(s) ? s.slice(1) : s.replace("-", "\u2212");
-}
-
-/** el.setAttribute(k, v) only when v differs from what this helper last wrote (a redraw writes little). */
-export function put(el, k, v) {
-  const c = el.jlAttrs || (el.jlAttrs = {});
-  const s = String(v);
-  if (c[k] !== s) {
-    c[k] = s;
-    el.setAttribute(k, s);
-  }
-}
-
-/** el.textContent = s only when it differs. */
-export function text(el, s) {
-  if (el.jlText !== s) {
-    el.jlText = s;
-    el.textContent = s;
-  }
-}
-
-export function injectStyle(doc, id, css) {
-  if (doc.getElementById(id)) return;
-  const s = doc.createElement("style");
-  s.id = id;
-  s.textContent = css;
-  doc.head.appendChild(s);
-}
-
+/** @type {(a: Point, b: Point) => Vec3} */
 const sub3 = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+/** @type {(a: Point, b: Point) => number} */
 const dot3 = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+/** @type {(p: Point) => boolean} */
 const finite3 = (p) => Number.isFinite(p[0]) && Number.isFinite(p[1]) && Number.isFinite(p[2]);
+
+/**
+ * Labels and dots must not cover each other: in the order they were made (the first keep their place), each
+ * that overlaps one already placed moves to the nearest free spot on rings of 4, 8, ... 48 SVG units around
+ * where it belongs (12 directions a ring), inside the drawing. A label with an anchor moves with its anchor.
+  * @param {Item[]} items
+ */
+function declutter(items) {
+  /** @type {Box[]} */
+  const placed = [];
+  /** @type {Map<Item, [number, number]>} */
+  const moved = new Map();
+  const half = VIEWBOX / 2;
+  /** @param {Box} b */
+  const free = (b) => Math.abs(b.x) + b.hw <= half && Math.abs(b.y) + b.hh <= half
+    && placed.every((q) => Math.abs(q.x - b.x) >= q.hw + b.hw || Math.abs(q.y - b.y) >= q.hh + b.hh);
+  for (const it of items) {
+    const b = it.box;
+    if (!it.visible || !b || it.anchor || !it.moveTo) continue;
+    let best = b;
+    if (!free(b)) {
+      search: for (let r = 4; r <= 48; r += 4) {
+        for (let k = 0; k < 12; k++) {
+          const t = (Math.PI / 6) * k - Math.PI / 4;
+          const c = { ...b, x: b.x + r * Math.cos(t), y: b.y + r * Math.sin(t) };
+          if (free(c)) {
+            best = c;
+            break search;
+          }
+        }
+      }
+    }
+    placed.push(best);
+    if (best !== b) {
+      it.moveTo(best.x, best.y);
+      moved.set(it, [best.x - b.x, best.y - b.y]);
+    }
+  }
+  for (const it of items) {
+    const shift = it.anchor && moved.get(it.anchor);
+    if (shift && it.box && it.moveTo && it.visible) it.moveTo(it.box.x + shift[0], it.box.y + shift[1]);
+  }
+}
 
 /**
  * An orthographic 3-D view in `parent`.
  * options: center (3), extent (world radius that must fit), azimuth, elevation (rad),
  * label (the aria-label: what is drawn), help (a visible line of how to turn it), id.
  * Returns {svg, layers: {back, solid, front}, camera, project, render, setCamera, items, destroy, onCamera}.
+ * @param {Element} parent
+ * @param {ViewOptions} options
  */
 export function createView3D(parent, options) {
   const center = options.center || [0, 0, 0];
   const extent = options.extent || 1;
   const scale = (0.5 * VIEWBOX) / extent; // SVG units per metre
+  /** @type {Camera} */
   const home = { azimuth: options.azimuth ?? -1.0, elevation: options.elevation ?? 0.45 };
   const camera = { ...home };
   const box = html("div", { class: "jl-view3d" }, parent);
@@ -109,28 +147,37 @@ export function createView3D(parent, options) {
   const root = svg("svg", {
     viewBox: `${-VIEWBOX / 2} ${-VIEWBOX / 2} ${VIEWBOX} ${VIEWBOX}`, tabindex: 0, role: "img",
     "aria-roledescription": "turnable 3-D view", "aria-label": options.label || "3-D view",
-    "aria-describedby": helpId, class: "jl-3d", "font-size": FONT, "font-family": "inherit",
+    "aria-describedby": helpId, class: "jl-3d", "font-size": FONT, "font-family": "inherit", fill: PALETTE.fg,
   }, box);
+  /** @type {Record<Layer, SVGGElement>} */
   const layers = { back: svg("g", { class: "jl-back" }, root), solid: svg("g", { class: "jl-solid" }, root),
     front: svg("g", { class: "jl-front" }, root) };
   const help = html("p", { class: "jl-help", id: helpId }, box,
     options.help || "Turn the view: drag it, or focus it (Tab) and press the arrow keys; Home resets.");
-  let basis = null;
-  function updateBasis() {
+  /** @returns {Basis} */
+  function cameraBasis() {
     const ca = Math.cos(camera.azimuth), sa = Math.sin(camera.azimuth);
     const ce = Math.cos(camera.elevation), se = Math.sin(camera.elevation);
-    basis = { r: [-sa, ca, 0], u: [-se * ca, -se * sa, ce], d: [ce * ca, ce * sa, se] };
+    return { r: [-sa, ca, 0], u: [-se * ca, -se * sa, ce], d: [ce * ca, ce * sa, se] };
   }
-  updateBasis();
-  /** World point -> [x, y, depth] in SVG units (y down). */
+  let basis = cameraBasis();
+  function updateBasis() {
+    basis = cameraBasis();
+  }
+  /** World point -> [x, y, depth] in SVG units (y down).
+   * @type {Projector}
+   */
   function project(p) {
     const q = sub3(p, center);
     return [scale * dot3(q, basis.r), -scale * dot3(q, basis.u), dot3(q, basis.d)];
   }
+  /** @type {Item[]} */
   const items = [];
+  /** @type {((camera: Camera) => void)[]} */
   const listeners = [];
   function render() {
     for (const it of items) it.draw(project, basis);
+    declutter(items);
     const solid = items.filter((it) => it.layer === "solid" && it.visible);
     solid.sort((a, b) => a.depth - b.depth);
     let i = 0;
@@ -141,6 +188,7 @@ export function createView3D(parent, options) {
     }
     if (!inOrder || i !== solid.length) for (const it of solid) layers.solid.appendChild(it.el);
   }
+  /** @param {number} azimuth @param {number} elevation */
   function setCamera(azimuth, elevation) {
     camera.azimuth = Number.isFinite(azimuth) ? azimuth : camera.azimuth;
     camera.elevation = Math.max(-MAX_ELEVATION, Math.min(MAX_ELEVATION,
@@ -152,7 +200,9 @@ export function createView3D(parent, options) {
     listeners.forEach((f) => f(camera));
   }
   // ---- the reader turns it
+  /** @type {{x: number, y: number, id: number} | null} */
   let drag = null;
+  /** @param {PointerEvent} ev */
   const onDown = (ev) => {
     if (ev.button !== undefined && ev.button !== 0) return;
     drag = { x: ev.clientX, y: ev.clientY, id: ev.pointerId };
@@ -164,6 +214,7 @@ export function createView3D(parent, options) {
     root.classList.add("jl-dragging");
     ev.preventDefault();
   };
+  /** @param {PointerEvent} ev */
   const onMove = (ev) => {
     if (!drag) return;
     const dx = ev.clientX - drag.x, dy = ev.clientY - drag.y;
@@ -176,6 +227,7 @@ export function createView3D(parent, options) {
     drag = null;
     root.classList.remove("jl-dragging");
   };
+  /** @param {KeyboardEvent} ev */
   const onKey = (ev) => {
     const k = ev.key;
     if (k === "ArrowLeft") setCamera(camera.azimuth + KEY_STEP, camera.elevation);
@@ -196,138 +248,31 @@ export function createView3D(parent, options) {
   root.dataset.elevation = camera.elevation.toFixed(4);
 
   // ---- items: each keeps world data, draw() projects it
+  /**
+   * @template {Item} T
+   * @param {T} item
+   * @returns {T}
+   */
   function add(item) {
     items.push(item);
     return item;
   }
-  /** A segment p–q (world), stroke in px. set(p, q); hide(). */
-  function segment(layer, attrs) {
-    const el = svg("line", { "vector-effect": "non-scaling-stroke", "stroke-linecap": "round", ...attrs },
-      layers[layer]);
-    const it = {
-      el, layer, visible: true, depth: 0, p: [0, 0, 0], q: [0, 0, 0],
-      set(p, q) { this.p = p; this.q = q; this.visible = finite3(p) && finite3(q); return this; },
-      draw(pr) {
-        put(el, "visibility", this.visible ? "visible" : "hidden");
-        if (!this.visible) return;
-        const a = pr(this.p), b = pr(this.q);
-        put(el, "x1", a[0].toFixed(2)); put(el, "y1", a[1].toFixed(2));
-        put(el, "x2", b[0].toFixed(2)); put(el, "y2", b[1].toFixed(2));
-        this.depth = 0.5 * (a[2] + b[2]);
-      },
-    };
-    return add(it);
-  }
-  /** A polyline through world points. set(points). */
-  function polyline(layer, attrs) {
-    const el = svg("polyline", { fill: "none", "vector-effect": "non-scaling-stroke", "stroke-linejoin": "round",
-      "stroke-linecap": "round", ...attrs }, layers[layer]);
-    const it = {
-      el, layer, visible: true, depth: 0, pts: [],
-      set(pts) { this.pts = pts; this.visible = pts.every(finite3); return this; },
-      draw(pr) {
-        put(el, "visibility", this.visible ? "visible" : "hidden");
-        if (!this.visible) return;
-        let d = 0;
-        put(el, "points", this.pts.map((p) => {
-          const a = pr(p);
-          d += a[2];
-          return `${a[0].toFixed(2)},${a[1].toFixed(2)}`;
-        }).join(" "));
-        this.depth = d / Math.max(1, this.pts.length);
-      },
-    };
-    return add(it);
-  }
-  /** An arrow from p along the world vector v; its head (px) drawn on screen. set(p, v). */
-  function arrow(layer, color, width = 2.5, headPx = 11) {
-    const g = svg("g", { fill: color, stroke: color }, layers[layer]);
-    const line = svg("line", { "stroke-width": width, "vector-effect": "non-scaling-stroke",
-      "stroke-linecap": "round" }, g);
-    const head = svg("polygon", { stroke: "none" }, g);
-    const it = {
-      el: g, layer, visible: true, depth: 0, p: [0, 0, 0], v: [0, 0, 0],
-      set(p, v) { this.p = p; this.v = v; this.visible = finite3(p) && finite3(v); return this; },
-      draw(pr) {
-        const a = pr(this.p), b = pr([this.p[0] + this.v[0], this.p[1] + this.v[1], this.p[2] + this.v[2]]);
-        const dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy);
-        const show = this.visible && L > 1e-6;
-        put(g, "visibility", show ? "visible" : "hidden");
-        this.depth = 0.5 * (a[2] + b[2]);
-        if (!show) return;
-        const ux = dx / L, uy = dy / L, h = Math.min(headPx, 0.5 * L), w = 0.45 * h;
-        const bx = b[0] - h * ux, by = b[1] - h * uy;
-        put(line, "x1", a[0].toFixed(2)); put(line, "y1", a[1].toFixed(2));
-        put(line, "x2", bx.toFixed(2)); put(line, "y2", by.toFixed(2));
-        put(head, "points", `${b[0].toFixed(2)},${b[1].toFixed(2)} ${(bx - w * uy).toFixed(2)},`
-          + `${(by + w * ux).toFixed(2)} ${(bx + w * uy).toFixed(2)},${(by - w * ux).toFixed(2)}`);
-      },
-    };
-    return add(it);
-  }
-  /** A text label at a world point (offset in SVG units). set(p, text?). */
-  function label(layer, text, attrs = {}) {
-    const el = svg("text", { "text-anchor": "middle", "dominant-baseline": "central", "paint-order": "stroke",
-      stroke: "#ffffff", "stroke-width": 4, "stroke-linejoin": "round", ...attrs }, layers[layer]);
-    el.textContent = text;
-    const it = {
-      el, layer, visible: true, depth: 0, p: [0, 0, 0], dx: 0, dy: 0,
-      set(p, t = null, dx = 0, dy = 0) {
-        this.p = p; this.dx = dx; this.dy = dy; this.visible = finite3(p);
-        if (t !== null && el.textContent !== t) el.textContent = t;
-        return this;
-      },
-      draw(pr) {
-        put(el, "visibility", this.visible ? "visible" : "hidden");
-        if (!this.visible) return;
-        const a = pr(this.p);
-        put(el, "x", (a[0] + this.dx).toFixed(2));
-        put(el, "y", (a[1] + this.dy).toFixed(2));
-        this.depth = a[2];
-      },
-    };
-    return add(it);
-  }
-  /** A dot (screen radius in SVG units) at a world point. set(p). */
-  function dot(layer, attrs) {
-    const el = svg("circle", { "vector-effect": "non-scaling-stroke", ...attrs }, layers[layer]);
-    const it = {
-      el, layer, visible: true, depth: 0, p: [0, 0, 0],
-      set(p) { this.p = p; this.visible = finite3(p); return this; },
-      draw(pr) {
-        put(el, "visibility", this.visible ? "visible" : "hidden");
-        if (!this.visible) return;
-        const a = pr(this.p);
-        put(el, "cx", a[0].toFixed(2)); put(el, "cy", a[1].toFixed(2));
-        this.depth = a[2];
-      },
-    };
-    return add(it);
-  }
-  /** A circle of world radius about `c`, in the plane normal to unit `n`, as a closed polyline. set(c, n, radius). */
-  function ring(layer, attrs, segments = 40) {
-    const line = polyline(layer, attrs);
-    const base = line.set;
-    line.set = function set(c, n, radius) {
-      // two unit vectors e1, e2 normal to n
-      const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
-      const k = dot3(a, n);
-      let e1 = [a[0] - k * n[0], a[1] - k * n[1], a[2] - k * n[2]];
-      const L = Math.hypot(...e1);
-      e1 = e1.map((x) => x / L);
-      const e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
-      const pts = [];
-      for (let s = 0; s <= segments; s++) {
-        const t = (2 * Math.PI * s) / segments, cs = radius * Math.cos(t), sn = radius * Math.sin(t);
-        pts.push([c[0] + cs * e1[0] + sn * e2[0], c[1] + cs * e1[1] + sn * e2[1], c[2] + cs * e1[2] + sn * e2[2]]);
-      }
-      return base.call(this, pts);
-    };
-    return line;
-  }
+  /** @type {(layer: Layer, attrs: Attrs) => Segment} */
+  const segment = (layer, attrs) => add(segmentItem(layers[layer], layer, attrs));
+  /** @type {(layer: Layer, attrs: Attrs) => Polyline} */
+  const polyline = (layer, attrs) => add(polylineItem(layers[layer], layer, attrs));
+  /** @type {(layer: Layer, color: string, width?: number, headPx?: number) => Arrow3} */
+  const arrow = (layer, color, width, headPx) => add(arrowItem(layers[layer], layer, color, width, headPx));
+  /** @type {(layer: Layer, text: string, attrs?: Attrs) => Label} */
+  const label = (layer, text, attrs) => add(labelItem(layers[layer], layer, text, attrs));
+  /** @type {(layer: Layer, attrs: Attrs) => Dot} */
+  const dot = (layer, attrs) => add(dotItem(layers[layer], layer, attrs));
+  /** @type {(layer: Layer, attrs: Attrs, segments?: number) => Ring} */
+  const ring = (layer, attrs, segments) => add(ringItem(layers[layer], layer, attrs, segments));
   return {
     svg: root, box, help, layers, camera, items, project, render, setCamera, segment, polyline, arrow, label, dot,
     ring, scale,
+    /** @param {(camera: Camera) => void} f */
     onCamera(f) { listeners.push(f); },
     destroy() {
       root.removeEventListener("pointerdown", onDown);
@@ -340,19 +285,206 @@ export function createView3D(parent, options) {
   };
 }
 
-/** The frame axes x, y, z (red-free Okabe–Ito: vermillion, bluish green, blue) as arrows from p. */
-export const AXIS_COLORS = ["#D55E00", "#009E73", "#0072B2"];
+
+/** A segment p–q (world), stroke in px. set(p, q).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {Attrs} attrs
+ * @returns {Segment}
+ */
+function segmentItem(parent, layer, attrs) {
+  const el = svg("line", { "vector-effect": "non-scaling-stroke", "stroke-linecap": "round", ...attrs },
+    parent);
+  /** @type {Segment} */
+  const it = {
+    el, layer, visible: true, depth: 0, p: [0, 0, 0], q: [0, 0, 0],
+    set(p, q) { this.p = p; this.q = q; this.visible = finite3(p) && finite3(q); return this; },
+    draw(pr) {
+      put(el, "visibility", this.visible ? "visible" : "hidden");
+      if (!this.visible) return;
+      const a = pr(this.p), b = pr(this.q);
+      put(el, "x1", a[0].toFixed(2)); put(el, "y1", a[1].toFixed(2));
+      put(el, "x2", b[0].toFixed(2)); put(el, "y2", b[1].toFixed(2));
+      this.depth = 0.5 * (a[2] + b[2]);
+    },
+  };
+  return it;
+}
+/** A polyline through world points. set(points).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {Attrs} attrs
+ * @returns {Polyline}
+ */
+function polylineItem(parent, layer, attrs) {
+  const el = svg("polyline", { fill: "none", "vector-effect": "non-scaling-stroke", "stroke-linejoin": "round",
+    "stroke-linecap": "round", ...attrs }, parent);
+  /** @type {Polyline} */
+  const it = {
+    el, layer, visible: true, depth: 0, pts: [],
+    set(pts) { this.pts = pts; this.visible = pts.every(finite3); return this; },
+    draw(pr) {
+      put(el, "visibility", this.visible ? "visible" : "hidden");
+      if (!this.visible) return;
+      let d = 0;
+      put(el, "points", this.pts.map((p) => {
+        const a = pr(p);
+        d += a[2];
+        return `${a[0].toFixed(2)},${a[1].toFixed(2)}`;
+      }).join(" "));
+      this.depth = d / Math.max(1, this.pts.length);
+    },
+  };
+  return it;
+}
+/** An arrow from p along the world vector v; its head (px) drawn on screen. set(p, v).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {string} color
+ * @param {number} [width]
+ * @param {number} [headPx]
+ * @returns {Arrow3}
+ */
+function arrowItem(parent, layer, color, width = 2.5, headPx = 11) {
+  const g = svg("g", { fill: color, stroke: color }, parent);
+  const line = svg("line", { "stroke-width": width, "vector-effect": "non-scaling-stroke",
+    "stroke-linecap": "round" }, g);
+  const head = svg("polygon", { stroke: "none" }, g);
+  /** @type {Arrow3} */
+  const it = {
+    el: g, layer, visible: true, depth: 0, p: [0, 0, 0], v: [0, 0, 0],
+    set(p, v) { this.p = p; this.v = v; this.visible = finite3(p) && finite3(v); return this; },
+    draw(pr) {
+      const a = pr(this.p), b = pr([this.p[0] + this.v[0], this.p[1] + this.v[1], this.p[2] + this.v[2]]);
+      const dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy);
+      const show = this.visible && L > 1e-6;
+      put(g, "visibility", show ? "visible" : "hidden");
+      this.depth = 0.5 * (a[2] + b[2]);
+      if (!show) return;
+      const ux = dx / L, uy = dy / L, h = Math.min(headPx, 0.5 * L), w = 0.45 * h;
+      const bx = b[0] - h * ux, by = b[1] - h * uy;
+      put(line, "x1", a[0].toFixed(2)); put(line, "y1", a[1].toFixed(2));
+      put(line, "x2", bx.toFixed(2)); put(line, "y2", by.toFixed(2));
+      put(head, "points", `${b[0].toFixed(2)},${b[1].toFixed(2)} ${(bx - w * uy).toFixed(2)},`
+        + `${(by + w * ux).toFixed(2)} ${(bx + w * uy).toFixed(2)},${(by - w * ux).toFixed(2)}`);
+    },
+  };
+  return it;
+}
+/** A text label at a world point (offset in SVG units). set(p, text?).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {string} text
+ * @param {Attrs} [attrs]
+ * @returns {Label}
+ */
+function labelItem(parent, layer, text, attrs = {}) {
+  const el = svg("text", { "text-anchor": "middle", "dominant-baseline": "central", "paint-order": "stroke",
+    stroke: PALETTE.bg, "stroke-width": 4, "stroke-linejoin": "round", ...attrs }, parent);
+  el.textContent = text;
+  let font = 0; // its font size in SVG units, read once it is shown (a deck's style may change it)
+  /** @type {Label} */
+  const it = {
+    el, layer, visible: true, depth: 0, p: [0, 0, 0], dx: 0, dy: 0,
+    moveTo(x, y) {
+      put(el, "x", x.toFixed(2));
+      put(el, "y", y.toFixed(2));
+    },
+    set(p, t = null, dx = 0, dy = 0) {
+      this.p = p; this.dx = dx; this.dy = dy; this.visible = finite3(p);
+      if (t !== null && el.textContent !== t) el.textContent = t;
+      return this;
+    },
+    draw(pr) {
+      put(el, "visibility", this.visible ? "visible" : "hidden");
+      if (!this.visible) return;
+      const a = pr(this.p);
+      if (!font) font = parseFloat(getComputedStyle(el).fontSize) || FONT;
+      // a glyph is about 0.6 em wide; the box is what declutter keeps apart
+      this.box = { x: a[0] + this.dx, y: a[1] + this.dy, hw: 0.3 * font * (el.textContent || "").length + 1,
+        hh: 0.5 * font };
+      this.moveTo?.(this.box.x, this.box.y);
+      this.depth = a[2];
+    },
+  };
+  return it;
+}
+/** A dot (screen radius in SVG units) at a world point. set(p).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {Attrs} attrs
+ * @returns {Dot}
+ */
+function dotItem(parent, layer, attrs) {
+  const el = svg("circle", { "vector-effect": "non-scaling-stroke", ...attrs }, parent);
+  const r = Number(attrs.r) || 0;
+  /** @type {Dot} */
+  const it = {
+    el, layer, visible: true, depth: 0, p: [0, 0, 0],
+    set(p) { this.p = p; this.visible = finite3(p); return this; },
+    moveTo(x, y) {
+      put(el, "cx", x.toFixed(2));
+      put(el, "cy", y.toFixed(2));
+    },
+    draw(pr) {
+      put(el, "visibility", this.visible ? "visible" : "hidden");
+      if (!this.visible) return;
+      const a = pr(this.p);
+      put(el, "cx", a[0].toFixed(2)); put(el, "cy", a[1].toFixed(2));
+      // a dot of the front layer is a key that labels must not cover; a joint of the arm is not
+      if (layer === "front") this.box = { x: a[0], y: a[1], hw: r, hh: r };
+      this.depth = a[2];
+    },
+  };
+  return it;
+}
+/** A circle of world radius about `c`, in the plane normal to unit `n`, as a closed polyline. set(c, n, radius).
+ * @param {Element} parent
+ * @param {Layer} layer
+ * @param {Attrs} attrs
+ * @param {number} [segments]
+ * @returns {Ring}
+ */
+function ringItem(parent, layer, attrs, segments = 40) {
+  const line = polylineItem(parent, layer, attrs);
+  const base = line.set;
+  const it = /** @type {Ring} */ (/** @type {unknown} */ (line));
+  /** @param {Point} c @param {Point} n @param {number} radius */
+  it.set = function set(c, n, radius) {
+    // two unit vectors e1, e2 normal to n
+    const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+    const k = dot3(a, n);
+    let e1 = [a[0] - k * n[0], a[1] - k * n[1], a[2] - k * n[2]];
+    const L = Math.hypot(...e1);
+    e1 = e1.map((x) => x / L);
+    const e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
+    /** @type {Vec3[]} */
+    const pts = [];
+    for (let s = 0; s <= segments; s++) {
+      const t = (2 * Math.PI * s) / segments, cs = radius * Math.cos(t), sn = radius * Math.sin(t);
+      pts.push([c[0] + cs * e1[0] + sn * e2[0], c[1] + cs * e1[1] + sn * e2[1], c[2] + cs * e1[2] + sn * e2[2]]);
+    }
+    base.call(line, pts);
+    return it;
+  };
+  return it;
+}
 
 /**
  * Arrows of a frame and its name ("{s}", placed below its origin); axis letters x, y, z when `letters`.
  * set(R, p, length) with R's columns the axes.
+ * @param {View3D} view
+ * @param {string} name
+ * @param {number} length
+ * @param {{letters?: boolean, layer?: Layer, width?: number}} [options]
  */
 export function frameItems(view, name, length, { letters = false, layer = "solid", width = 2.5 } = {}) {
   const arrows = AXIS_COLORS.map((c) => view.arrow(layer, c, width));
-  const labels = letters ? ["x", "y", "z"].map((a, k) => view.label("front", a, { fill: AXIS_COLORS[k] })) : [];
-  const title = view.label("front", name, { fill: "#000000" });
+  const labels = letters ? ["x", "y", "z"].map((a, k) => view.label("front", a, { fill: ink(AXIS_COLORS[k]) })) : [];
+  const title = view.label("front", name, { fill: PALETTE.fg });
   return {
     arrows, labels, title,
+    /** @param {ArrayLike<ArrayLike<number>>} R @param {Point} p @param {number} [len] */
     set(R, p, len = length) {
       for (let k = 0; k < 3; k++) {
         const v = [R[0][k] * len, R[1][k] * len, R[2][k] * len];
@@ -364,12 +496,19 @@ export function frameItems(view, name, length, { letters = false, layer = "solid
   };
 }
 
-/** A ground grid in the plane z = z0, half-width `half` with `n` cells a side, in the back layer. */
+/** A ground grid in the plane z = z0, half-width `half` with `n` cells a side, in the back layer.
+ * @param {View3D} view
+ * @param {number} half
+ * @param {number} n
+ * @param {number} [z0]
+ */
 export function groundGrid(view, half, n, z0 = 0) {
   const step = (2 * half) / n;
   for (let k = 0; k <= n; k++) {
     const t = -half + k * step;
-    view.segment("back", { stroke: "#e8e8e8", "stroke-width": 1 }).set([t, -half, z0], [t, half, z0]);
-    view.segment("back", { stroke: "#e8e8e8", "stroke-width": 1 }).set([-half, t, z0], [half, t, z0]);
+    view.segment("back", { stroke: PALETTE.faint, "stroke-width": 1 }).set([t, -half, z0], [t, half, z0]);
+    view.segment("back", { stroke: PALETTE.faint, "stroke-width": 1 }).set([-half, t, z0], [half, t, z0]);
   }
 }
+
+/** @typedef {ReturnType<typeof createView3D>} View3D */
