@@ -642,9 +642,9 @@ def _slide_words(slide: _Slide) -> int:
 def _merge_thin_slides(slides: list[_Slide]) -> list[_Slide]:
     """A thin slide (words alone, fewer than :data:`THIN_WORDS`) joins its neighbour: the slide before it
     if that one is not a picture and the two stay within :data:`MERGED_WORDS`, else the slide after it on
-    the same terms. Its heading goes with it as the bold start of its text (unless the two share it), its
-    notes and minutes join the neighbour's. A thin slide with no such neighbour stays (the deck tests
-    name it: it needs content of its own in the chapter's slide markup)."""
+    the same terms if it is of the same section of the book. Its heading goes with it as the bold start of
+    its text (unless the two share it), its notes and minutes join the neighbour's. A thin slide with no
+    such neighbour stays (the deck tests name it: it needs content of its own in the chapter's markup)."""
     out = list(slides)
     k = 0
     while k < len(out):
@@ -654,6 +654,8 @@ def _merge_thin_slides(slides: list[_Slide]) -> list[_Slide]:
             continue
         host = None
         for j in (k - 1, k + 1):
+            if j == k + 1 and j < len(out) and out[j].anchor != thin.anchor:
+                continue   # a slide opens its section: what comes before it does not go under its heading
             if 0 <= j < len(out) and not out[j].picture and _slide_words(out[j]) + _slide_words(thin) <= MERGED_WORDS:
                 host = j
                 break
