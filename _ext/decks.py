@@ -14,8 +14,9 @@ What a slide shows (:func:`to_slides`, run on ``doctree-resolved`` for the
   ``slide`` or ``subslide``, and per ``{slide} Title`` block; every slide has
   a heading (the block's title, else the section's);
 * the book's *display* material of cells not typed ``skip``: display math,
-  figures and images, code-cell outputs (images, HTML and displayed
-  formulas, never a text printout; code only with the tag
+  figures and images, code-cell outputs (images, HTML, and displayed
+  formulas of a cell typed for the slides or tagged ``slide-only``; never a
+  text printout; code only with the tag
   ``slide-show-code``; a cell tagged ``slide-only`` shows in the deck and
   not in the book), definitions,
   theorems and propositions (proofs, exercises, solutions and admonitions stay
@@ -302,6 +303,9 @@ def _events(section: nodes.Element, level: int) -> Iterator[tuple[str, Any]]:
 def _code_for_slide(cell: nodes.Element) -> nodes.Element | None:
     """A code cell as a slide shows it: outputs that are pictures or HTML, code only if tagged."""
     tags = (cell.get("cell_metadata") or {}).get("tags", [])
+    kinds: tuple[type, ...] = (nodes.image, nodes.raw)
+    if _code_kind(cell) in ("slide", "subslide", "fragment") or SLIDE_ONLY_TAG in tags:
+        kinds = (*kinds, nodes.math_block)
     keep = nodes.container("", classes=list(cell.get("classes", [])))
     for part in cell.findall(nodes.container):
         kind = part.get("nb_element", "")
@@ -311,8 +315,9 @@ def _code_for_slide(cell: nodes.Element) -> nodes.Element | None:
             out = part.deepcopy()
             for lit in list(out.findall(nodes.literal_block)):
                 lit.parent.remove(lit)       # text printouts belong to the book
-            # pictures, HTML and displayed formulas (a worked example's matrix: ``display(Math(...))``)
-            if any(True for _ in out.findall(lambda n: isinstance(n, (nodes.image, nodes.raw, nodes.math_block)))):
+            # pictures, HTML, and displayed formulas (a worked example's matrix: ``display(Math(...))``) of a
+            # cell the author put on the deck: typed for the slides, or tagged slide-only
+            if any(True for _ in out.findall(lambda n: isinstance(n, kinds))):
                 keep += out
     if not keep.children:
         return None
