@@ -67,6 +67,10 @@ for _deck in ("01_twists", "02_space_jacobian", "03_body_jacobian", "04_space_vs
     KNOWN_DECK_GAPS[f"test_live_view_text_at_projection_size[{_deck}]"] = (
         "the live view's smallest labels are 17 px at 1280x720, 14 px at 1024x768")
 
+KNOWN_DECK_GAPS["test_figures_are_drawn_for_projection[01_twists]"] = (
+    "Fig. 1.3 (the UR5 in 3-D, two views): at slide size the z label meets a tick label and joint 4's tag, and "
+    "the frame names {s}, {b} meet their axes' labels")
+
 
 def pytest_collection_modifyitems(config, items):
     for item in items:
