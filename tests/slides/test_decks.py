@@ -174,7 +174,7 @@ MEASURE = """(i) => {
           animations: slide.querySelectorAll(".animation, .jac-live[data-story]").length,
           // what a slide shows besides words: a picture, a display formula, a statement, a table, a view
           material: [...slide.querySelectorAll("img, svg, mjx-container[display=true], div.proof, table, .jac-live")]
-            .filter((el) => !el.closest("aside.notes, .anim-buttons, mjx-container")).length,
+            .filter((el) => !el.closest("aside.notes, .anim-buttons") && !(el.parentElement && el.parentElement.closest("mjx-container"))).length,
           summary: /^(summary|recap)\\b/i.test((slide.querySelector("h1, h2") || {textContent: ""}).textContent.replace(/^[\\d.\\s]+/, "").trim())};
 }"""
 
