@@ -14,8 +14,11 @@ What a slide shows (:func:`to_slides`, run on ``doctree-resolved`` for the
   ``slide`` or ``subslide``, and per ``{slide} Title`` block; every slide has
   a heading (the block's title, else the section's);
 * the book's *display* material of cells not typed ``skip``: display math,
-  figures and images, code-cell outputs (images and HTML, never a text
-  printout; code only with the tag ``slide-show-code``), definitions,
+  figures and images, code-cell outputs (images, HTML, and displayed
+  formulas of a cell typed for the slides or tagged ``slide-only``; never a
+  text printout; code only with the tag
+  ``slide-show-code``; a cell tagged ``slide-only`` shows in the deck and
+  not in the book), definitions,
   theorems and propositions (proofs, exercises, solutions and admonitions stay
   in the book);
 * words only from ``{slide}`` blocks: slide-only text written beside the book
@@ -147,6 +150,9 @@ def _patch_markdown_cells() -> None:
 # ---------------------------------------------------------------- doctree -> slides
 
 
+#: a code cell with this tag shows its output in the deck only (a worked example's numbers as a matrix,
+#: where the book prints them in a sentence or a printout)
+SLIDE_ONLY_TAG = "slide-only"
 DISPLAY_PRF = {"definition_node", "theorem_node", "proposition_node", "corollary_node", "lemma_node"}
 #: one idea a slide, about 40 words: a statement longer than this (words, math not counted) shows on a slide
 #: as its number, title and display equations, and the speaker notes carry it in full
@@ -297,6 +303,9 @@ def _events(section: nodes.Element, level: int) -> Iterator[tuple[str, Any]]:
 def _code_for_slide(cell: nodes.Element) -> nodes.Element | None:
     """A code cell as a slide shows it: outputs that are pictures or HTML, code only if tagged."""
     tags = (cell.get("cell_metadata") or {}).get("tags", [])
+    kinds: tuple[type, ...] = (nodes.image, nodes.raw)
+    if _code_kind(cell) in ("slide", "subslide", "fragment") or SLIDE_ONLY_TAG in tags:
+        kinds = (*kinds, nodes.math_block)
     keep = nodes.container("", classes=list(cell.get("classes", [])))
     for part in cell.findall(nodes.container):
         kind = part.get("nb_element", "")
@@ -306,7 +315,9 @@ def _code_for_slide(cell: nodes.Element) -> nodes.Element | None:
             out = part.deepcopy()
             for lit in list(out.findall(nodes.literal_block)):
                 lit.parent.remove(lit)       # text printouts belong to the book
-            if any(True for _ in out.findall(lambda n: isinstance(n, (nodes.image, nodes.raw)))):
+            # pictures, HTML, and displayed formulas (a worked example's matrix: ``display(Math(...))``) of a
+            # cell the author put on the deck: typed for the slides, or tagged slide-only
+            if any(True for _ in out.findall(lambda n: isinstance(n, kinds))):
                 keep += out
     if not keep.children:
         return None
@@ -430,7 +441,8 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
     """Rewrite a resolved doctree into one section per slide (revealjs builder only)."""
     if app.builder.name != BUILDER:
         # the book: slide text and notes are not on the page, so not in its search index either
-        for node in list(doctree.findall(lambda n: isinstance(n, slide_only | slide_notes))):
+        for node in list(doctree.findall(lambda n: isinstance(n, slide_only | slide_notes) or (
+                _is_code_cell(n) and SLIDE_ONLY_TAG in ((n.get("cell_metadata") or {}).get("tags") or [])))):
             node.parent.remove(node)
         return
     top = next(iter(doctree.findall(nodes.section)), None)
@@ -530,6 +542,7 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
                 kept[-1].notes.extend(slide.notes)
             continue
         kept.append(slide)
+    kept = _merge_thin_slides(kept)
     for slide in kept:
         _first_view_not_blank(slide)
     if kept and not _is_summary(kept[-1]):
@@ -609,6 +622,68 @@ def _title_notes(slides: list[_Slide]) -> slide_notes:
     notes.append(nodes.paragraph("", f"This lecture: about {total:g} min by the slides' notes, {len(slides)} slides."))
     notes.append(nodes.paragraph("", "Plan: " + "; ".join(plan) + "."))
     return notes
+
+
+#: a slide of words alone (no formula, picture, statement, table or output) with fewer words than this is a
+#: heading and a sentence: it joins a neighbour (:func:`_merge_thin_slides`)
+THIN_WORDS = 30
+#: a slide that takes in a thin neighbour stays within this many words (one idea a slide: about 40)
+MERGED_WORDS = 42
+
+
+def _shows_material(slide: _Slide) -> bool:
+    """True if a slide shows more than words: a display formula, a picture, a statement, a table, a view."""
+    def material(n: nodes.Node) -> bool:
+        return (isinstance(n, nodes.math_block | nodes.image | nodes.figure | nodes.raw | nodes.table)
+                or type(n).__name__ in DISPLAY_PRF or _is_code_cell(n))
+    return any(material(b) or (isinstance(b, nodes.Element) and any(True for _ in b.findall(material)))
+               for b in slide.body)
+
+
+def _slide_words(slide: _Slide) -> int:
+    return sum(_words(b) for b in slide.body) + (_words(slide.title) if slide.title is not None else 0)
+
+
+def _merge_thin_slides(slides: list[_Slide]) -> list[_Slide]:
+    """A thin slide (words alone, fewer than :data:`THIN_WORDS`) joins its neighbour: the slide before it
+    if that one is not a picture and the two stay within :data:`MERGED_WORDS`, else the slide after it on
+    the same terms if it is of the same section of the book. Its heading goes with it as the bold start of
+    its text (unless the two share it), its notes and minutes join the neighbour's. A thin slide with no
+    such neighbour stays (the deck tests name it: it needs content of its own in the chapter's markup)."""
+    out = list(slides)
+    k = 0
+    while k < len(out):
+        thin = out[k]
+        if _shows_material(thin) or not thin.body or _slide_words(thin) >= THIN_WORDS:
+            k += 1
+            continue
+        host = None
+        for j in (k - 1, k + 1):
+            if j == k + 1 and j < len(out) and out[j].anchor != thin.anchor:
+                continue   # a slide opens its section: what comes before it does not go under its heading
+            if 0 <= j < len(out) and not out[j].picture and _slide_words(out[j]) + _slide_words(thin) <= MERGED_WORDS:
+                host = j
+                break
+        if host is None:
+            k += 1
+            continue
+        other = out[host]
+        same = (thin.title is not None and other.title is not None and thin.title.astext() == other.title.astext())
+        body = [b.deepcopy() for b in thin.body]
+        if not same and thin.title is not None and body and isinstance(body[0], nodes.paragraph):
+            lead = re.sub(r"^[\d.]+\s*", "", thin.title.astext()).strip()   # without its section number
+            body[0].insert(0, nodes.Text(" "))
+            body[0].insert(0, nodes.strong("", lead + ":"))
+        if host < k:
+            other.body.extend(body)
+            other.notes.extend(thin.notes)
+        else:
+            other.body[0:0] = body
+            other.notes[0:0] = thin.notes
+        other.display = other.display or thin.display
+        del out[k]
+        k = min(k, host)   # the grown neighbour is looked at again
+    return out
 
 
 def _first_view_not_blank(slide: _Slide) -> None:
@@ -722,7 +797,10 @@ def configure(app: Sphinx, config: Any) -> None:
         ("application/vnd.jupyter.widget-view+json", 10), ("application/javascript", 20), ("text/html", 30),
         ("image/svg+xml", 40), ("image/png", 50), ("image/gif", 60), ("image/jpeg", 70),
         ("text/markdown", 80), ("text/latex", 90), ("text/plain", 100))]
-    config.nb_mime_priority_overrides = list(config.nb_mime_priority_overrides or []) + html
+    # a chapter's figure carries a PNG (the book's) and an SVG drawn for the slides, its text enlarged
+    # (``course.chapter.slide_svg``): the book's builders take the PNG, the decks the SVG
+    book = [(builder, "image/png", 35) for builder in ("html", "dirhtml", "singlehtml", "epub")]
+    config.nb_mime_priority_overrides = list(config.nb_mime_priority_overrides or []) + html + book
     config.revealjs_html_theme = "revealjs-basic"
     config.revealjs_style_theme = "white"
     config.revealjs_static_path = [str(STATIC)]
@@ -770,6 +848,8 @@ def setup(app: Sphinx) -> dict[str, Any]:
     app.add_config_value("decks_course", os.environ.get("COURSE_TITLE", ""), "")
     app.add_config_value("decks_lecturer", os.environ.get("COURSE_LECTURER", ""), "")
     app.add_config_value("decks_date", os.environ.get("COURSE_DATE", ""), "")
+    # the lectures: the decks cut and joined into lectures of 45-55 minutes (tools/build_slides.py reads it)
+    app.add_config_value("decks_lectures", [], "")
     app.add_directive("slide", SlideDirective)
     app.add_directive("slide-notes", SlideNotesDirective)
     app.connect("config-inited", configure, priority=900)

@@ -160,3 +160,65 @@ def test_figures_carry_their_smallest_text_size(restore_style):
         plt.close(fig)
     finally:
         InteractiveShell.clear_instance()
+
+
+def _svg_root(svg: str) -> dict[str, str]:
+    import re
+
+    head = re.search(r"<svg\b[^>]*>", svg)
+    assert head is not None
+    return dict(re.findall(r'([\w:-]+)="([^"]*)"', head.group(0)))
+
+
+def _slide_text_px(svg: str) -> float:
+    """The smallest text of a slide SVG in px of the deck's canvas, where the slide shows it."""
+    root = _svg_root(svg)
+    width, height = float(root["viewBox"].split()[2]), float(root["viewBox"].split()[3])
+    box_w, box_h = chapter.SLIDE_FIGURE_BOX
+    shown = min(box_w, box_h * width / height)
+    return float(root[chapter.SVG_TEXT_ATTR]) * shown / width
+
+
+@pytest.mark.parametrize("three_d", [False, True], ids=["2-D", "3-D"])
+def test_slide_svg_enlarges_a_copy_and_leaves_the_figure(restore_style, three_d):
+    """The decks' SVG of a figure: its smallest text reaches SLIDE_TEXT_PX where the slide shows it, glyphs
+    are paths, the overlapping texts are listed (none here); the figure itself keeps its sizes."""
+    from matplotlib.text import Text
+
+    from jacobians.plotting import smallest_text_px
+
+    fig = plt.figure(figsize=(6, 3.5), dpi=80)
+    ax = fig.add_subplot(projection="3d") if three_d else fig.add_subplot()
+    ax.plot([0, 1], [0, 1], label="a line")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.legend()
+    before = smallest_text_px(fig)
+    sizes = sorted(float(t.get_fontsize()) for t in fig.findobj(Text))
+    svg = chapter.slide_svg(fig)
+    assert svg is not None
+    root = _svg_root(svg)
+    assert _slide_text_px(svg) >= chapter.SLIDE_TEXT_PX
+    assert root[chapter.SVG_OVERLAP_ATTR] == ""
+    assert "<text" not in svg                      # glyphs as paths: no font needed where it is shown
+    assert smallest_text_px(fig) == pytest.approx(before)
+    assert sorted(float(t.get_fontsize()) for t in fig.findobj(Text)) == pytest.approx(sizes)
+    assert plt.fignum_exists(fig.number) and len(plt.get_fignums()) == 1   # the copy is closed
+    plt.close(fig)
+
+
+def test_text_overlaps_names_colliding_labels(restore_style):
+    fig, ax = plt.subplots(figsize=(4, 3))
+    ax.text(0.5, 0.5, "first label", fontsize=14)
+    ax.text(0.52, 0.5, "second label", fontsize=14)
+    ax.text(0.1, 0.1, "apart", fontsize=14)
+    found = chapter.text_overlaps(fig)
+    plt.close(fig)
+    assert ("first label", "second label") in found
+    assert all("apart" not in pair for pair in found)
+
+
+def test_latex_matrix_rounds_and_refuses_3d():
+    assert chapter.latex_matrix([[1, -1e-9], [0.5, 2]], 1) == r"\begin{bmatrix}1.0 & 0.0\\0.5 & 2.0\end{bmatrix}"
+    with pytest.raises(ValueError, match="shape"):
+        chapter.latex_matrix(np.zeros((2, 2, 2)))

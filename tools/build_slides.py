@@ -16,9 +16,12 @@ Usage: python -m tools.build_slides [DEST] [--no-build] [--no-pdf]
    one classic script bundled by esbuild (:func:`bundle_live`);
 3. every deck is printed to a PDF and a handout with the speaker notes
    (``tools/slides_pdf.py``, into ``DEST/pdf``; ``--no-pdf`` skips it);
-4. ``DEST/index.html`` lists each lecture with its minutes (the sum of its
-   speaker notes' minutes), its PDFs and its chapter; ``DEST/decks.json`` the
-   same for the tests.
+4. the lectures (``decks_lectures`` in ``_config.yml``: the decks cut and
+   joined into lectures of 45-55 minutes, :func:`assemble_lectures`) into
+   ``DEST/lectures/``, ``DEST/lectures.json`` for the tests;
+5. ``DEST/index.html`` lists each lecture with its minutes (the sum of its
+   speaker notes' minutes) and its parts, then each chapter's deck with its
+   minutes, PDFs and chapter; ``DEST/decks.json`` the same for the tests.
 
 Exit status 1 if the Sphinx build failed.
 """
@@ -36,6 +39,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 import yaml
 from _ext.notebook_pages import has_deck
@@ -230,19 +234,192 @@ def reveal_from_npm(reveal: Path, node_modules: Path = NODE_MODULES) -> None:
         shutil.copyfile(src, dst)
 
 
-def write_index(dest: Path, decks: list[dict[str, str]]) -> None:
-    """The slides index: each lecture with its minutes, its PDF and handout (when printed) and its chapter."""
+# ---------------------------------------------------------------- lectures
+
+#: a part of a lecture: a chapter's deck, whole (``01_twists``) or from a section up to another one
+#: (``06_analytic_jacobian:6.4-``, ``03_body_jacobian:-3.3.1``: FROM included, TO not; numbers as the book's)
+_PART = re.compile(r"^(?P<deck>[\w-]+)(?::(?P<start>[\d.]*)-(?P<stop>[\d.]*))?$")
+#: a lecture's length by its speaker notes, in minutes
+LECTURE_MINUTES = (45, 55)
+LECTURES = "lectures"
+_NUMBER = re.compile(r'<h[12][^>]*>\s*<span class="section-number">([\d.]+?)\.?\s*</span>')
+_SLIDES_DIV = '<div class="slides" role="main">'
+
+
+def lecture_plan(root: Path = ROOT) -> list[list[str]]:
+    """The lectures (``_config.yml``, ``sphinx: config: decks_lectures``): each a list of parts."""
+    config = yaml.safe_load((root / "_config.yml").read_text(encoding="utf-8"))
+    plan = ((config.get("sphinx") or {}).get("config") or {}).get("decks_lectures") or []
+    if not isinstance(plan, list) or not all(isinstance(lec, list) and lec and all(
+            isinstance(part, str) and _PART.match(part) for part in lec) for lec in plan):
+        raise ValueError("decks_lectures in _config.yml: expected a list of lectures, each a list of parts "
+                         f"such as '01_twists' or '06_analytic_jacobian:6.4-', got {plan!r}")
+    return plan
+
+
+def split_slides(page: str) -> tuple[str, list[str], str]:
+    """A deck's page as its head, its slides (each reveal.js's outer ``<section>``) and its tail."""
+    start = page.index(_SLIDES_DIV) + len(_SLIDES_DIV)
+    slides, depth, begin = [], 0, start
+    for m in re.finditer(r"<section\b|</section>", page[start:]):
+        at = start + m.start()
+        if m.group(0) == "</section>":
+            depth -= 1
+            if depth == 0:
+                slides.append(page[begin:at + len("</section>")].strip())
+        else:
+            if depth == 0:
+                begin = at
+            depth += 1
+    end = page.index("</div>", page.index(slides[-1]) + len(slides[-1]))
+    return page[:start], slides, page[end:]
+
+
+def _heading(slide: str) -> str:
+    m = re.search(r"<h[12][^>]*>(.*?)</h[12]>", slide, re.S)
+    return re.sub(r"<[^>]+>", "", m.group(1)).strip() if m else ""
+
+
+def _is_summary_slide(slide: str) -> bool:
+    return bool(re.match(r"^[\d.\s]*(summary|recap)\b", _heading(slide), re.I))
+
+
+def _slide_minutes(slide: str) -> float:
+    return sum(float(m) for m in _MINUTES.findall(slide))
+
+
+def _select(slides: list[str], start: str, stop: str) -> list[str]:
+    """The content slides of a deck (not its title slide) from section ``start`` up to section ``stop``."""
+    def within(number: str, section: str) -> bool:
+        return number == section or number.startswith(section + ".")
+
+    out, number, on = [], "", not start
+    for slide in slides[1:]:
+        m = _NUMBER.search(slide)
+        number = m.group(1) if m else number
+        if start and within(number, start):
+            on = True
+        if stop and within(number, stop):
+            break
+        if on:
+            out.append(slide)
+    return out
+
+
+def _summary_of_part(slides: list[str]) -> str:
+    """A summary slide for a lecture that ends inside a chapter: the statements its slides set up."""
+    names = []
+    for slide in slides:
+        for m in re.finditer(r'<p class="admonition-title">(.*?)</p>', slide, re.S):
+            names.append(m.group(1).strip())
+    names = list(dict.fromkeys(names))[:5]
+    items = names or [html.escape(_heading(s)) for s in slides if _heading(s)][:5]
+    lead = "This lecture set up:" if names else "This lecture covered:"
+    lis = "".join(f"<li><p>{n}</p></li>" for n in dict.fromkeys(items))
+    return ('<section >\n<section id="lecture-summary" >\n<h2>Summary</h2>\n'
+            f"<p>{lead}</p>\n<ul>{lis}</ul>\n"
+            '<aside class="notes">\n<p class="minutes">About 2 min.</p>\n'
+            "<p>Key point: the statements above are where the next lecture picks up; the book has each in "
+            "full, with its proof and its check by code.</p>\n"
+            "<p>Ask: which of these would you use first in the exercises, and why?</p>\n</aside>\n"
+            "</section>\n</section>")
+
+
+def assemble_lectures(dest: Path, decks: list[dict[str, str]], root: Path = ROOT) -> list[dict[str, Any]]:
+    """The lectures of :func:`lecture_plan` as decks of their own (``dest/lectures/lecture-NN.html``).
+
+    A lecture is its chapters' slides in order, cut at sections where the plan
+    says so: a title slide (the course, lecturer and date, and the plan in its
+    notes), the slides of each part (a chapter's title slide only where the
+    chapter starts after another part), and a summary slide at its end (the
+    chapter's own, or one of the statements of a part that ends inside a
+    chapter). Its files sit beside the chapters' decks, at the same depth, so
+    it loads the same files. Every content slide of every deck is in exactly
+    one lecture (``tests/slides``).
+    """
+    by_name = {d["name"]: d for d in decks}
+    out_dir = dest / LECTURES
+    out_dir.mkdir(parents=True, exist_ok=True)
+    lectures = []
+    for number, parts in enumerate(lecture_plan(root), start=1):
+        body: list[str] = []
+        covered = []
+        head = tail = title_slide = ""
+        titles = []
+        for k, part in enumerate(parts):
+            m = _PART.match(part)
+            assert m is not None
+            name = m.group("deck")
+            if name not in by_name:
+                raise ValueError(f"decks_lectures: lecture {number} names {name!r}, which has no deck "
+                                 f"(decks: {', '.join(by_name)})")
+            page = (dest / by_name[name]["file"]).read_text(encoding="utf-8")
+            h, slides, t = split_slides(page)
+            if not head:
+                head, tail, title_slide = h, t, slides[0]
+            chosen = _select(slides, m.group("start") or "", m.group("stop") or "")
+            if not chosen:
+                raise ValueError(f"decks_lectures: {part!r} selects no slide of {name}")
+            if k > 0:   # a chapter that starts inside the lecture opens with its own title slide
+                body.append(re.sub(r'<aside class="notes">.*?</aside>', "", slides[0], flags=re.S))
+            # ids unique within the lecture (two chapters may both have a section "summary")
+            body.extend(re.sub(r'(<section\b[^>]*\bid=")', rf"\g<1>{name}--", s) for s in chosen)
+            covered.append({"deck": name, "from": m.group("start") or "", "to": m.group("stop") or "",
+                            "slides": len(chosen)})
+            titles.append(_heading(slides[0]))
+        if not _is_summary_slide(body[-1]):
+            body.append(_summary_of_part([s for s in body if 'class="title-slide"' not in s]))
+        minutes = round(sum(_slide_minutes(s) for s in body))
+        names = "; ".join(dict.fromkeys(titles))
+        plan = "; ".join(dict.fromkeys(_heading(s) for s in body if _heading(s)))
+        h1 = f'<h1>Lecture {number}</h1>\n<p class="lecture-topics">{html.escape(names)}</p>'
+        notes = (f'<aside class="notes">\n<p>This lecture: about {minutes} min by the slides\' notes, '
+                 f"{len(body) + 1} slides.</p>\n<p>Plan: {html.escape(plan)}.</p>\n</aside>")
+        title = re.sub(r"<h1>.*?</h1>", lambda _m, r=h1: r, title_slide, count=1, flags=re.S)  # type: ignore[misc]
+        title = re.sub(r'<aside class="notes">.*?</aside>', lambda _m, r=notes: r, title,  # type: ignore[misc]
+                       count=1, flags=re.S)
+        head_title = f"<title>Lecture {number}: {html.escape(names)}</title>"
+        page = (re.sub(r"<title>.*?</title>", lambda _m, r=head_title: r, head, count=1, flags=re.S)  # type: ignore[misc]
+                + "\n" + title + "\n" + "\n".join(body) + "\n" + tail)
+        rel = f"{LECTURES}/lecture-{number:02d}.html"
+        (dest / rel).write_text(page, encoding="utf-8")
+        lectures.append({"number": number, "file": rel, "title": names, "minutes": minutes, "parts": covered,
+                         "slides": len(body) + 1})
+    return lectures
+
+
+def write_index(dest: Path, decks: list[dict[str, str]], lectures: list[dict[str, Any]] | None = None) -> None:
+    """The slides index: each lecture with its minutes and the chapters it covers; then each chapter's deck
+    with its minutes, its PDF and handout (when printed) and its chapter in the book."""
     def paper(d: dict[str, str]) -> str:
         links = [f'<a href="{html.escape(d[k])}">{label}</a>'
                  for k, label in (("pdf", "PDF"), ("handout", "handout with notes")) if (dest / d[k]).is_file()]
         return " · ".join(links) if links else "PDFs: <code>make book</code>"
 
+    by_name = {d["name"]: d for d in decks}
+
+    def part(p: dict[str, Any]) -> str:
+        d = by_name[p["deck"]]
+        span = ("" if not (p["from"] or p["to"]) else
+                f" (sections {p['from'] or 'start'} to {'before ' + p['to'] if p['to'] else 'end'})")
+        return f'<a href="{html.escape(d["file"])}">{html.escape(d["title"])}</a>{span}'
+
+    lecture_rows = "\n".join(
+        f'<li><a href="{html.escape(lec["file"])}">Lecture {lec["number"]}</a> '
+        f'<span class="minutes">({lec["minutes"]} min)</span>: '
+        + "; ".join(part(p) for p in lec["parts"]) + "</li>"
+        for lec in lectures or [])
     rows = "\n".join(
         f'<li><a href="{html.escape(d["file"])}">{html.escape(d["title"])}</a> '
         f'<span class="minutes">({d["minutes"]} min)</span> · {paper(d)} '
         f'· <a href="{html.escape(d["chapter"])}">chapter in the book</a></li>'
         for d in decks)
     total = sum(int(d["minutes"]) for d in decks)
+    lecture_block = (
+        f"<h2>Lectures</h2><p>{len(lectures or [])} lectures of {LECTURE_MINUTES[0]} to {LECTURE_MINUTES[1]} "
+        "minutes by the speaker notes' timings, the chapters' slides in order (set in <code>_config.yml</code>, "
+        f"<code>decks_lectures</code>); each ends with a summary.</p><ol>\n{lecture_rows}\n</ol>"
+        if lectures else "")
     dest.joinpath("index.html").write_text(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
@@ -251,9 +428,7 @@ def write_index(dest: Path, decks: list[dict[str, str]]) -> None:
         "<style>body{font-family:sans-serif;font-size:20px;max-width:50em;margin:2em auto;padding:0 1em;"
         "color:#111;line-height:1.5}a{color:#0b4f8a}li{margin:.4em 0}.minutes{color:#444}</style></head><body>"
         "<h1>Manipulator Jacobians: lecture slides</h1>"
-        f"<p>One lecture per chapter, {len(decks)} in all ({total} min by the speaker notes' timings), each with "
-        "a PDF (a page a slide) and a handout with the speaker notes. This folder stands alone: copy it to a "
-        "USB stick and open a deck from there, no network needed.</p>"
+        "<p>This folder stands alone: copy it to a USB stick and open a deck from there, no network needed.</p>"
         "<p>Keys: <kbd>PageDown</kbd>/<kbd>Space</kbd>/<kbd>N</kbd> or a clicker to go on, "
         "<kbd>PageUp</kbd>/<kbd>P</kbd> back (always the deck's, also after touching a slider; the arrow "
         "keys move a slider only for a second after it was touched), <kbd>S</kbd> speaker notes, "
@@ -261,6 +436,9 @@ def write_index(dest: Path, decks: list[dict[str, str]]) -> None:
         "<kbd>B</kbd> black screen, <kbd>F</kbd> full screen, <kbd>Esc</kbd> overview, "
         "<kbd>Ctrl</kbd>+<kbd>Shift</kbd>+<kbd>F</kbd> search, <kbd>Alt</kbd>+click zoom. "
         "<a href=\"../index.html\">The book</a>.</p>"
+        + lecture_block +
+        f"<h2>By chapter</h2><p>One deck a chapter, {len(decks)} in all ({total} min by the speaker notes' "
+        "timings), each with a PDF (a page a slide) and a handout with the speaker notes.</p>"
         f"<ol>\n{rows}\n</ol></body></html>\n",
         encoding="utf-8",
     )
@@ -288,7 +466,9 @@ def main(argv: list[str] | None = None) -> int:
             d["slides"] = str(printed[d["name"]])
         (dest / "decks.json").write_text(json.dumps(decks, indent=1))
         print(f"build_slides: {2 * len(decks)} PDFs (decks and handouts) in {time.perf_counter() - t1:.1f} s")
-    write_index(dest, decks)
+    lectures = assemble_lectures(dest, decks)
+    (dest / "lectures.json").write_text(json.dumps(lectures, indent=1))
+    write_index(dest, decks, lectures)
     size = sum(p.stat().st_size for p in dest.rglob("*") if p.is_file())
     print(f"build_slides: {len(decks)} decks in {os.path.relpath(dest)} ({size / 1e6:.1f} MB, "
           f"{time.perf_counter() - t0:.1f} s)")

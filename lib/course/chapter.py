@@ -23,7 +23,9 @@ for independent checks, a random chain, and the exact zero tests of
 
 from __future__ import annotations
 
+import html
 from collections.abc import Callable, Sequence
+from typing import Any
 
 import matplotlib
 import numpy as np
@@ -48,6 +50,7 @@ __all__ = [
     "start_page",
     "clean",
     "show",
+    "latex_matrix",
     "trig_shorthand",
     "is_zero",
     "is_zero_matrix",
@@ -135,7 +138,145 @@ def _png_with_text_size() -> None:
         data: str | None = print_figure(fig, "png", base64=True, metadata={TEXT_SIZE_KEY: size})
         return data
 
+    def svg(fig: Figure) -> str | None:
+        return slide_svg(fig)
+
     ip.display_formatter.formatters["image/png"].for_type(Figure, png)
+    # the decks' copy of each figure (the book shows the PNG: _ext/decks.py orders the two)
+    ip.display_formatter.formatters["image/svg+xml"].for_type(Figure, svg)
+
+
+#: where a slide shows a figure, in px of the decks' 1280x720 canvas (``_ext/decks_static/course_decks.css``:
+#: an image at most 600 px tall under a heading and a line of text, at most as wide as the slide)
+SLIDE_FIGURE_BOX = (1280.0, 600.0)
+#: the smallest text of a figure on a slide, in px of the canvas. reveal.js draws the canvas and its 4 %
+#: margin into the window: at 1024x768 at 1024/(1.04*1280) = 0.769 of its size, at 1280x720 at
+#: 720/(1.04*720) = 0.962. 20 px on a 1024x768 screen is 20/0.769 = 26.0 px of the canvas, 24 px on a 1280x720
+#: screen 24/0.962 = 24.96 px; 27 px meets both with a pixel to spare for rounding.
+SLIDE_TEXT_PX = 27.0
+#: attribute of a slide figure's ``<svg>`` root: its smallest text, in the SVG's own units (its viewBox)
+SVG_TEXT_ATTR = "data-smallest-text"
+
+
+def _svg_size(svg: str) -> tuple[float, float]:
+    import re
+
+    m = re.search(r'<svg[^>]*?\bwidth="([\d.]+)pt"[^>]*?\bheight="([\d.]+)pt"', svg)
+    if m is None:
+        raise ValueError("Expected matplotlib's SVG with its size in pt")
+    return float(m.group(1)), float(m.group(2))
+
+
+def slide_svg(fig: Any) -> str | None:
+    """The figure as the lecture decks show it: SVG (sharp at any projector size), text enlarged to
+    :data:`SLIDE_TEXT_PX` at the size the slide shows it (:data:`SLIDE_FIGURE_BOX`).
+
+    A copy of the figure is drawn (the book's PNG is left as the chapter made
+    it); every text of the copy grows by the same factor until its smallest
+    text, scaled by the width the slide shows the SVG at, reaches the target.
+    Glyphs are paths, so the projector's computer needs none of the fonts.
+    The smallest text, in the SVG's units, is written on its root
+    (:data:`SVG_TEXT_ATTR`): the deck tests scale it by the width as drawn.
+    None for a figure that cannot be copied (not picklable).
+    """
+    import io
+    import pickle
+
+    import matplotlib.pyplot as plt
+    from matplotlib.text import Text
+    from matplotlib.ticker import AutoLocator, MaxNLocator
+
+    try:
+        copy = pickle.loads(pickle.dumps(fig))
+    except Exception:  # a figure with unpicklable parts keeps its PNG only
+        return None
+    try:
+        with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": "course-slides"}):
+            try:
+                base = smallest_text_px(copy) * 72.0 / float(copy.dpi)   # pt: the SVG's units
+            except ValueError:
+                base = None
+            sizes = {id(t): (t, float(t.get_fontsize())) for t in copy.findobj(Text)}
+            # a 3-D axis's label sits a fixed distance from its axis, which its rotated tick labels can reach:
+            # on a slide it keeps 12 points more
+            for ax in copy.axes:
+                if hasattr(ax, "zaxis"):
+                    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+                        axis.labelpad = float(axis.labelpad) + 12.0
+            factor = 1.0
+            for _ in range(5):
+                buf = io.StringIO()
+                copy.savefig(buf, format="svg", bbox_inches="tight", metadata={"Date": None})
+                svg = buf.getvalue()
+                if base is None:
+                    return svg.replace("<svg ", f'<svg {SVG_TEXT_ATTR}="none" ', 1)
+                w, h = _svg_size(svg)
+                shown = min(SLIDE_FIGURE_BOX[0], SLIDE_FIGURE_BOX[1] * w / h)
+                smallest = smallest_text_px(copy) * 72.0 / float(copy.dpi)
+                if smallest * shown / w >= SLIDE_TEXT_PX:
+                    break
+                # grow every text (tick labels drawn since the last round included) by what is missing
+                grow = SLIDE_TEXT_PX / (smallest * shown / w) * 1.02
+                factor *= grow
+                for t in copy.findobj(Text):
+                    t0, s0 = sizes.setdefault(id(t), (t, float(t.get_fontsize()) / (factor / grow)))
+                    t.set_fontsize(s0 * factor)
+                # axis labels keep their distance from the (larger) tick labels; a 3-D axis puts its label
+                # labelpad + 21 points from the axis (mplot3d's fixed offset), so that sum grows
+                # (and a 3-D axis, which does not thin its ticks as its labels grow, keeps at most 4 of them)
+                for ax in copy.axes:
+                    offset = 21.0 if hasattr(ax, "zaxis") else 0.0
+                    for axis in (getattr(ax, name, None) for name in ("xaxis", "yaxis", "zaxis")):
+                        if axis is not None:
+                            axis.labelpad = (float(axis.labelpad) + offset) * grow - offset
+                            if offset and isinstance(axis.get_major_locator(), AutoLocator):
+                                axis.set_major_locator(MaxNLocator(nbins=4))
+            overlaps = "; ".join(f"{a} / {b}" for a, b in text_overlaps(copy))
+            attrs = f'{SVG_TEXT_ATTR}="{smallest:.3f}" {SVG_OVERLAP_ATTR}="{html.escape(overlaps, quote=True)}"'
+            return svg.replace("<svg ", f"<svg {attrs} ", 1)
+    finally:
+        plt.close(copy)
+
+
+#: attribute of a slide figure's ``<svg>`` root: the texts of the figure that overlap, as drawn for the slide
+SVG_OVERLAP_ATTR = "data-text-overlaps"
+
+
+def text_overlaps(fig: Any) -> list[tuple[str, str]]:
+    """Pairs of a figure's drawn texts whose boxes overlap (each at least a third of the smaller's height
+    and a tenth of its width: two lines that merely touch, or a subscript's reach, do not count). Only
+    texts the figure draws count (a 3-D axis keeps tick labels it does not draw)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+
+    canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+    boxes = []
+    original = Text.draw
+
+    def draw(self: Any, renderer: Any) -> Any:
+        done = original(self, renderer)
+        if self.get_visible() and self.get_text().strip():
+            try:
+                b = self.get_window_extent(renderer)
+            except (RuntimeError, ValueError):
+                return done
+            if b.width > 0 and b.height > 0 and fig.bbox.overlaps(b):
+                boxes.append((self.get_text().strip().replace("\n", " ")[:30], b))
+        return done
+
+    Text.draw = draw  # type: ignore[method-assign]
+    try:
+        canvas.draw()
+    finally:
+        Text.draw = original  # type: ignore[method-assign]
+    found = []
+    for i, (a, ba) in enumerate(boxes):
+        for b, bb in boxes[i + 1:]:
+            w = min(ba.x1, bb.x1) - max(ba.x0, bb.x0)
+            h = min(ba.y1, bb.y1) - max(ba.y0, bb.y0)
+            if w > 0.1 * min(ba.width, bb.width) and h > 0.33 * min(ba.height, bb.height):
+                found.append((a, b))
+    return found
 
 
 def clean(A: ArrayLike, digits: int = 4) -> NDArray[np.float64]:
@@ -145,6 +286,19 @@ def clean(A: ArrayLike, digits: int = 4) -> NDArray[np.float64]:
     array([0.    , 0.1235])
     """
     return np.round(np.asarray(A, dtype=float), digits) + 0.0
+
+
+def latex_matrix(A: ArrayLike, digits: int = 2) -> str:
+    r"""A numeric matrix as a LaTeX ``bmatrix``, each entry rounded to ``digits`` decimals (no "-0.00").
+
+    >>> latex_matrix([[1, -1e-9], [0.5, 2]], 1)
+    '\\begin{bmatrix}1.0 & 0.0\\\\0.5 & 2.0\\end{bmatrix}'
+    """
+    M = np.atleast_2d(clean(A, digits))
+    if M.ndim != 2:
+        raise ValueError(f"Expected a vector or a matrix, got an array of shape {M.shape}")
+    rows = (" & ".join(f"{x:.{digits}f}" for x in row) for row in M)
+    return r"\begin{bmatrix}" + r"\\".join(rows) + r"\end{bmatrix}"
 
 
 def show(latex: str) -> None:

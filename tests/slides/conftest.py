@@ -53,6 +53,38 @@ KNOWN_DECK_GAPS = {
         "the short form of Prop. 11 (which singularities a self-motion can leave) shows its inline math as TeX",
 }
 
+# Text of the animations and the live views, as drawn: 24 px at 1280x720 and 20 px at 1024x768 is wanted.
+# An animation's frames are PNGs drawn with the book's fonts (smallest text 10-14 px of the frame, 14-18 px on
+# the screen at 1280x720): they need frames drawn for the slides. A live view's smallest labels are 17 px at
+# 1280x720 and 14 px at 1024x768 (its own CSS and SVG): they need sizes for the slides in the views' code.
+# Strict, so a fix that makes one pass must also remove it here.
+for _deck in ("02_space_jacobian", "04_space_vs_body", "05_geometric_jacobian", "06_analytic_jacobian",
+              "08_link_jacobians", "09_using_the_jacobian", "11_redundancy", "12_jacobian_derivative"):
+    KNOWN_DECK_GAPS[f"test_animations_text_at_projection_size[{_deck}]"] = (
+        "the animation's frames carry the book's text sizes (14-18 px at 1280x720)")
+for _deck in ("01_twists", "02_space_jacobian", "03_body_jacobian", "04_space_vs_body", "05_geometric_jacobian",
+              "06_analytic_jacobian", "07_conversions", "09_using_the_jacobian"):
+    KNOWN_DECK_GAPS[f"test_live_view_text_at_projection_size[{_deck}]"] = (
+        "the live view's smallest labels are 17 px at 1280x720, 14 px at 1024x768")
+
+KNOWN_DECK_GAPS["test_figures_are_drawn_for_projection[01_twists]"] = (
+    "Fig. 1.3 (the UR5 in 3-D, two views): at slide size the z label meets a tick label and joint 4's tag, and "
+    "the frame names {s}, {b} meet their axes' labels")
+
+# Slides of words alone under 30 words, measured in the browser, that no neighbour can take in (their
+# neighbours are pictures or full): each needs a formula, a table or a figure in its chapter's slide markup.
+_THIN = {
+    "conventions": "slide 2 (Frames, 19 words)",
+    "02_space_jacobian": "slides 6 (Computing J_s recursively, 21 words) and 10 (Explore, 26 words)",
+    "10_inverse_kinematics": "slide 8 (Singularities and damped least squares, 21 words)",
+    "11_redundancy": "slide 8 (Task priority, 16 words)",
+    "12_jacobian_derivative": "slides 10 (Spatial example: the UR5, 27 words) and 13 (Checked against Pinocchio, 25)",
+    "appendix_library": "slide 3 (How fast it is, 17 words)",
+    "appendix_own_robot": "slide 5 (Loading your own file, 22 words)",
+}
+for _deck, _which in _THIN.items():
+    KNOWN_DECK_GAPS[f"test_no_slide_is_a_heading_and_a_sentence[{_deck}]"] = f"a heading and a sentence: {_which}"
+
 
 def pytest_collection_modifyitems(config, items):
     for item in items:
