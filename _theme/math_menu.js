@@ -43,30 +43,39 @@
     return loading;
   }
 
+  const pending = new WeakMap();  // formula box -> promise of its container typeset again
+
   /** Typeset one formula (a span.math or div.math with data-tex) again, with the menu; its new container. */
-  async function activate(box) {
-    if (box.dataset.mathLive) return box.querySelector("mjx-container");
-    box.dataset.mathLive = "loading";
-    await load();
-    const display = box.tagName === "DIV";
-    const eqno = box.querySelector(":scope > .eqno");
-    box.textContent = display ? "\\[" + box.dataset.tex + "\\]" : "\\(" + box.dataset.tex + "\\)";
-    if (eqno) box.prepend(eqno);
-    await window.MathJax.typesetPromise([box]);
-    box.dataset.mathLive = "1";
-    return box.querySelector("mjx-container");
+  function activate(box) {
+    if (!pending.has(box)) {
+      box.dataset.mathLive = "loading";
+      pending.set(box, load().then(() => {
+        const display = box.tagName === "DIV";
+        const eqno = box.querySelector(":scope > .eqno");
+        box.textContent = display ? "\\[" + box.dataset.tex + "\\]" : "\\(" + box.dataset.tex + "\\)";
+        if (eqno) box.prepend(eqno);
+        return window.MathJax.typesetPromise([box]);
+      }).then(() => {
+        box.dataset.mathLive = "1";
+        return box.querySelector("mjx-container");
+      }));
+    }
+    return pending.get(box);
   }
 
   function onTrigger(ev) {
     const old = ev.target.closest && ev.target.closest("mjx-container");
     const box = old && old.parentElement && old.parentElement.closest("[data-tex]");
-    if (!box || box.dataset.mathLive) return;
-    if (ev.type === "contextmenu") ev.preventDefault();
+    if (!box || box.dataset.mathLive === "1" || !ev.isTrusted) return;  // MathJax's own from here on
+    if (ev.type !== "focusin") ev.preventDefault();
     const { type, clientX, clientY } = ev;
     activate(box).then((fresh) => {
       if (!fresh) return;
-      if (type === "focusin") fresh.focus();
-      else fresh.dispatchEvent(new MouseEvent(type, { bubbles: true, cancelable: true, clientX, clientY }));
+      if (type === "focusin") {
+        if (document.activeElement === document.body || document.activeElement === old) fresh.focus();
+      } else {
+        fresh.dispatchEvent(new MouseEvent(type, { bubbles: true, cancelable: true, clientX, clientY }));
+      }
     }, (err) => console.error(err));
   }
 

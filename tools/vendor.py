@@ -74,11 +74,13 @@ class Package:
 #: \\cancel, autoload from input/tex/extensions), CommonHTML output with its TeX
 #: font and woff-v2 files (the fonts of the math typeset at build time too), the
 #: hidden MathML that screen readers read, and, loaded on demand, the menu and
-#: the explorer (speech: the speech rule engine with its English rules). Not the
-#: combined tex-mml-chtml.js (MathML input no page uses), nor the rules of
+#: the explorer (speech: the speech rule engine with its English rules, and the
+#: MathML input that its semantic enrichment reads). Not the
+#: combined tex-mml-chtml.js, nor the rules of
 #: other languages (3.5 MB).
 MATHJAX_COMPONENTS = ("startup", "core", "input/tex-base", "output/chtml", "output/chtml/fonts/tex",
-                      "a11y/assistive-mml", "ui/menu", "a11y/explorer", "a11y/semantic-enrich", "a11y/sre")
+                      "a11y/assistive-mml", "ui/menu", "a11y/explorer", "a11y/semantic-enrich", "a11y/sre",
+                      "input/mml")
 MATHJAX = Package("mathjax", "mathjax",
                   (*(f"es5/{c}.js" for c in MATHJAX_COMPONENTS),
                    "es5/output/chtml/fonts/woff-v2", "es5/input/tex/extensions",

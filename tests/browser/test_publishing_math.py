@@ -1,7 +1,7 @@
 """The book's math is typeset at build time; MathJax's menu and explorer load only when a reader asks.
 
-One chapter page is opened once (offline: any request that leaves the local
-server is refused and reported). Checked on it, in turn:
+One chapter page is opened once; every request it makes must go to the local
+server (the book works offline). Checked on it, in turn:
 
 * before any action: every formula of the page is typeset (an
   ``mjx-container`` with its hidden MathML, ``mjx-assistive-mml``, for screen
@@ -9,8 +9,8 @@ server is refused and reported). Checked on it, in turn:
 * the reader tabs to a formula: MathJax with its menu and explorer is loaded
   from ``_static/mathjax`` (no other address), and the formula is typeset
   again from its TeX;
-* the explorer: an arrow key makes it speak a part of the formula (its live
-  region gets text);
+* the explorer: Enter starts it and an arrow key makes it speak a part of the
+  formula (its live region gets text);
 * the menu: a right-click opens MathJax's menu; "Show Math As" lists the TeX
   commands, and the formula's TeX source in MathJax is the page's TeX
   (what "Copy to Clipboard > TeX Commands" copies);
@@ -32,19 +32,19 @@ def math_page(book_url, browser_context, book_html):
     requests: list[str] = []
     foreign: list[str] = []
 
-    def route(r):
-        if r.request.url.startswith(book_url):
-            requests.append(r.request.url[len(book_url):])
-            r.continue_()
-        else:
-            foreign.append(r.request.url)
-            r.abort()
+    def on_request(req):
+        if req.url.startswith(book_url):
+            requests.append(req.url[len(book_url):])
+        elif not req.url.startswith(("data:", "blob:")):
+            foreign.append(req.url)
 
-    page.route("**/*", route)
+    page.on("request", on_request)
     failed: list[str] = []
     page.on("response", lambda resp: resp.status >= 400 and failed.append(f"{resp.status} {resp.url}"))
-    page.goto(book_url + PAGE, wait_until="load", timeout=60_000)
-    page.wait_for_function("() => document.fonts.status === 'loaded'", timeout=20_000)
+    page.on("requestfailed", lambda req: failed.append(f"failed {req.url}"))
+    page.goto(book_url + PAGE, wait_until="domcontentloaded", timeout=120_000)
+    page.wait_for_function("() => document.readyState === 'complete' && document.fonts.status === 'loaded'",
+                           timeout=120_000)
     yield page, requests, foreign, failed
     page.close()
 
@@ -80,7 +80,7 @@ def test_focus_loads_the_menu_and_explorer_offline(math_page):
         assert any(r.endswith(part) for r in loaded), f"{part} not loaded on focus: {loaded}"
     item = page.evaluate("""() => {
       const box = document.querySelector('[data-math-live="1"]');
-      const it = MathJax.startup.document.math.toArray().find(m => box.contains(m.typesetRoot));
+      const it = Array.from(MathJax.startup.document.math).find(m => box.contains(m.typesetRoot));
       return it && {math: it.math, focused: document.activeElement === it.typesetRoot};
     }""")
     assert item and item["math"] == tex, item
@@ -92,6 +92,7 @@ def test_explorer_speaks_and_menu_offers_tex(math_page):
     page, _requests, foreign, failed = math_page
     box = page.locator('[data-math-live="1"] > mjx-container')
     box.focus()
+    box.press("Enter")   # the explorer starts on Enter, then the arrow keys walk the formula
     box.press("ArrowDown")
     page.wait_for_function("""() => Array.from(document.querySelectorAll('.MJX_LiveRegion'))
                                 .some(r => r.textContent.trim().length > 0)""", timeout=30_000)
@@ -115,5 +116,6 @@ def test_double_click_zooms_a_formula(math_page):
     other = page.locator("div.math:not([data-math-live]) > mjx-container").first
     other.scroll_into_view_if_needed()
     other.dblclick()
-    page.wait_for_function("() => document.querySelector('mjx-zoom')", timeout=30_000)
+    zoom = page.locator(".CtxtMenu_Info").filter(has=page.locator("mjx-container")).first
+    zoom.wait_for(state="visible", timeout=60_000)
     assert not foreign and not failed, foreign + failed
