@@ -136,38 +136,40 @@ PROBE = """(() => {
 def visit(browser: Any, url: str) -> dict[str, Any]:
     context = browser.new_context(viewport={"width": WIDTH, "height": HEIGHT}, is_mobile=True, has_touch=True,
                                   device_scale_factor=2)
-    page = context.new_page()
-    page.add_init_script(PROBE)
-    cdp = context.new_cdp_session(page)
-    cdp.send("Network.enable")
-    cdp.send("Network.emulateNetworkConditions", {
-        "offline": False, "latency": LATENCY_MS,
-        "downloadThroughput": KBIT_PER_S * 1000 / 8, "uploadThroughput": KBIT_PER_S * 1000 / 8})
-    cdp.send("Emulation.setCPUThrottlingRate", {"rate": CPU_SLOWDOWN})
-    sizes: dict[str, float] = {}
-    last = [time.monotonic()]
+    try:
+        page = context.new_page()
+        page.add_init_script(PROBE)
+        cdp = context.new_cdp_session(page)
+        cdp.send("Network.enable")
+        cdp.send("Network.emulateNetworkConditions", {
+            "offline": False, "latency": LATENCY_MS,
+            "downloadThroughput": KBIT_PER_S * 1000 / 8, "uploadThroughput": KBIT_PER_S * 1000 / 8})
+        cdp.send("Emulation.setCPUThrottlingRate", {"rate": CPU_SLOWDOWN})
+        sizes: dict[str, float] = {}
+        last = [time.monotonic()]
 
-    def finished(ev: dict[str, Any]) -> None:
-        sizes[ev["requestId"]] = ev.get("encodedDataLength", 0)
-        last[0] = time.monotonic()
+        def finished(ev: dict[str, Any]) -> None:
+            sizes[ev["requestId"]] = ev.get("encodedDataLength", 0)
+            last[0] = time.monotonic()
 
-    cdp.on("Network.loadingFinished", finished)
-    cdp.on("Network.requestWillBeSent", lambda ev: last.__setitem__(0, time.monotonic()))
-    page.goto(url, wait_until="domcontentloaded", timeout=TIMEOUT_S * 1000)
-    deadline = time.monotonic() + TIMEOUT_S
-    while time.monotonic() < deadline:
-        state = page.evaluate("() => [window.__bench.math1, window.__bench.math, window.__bench.live]")
-        if None not in state and time.monotonic() - last[0] > 3.0:  # done, and no request for 3 s
-            break
-        page.wait_for_timeout(500)
-    result = page.evaluate("""() => {
-      const nav = performance.getEntriesByType('navigation')[0];
-      return {dcl: nav.domContentLoadedEventEnd, lcp: window.__bench.lcp, math1: window.__bench.math1,
-              math: window.__bench.math,
-              live: window.__bench.live};
-    }""")
-    result["bytes"] = sum(sizes.values())
-    context.close()
+        cdp.on("Network.loadingFinished", finished)
+        cdp.on("Network.requestWillBeSent", lambda ev: last.__setitem__(0, time.monotonic()))
+        page.goto(url, wait_until="domcontentloaded", timeout=TIMEOUT_S * 1000)
+        deadline = time.monotonic() + TIMEOUT_S
+        while time.monotonic() < deadline:
+            state = page.evaluate("() => [window.__bench.math1, window.__bench.math, window.__bench.live]")
+            if None not in state and time.monotonic() - last[0] > 3.0:  # done, and no request for 3 s
+                break
+            page.wait_for_timeout(500)
+        result = page.evaluate("""() => {
+          const nav = performance.getEntriesByType('navigation')[0];
+          return {dcl: nav.domContentLoadedEventEnd, lcp: window.__bench.lcp, math1: window.__bench.math1,
+                  math: window.__bench.math,
+                  live: window.__bench.live};
+        }""")
+        result["bytes"] = sum(sizes.values())
+    finally:
+        context.close()
     return dict(result)
 
 
@@ -206,7 +208,11 @@ def main(argv: list[str] | None = None) -> int:
                     print(f"\nsite {site}")
                     print(f"{'page':42s} {'DCL':>6s} {'LCP':>6s} {'math1':>6s} {'math':>6s} {'live':>6s} {'MB':>7s}")
                     for page in args.pages:
-                        r = visit(browser, base + page)
+                        try:
+                            r = visit(browser, base + page)
+                        except Exception as exc:  # a page that never loads is a result too: print it, go on
+                            print(f"{page:42s} did not load within {TIMEOUT_S} s: {str(exc).splitlines()[0]}")
+                            continue
                         print(f"{page:42s} {_s(r['dcl'])} {_s(r['lcp'])} {_s(r['math1'])} {_s(r['math'])} "
                               f"{_s(r['live'])} {r['bytes'] / 1e6:7.3f}", flush=True)
                 finally:
