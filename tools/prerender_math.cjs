@@ -38,7 +38,8 @@ const adaptor = liteAdaptor();
 AssistiveMmlHandler(RegisterHTMLHandler(adaptor));
 
 // Sphinx's math, and myst-nb's text/latex outputs (class "output text_latex math notranslate nohighlight")
-const MATH = /<(span|div)( class="(?:[^"]*\s)?math notranslate nohighlight"[^>]*)>([\s\S]*?)<\/\1>/g;
+// (and any classes an author adds before or after them)
+const MATH = /<(span|div)( class="(?:[^"]*\s)?math notranslate nohighlight(?:\s[^"]*)?"[^>]*)>([\s\S]*?)<\/\1>/g;
 const EQNO = /^\s*<span class="eqno">[\s\S]*?<\/span>/;
 const CONFIG_SCRIPT = /<script>window\.MathJax = [\s\S]*?<\/script>\s*/;
 const STARTUP_SCRIPT = /<script defer="defer" src="[^"]*mathjax\/es5\/startup\.js[^"]*"><\/script>\s*/;
