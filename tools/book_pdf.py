@@ -8,8 +8,9 @@ server (the live views are ES modules, which Chromium does not load from
 browser download), printed to A4 with the theme's print style (no sidebars,
 no buttons), and the pages are joined into one PDF with a bookmark per page
 (pypdf). The math is already typeset in the pages (``_ext/math_prerender.py``);
-live views are printed once they have drawn. ``make book`` runs this; the
-intro page links the PDF.
+live views are printed once they have drawn. Not yet run by ``make book``: the
+PDF is 23 MB (368 pages; the figures are printed at full size), too big for
+the site's budget until the figures are downsampled.
 """
 
 from __future__ import annotations
