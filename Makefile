@@ -26,7 +26,7 @@ help:
 	@echo "make slides     reveal.js decks, their PDFs and handouts into _build/html/slides (after make book)"
 	@echo "make slides-pdf the decks again from the last revealjs build, with their PDFs and handouts"
 	@echo "make exercises  student notebooks into _build/exercises"
-	@echo "make bench      speed benchmark against modern_robotics and Pinocchio"
+	@echo "make bench      speed benchmark against modern_robotics and Pinocchio, and the book on a slow phone"
 	@echo "make test-install  a student's install from a wheel in a fresh venv: notebooks, a live view, size"
 	@echo "make grade SUBMISSIONS=<dir>  grade every student notebook under <dir> (gradebook.csv, reports/), as root"
 	@echo "make book SOLUTIONS=0         the book without the solutions"
@@ -68,6 +68,7 @@ book: vendor browser
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
 	$(PY) -m tools.build_slides
+	node tools/precompress.cjs _build/html
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
 
 # ------------------------------------------------------------------ tests
@@ -140,6 +141,7 @@ bench: setup
 	$(PY) -m tools.bench_live
 	$(PY) -m tools.bench_live_spatial
 	$(PY) -m tools.bench_grade
+	$(PY) -m tools.bench_phone
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
 LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json
@@ -165,6 +167,7 @@ exercises: setup
 
 slides: vendor browser
 	$(PY) -m tools.build_slides
+	node tools/precompress.cjs _build/html
 
 # the decks' PDFs (a page a slide) and handouts (with the speaker notes), with Debian's Chromium, into
 # _build/html/slides/pdf (make book and make slides print them too)

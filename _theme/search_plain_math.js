@@ -54,7 +54,8 @@
     Search.htmlToText = function (htmlString, anchor) {
       const doc = new DOMParser().parseFromString(htmlString, "text/html");
       doc.querySelectorAll(".math").forEach((el) => {
-        el.textContent = " " + plainTex(stripDelimiters(el.textContent)) + " ";
+        // (a formula typeset at build time keeps its TeX in data-tex: _ext/math_prerender.py)
+        el.textContent = " " + plainTex(el.dataset.tex || stripDelimiters(el.textContent)) + " ";
       });
       return original.call(this, doc.documentElement.outerHTML, anchor);
     };

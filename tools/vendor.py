@@ -7,9 +7,14 @@ browser tests list every request, tests/browser/test_site.py checks the sizes
 and that every copied tree is used):
 
 * the book (:data:`BOOK`, into ``_vendor/``, Sphinx's ``html_static_path``,
-  served as ``_static/``): MathJax 3 only. No page shows a live widget (the
-  chapters show animations), so there is no widget manager and no require.js;
-  ``_ext/offline_fixes.py`` stops the build if a page ever shows one.
+  served as ``_static/``): MathJax 3 only. The live views are the course's
+  own ES modules (``lib/jacobians/widgets/static/live/``, shipped inside the
+  package), so there is no widget manager and no require.js;
+  ``_ext/offline_fixes.py`` stops the build if a page ever shows a Jupyter
+  widget. The book's pages load no MathJax: their math is typeset at build
+  time (``_ext/math_prerender.py``) and uses only its fonts. The rest is
+  loaded when a reader asks for MathJax's menu or explorer
+  (``_theme/math_menu.js``) and by the decks.
 * the decks vendor nothing: they are a Sphinx build of the same sources
   (``_ext/decks.py``, ``tools/build_slides.py``) that loads reveal.js from
   the copy bundled with sphinx-revealjs, and the book's MathJax and styles
@@ -63,17 +68,23 @@ class Package:
                 shutil.copy2(src, dst)
 
 
-#: MathJax 3 from its components, as the book's ``mathjax3_config.loader.load``
-#: (_config.yml) lists them: the start-up loader, the core, TeX input with the
-#: packages the pages use (others, e.g. \\boldsymbol or \\cancel, autoload from
-#: input/tex/extensions), CommonHTML output with its TeX font and woff-v2 files,
-#: and the hidden MathML that screen readers read. Not the combined
-#: tex-mml-chtml.js: its menu and MathML input are 0.4 MB no page uses.
+#: MathJax 3 from its components, as the decks' ``mathjax3_config.loader.load``
+#: (_config.yml) and ``_theme/math_menu.js`` list them: the start-up loader, the
+#: core, TeX input with the packages the pages use (others, e.g. \\boldsymbol or
+#: \\cancel, autoload from input/tex/extensions), CommonHTML output with its TeX
+#: font and woff-v2 files (the fonts of the math typeset at build time too), the
+#: hidden MathML that screen readers read, and, loaded on demand, the menu and
+#: the explorer (speech: the speech rule engine with its English rules, and the
+#: MathML input that its semantic enrichment reads). Not the
+#: combined tex-mml-chtml.js, nor the rules of
+#: other languages (3.5 MB).
 MATHJAX_COMPONENTS = ("startup", "core", "input/tex-base", "output/chtml", "output/chtml/fonts/tex",
-                      "a11y/assistive-mml")
+                      "a11y/assistive-mml", "ui/menu", "a11y/explorer", "a11y/semantic-enrich", "a11y/sre",
+                      "input/mml")
 MATHJAX = Package("mathjax", "mathjax",
                   (*(f"es5/{c}.js" for c in MATHJAX_COMPONENTS),
-                   "es5/output/chtml/fonts/woff-v2", "es5/input/tex/extensions"),
+                   "es5/output/chtml/fonts/woff-v2", "es5/input/tex/extensions",
+                   "es5/sre/mathmaps/base.json", "es5/sre/mathmaps/en.json"),
                   "es5/startup.js")
 BOOK: tuple[Package, ...] = (MATHJAX,)
 

@@ -269,8 +269,9 @@ _TEXT_JS = "() => {" + _JS_COMMON + """
       tex.push({where: node && node.nodeType === 1 ? where(node) : (node && node.parentElement ? where(node.parentElement) : ''),
                 text: String(item.math)});
     }
-  } else {
-    ROOT.querySelectorAll('span.math, div.math').forEach(e => tex.push({where: where(e), text: e.textContent}));
+  } else {  // typeset at build time: the TeX is kept in data-tex (_ext/math_prerender.py)
+    ROOT.querySelectorAll('span.math, div.math').forEach(e =>
+      tex.push({where: where(e), text: e.dataset.tex || e.textContent}));
   }
   return {text, tex};
 }"""
@@ -614,7 +615,8 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
         page.close()
         return report
 
-    # Let MathJax finish (it is loaded with defer and typesets asynchronously).
+    # Let MathJax finish if the page loads it (it is loaded with defer and typesets asynchronously);
+    # the book's pages are typeset at build time and load none (_ext/math_prerender.py).
     has_mathjax = page.evaluate("() => !!(window.MathJax && window.MathJax.startup)")
     if has_mathjax:
         try:
@@ -662,8 +664,9 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
     report.counts.update(math_source=n_source, math_rendered=n_rendered)
     if n_source and n_rendered < n_source:
         report.add("math", f"{n_source} math elements in the HTML but only {n_rendered} typeset by MathJax")
-    if n_source and not has_mathjax:
-        report.add("math", "the page has math but MathJax is not loaded")
+    n_prerendered = page.evaluate("() => document.querySelectorAll('[data-tex] > mjx-container').length")
+    if n_source and not has_mathjax and not n_prerendered:
+        report.add("math", "the page has math but MathJax is not loaded, nor was it typeset at build time")
     for e in n_errors:
         report.add("math", f"MathJax could not typeset: {e}")
     for snippet in raw_tex_in(page.evaluate(_VISIBLE_TEXT_JS)):

@@ -1,0 +1,87 @@
+"""Sphinx extension: the book's math typeset at build time, so that no page waits for MathJax.
+
+On a slow phone, MathJax in the page (0.8 MB of script, then the typesetting on
+a slow CPU) showed the formulas 15-25 s after the text. Here the pages written
+by an HTML build go through ``tools/prerender_math.cjs`` (MathJax 3.2.2 in
+Node, npm ``mathjax-full``) at the end of the build: each formula becomes the
+CommonHTML MathJax would have written in the browser, with the hidden MathML
+screen readers read; the page gets the CSS of the characters it uses and no
+longer loads MathJax. The fonts are the vendored ones (``_static/mathjax``).
+
+Each formula keeps its TeX in ``data-tex``: ``_theme/math_menu.js`` loads
+MathJax with its menu and explorer (speech, zoom, copy as TeX) only when a
+reader asks for them (focus on a formula, or a right-click), and typesets that
+formula again from its TeX.
+
+Only the book (the ``html`` builder): the decks (``revealjs``) keep MathJax in
+the page. A TeX error stops the build with the page and the formula.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import time
+from pathlib import Path
+from typing import Any
+
+from sphinx.application import Sphinx
+from sphinx.errors import ExtensionError
+from sphinx.util import logging
+
+ROOT = Path(__file__).resolve().parent.parent
+SCRIPT = ROOT / "tools" / "prerender_math.cjs"
+logger = logging.getLogger(__name__)
+_WRITTEN: set[str] = set()
+
+
+def note_page(app: Sphinx, pagename: str, templatename: str, context: dict[str, Any], doctree: Any) -> None:
+    if app.builder.name == "html":
+        _WRITTEN.add(pagename)
+
+
+def macros(config: Any) -> dict[str, Any]:
+    """The TeX macros of the book's MathJax configuration (``mathjax3_config.tex.macros``)."""
+    return dict(((config.mathjax3_config or {}).get("tex") or {}).get("macros") or {})
+
+
+def prerender(app: Sphinx, exception: Exception | None) -> None:
+    if exception is not None or app.builder.name != "html":
+        return
+    out = Path(app.outdir)
+    pages = [str(p) for p in (out / app.builder.get_target_uri(name) for name in sorted(_WRITTEN))
+             if p.suffix == ".html" and p.is_file() and 'math notranslate nohighlight' in p.read_text(encoding="utf-8")]
+    _WRITTEN.clear()
+    if not pages:
+        return
+    start = time.monotonic()
+    counts = typeset(out / "_static", pages, macros(app.config))
+    logger.info(f"math_prerender: {sum(c['math'] for c in counts)} formulas on {len(counts)} pages typeset "
+                f"in {time.monotonic() - start:.1f} s")
+
+
+def typeset(static: Path, pages: list[str] | list[Path], tex_macros: dict[str, Any]) -> list[dict[str, Any]]:
+    """Typeset the math of ``pages`` in place (``static``: the site's ``_static``, where the fonts are).
+
+    Returns one ``{"page", "math", "css"}`` per page (formulas typeset, bytes of CSS added).
+    """
+    node = shutil.which("node")
+    if node is None:
+        raise ExtensionError("math_prerender: Node.js is needed to typeset the math at build time (apt install nodejs)")
+    if not (ROOT / "node_modules" / "mathjax-full").is_dir():
+        raise ExtensionError("math_prerender: node_modules/mathjax-full is missing: run `npm ci` (make setup does it)")
+    if not pages:
+        return []
+    run = subprocess.run([node, str(SCRIPT), str(static), json.dumps(tex_macros), *map(str, pages)],
+                         capture_output=True, text=True, cwd=ROOT, check=False)
+    if run.returncode != 0:
+        raise ExtensionError(f"math_prerender: {run.stderr.strip()[-4000:]}")
+    return [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
+
+
+def setup(app: Sphinx) -> dict[str, Any]:
+    app.connect("html-page-context", note_page)
+    # after the other build-finished handlers that rewrite pages (their priority is 500 or less)
+    app.connect("build-finished", prerender, priority=900)
+    return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}

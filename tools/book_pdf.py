@@ -1,0 +1,128 @@
+"""The whole book as one PDF, printed from the built pages by Debian's Chromium.
+
+Usage: python -m tools.book_pdf [SITE] [--toc _toc.yml] [--out SITE/manipulator-jacobians.pdf]
+
+Every page of the table of contents, in its order, is opened from a local
+server (the live views are ES modules, which Chromium does not load from
+``file://``) in headless Chromium (Playwright, ``/usr/bin/chromium``; no
+browser download), printed to A4 with the theme's print style (no sidebars,
+no buttons), and the pages are joined into one PDF with a bookmark per page
+(pypdf). The math is already typeset in the pages (``_ext/math_prerender.py``);
+live views are printed once they have drawn. Not yet run by ``make book``: the
+PDF is 23 MB (368 pages; the figures are printed at full size), too big for
+the site's budget until the figures are downsampled.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import http.server
+import io
+import sys
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+ROOT = Path(__file__).resolve().parent.parent
+CHROMIUM = "/usr/bin/chromium"
+PDF_NAME = "manipulator-jacobians.pdf"
+
+
+def toc_pages(toc: Path) -> list[str]:
+    """The built pages (``chapters/intro.html``, ...) in the order of a Jupyter Book ``_toc.yml``."""
+    data = yaml.safe_load(toc.read_text(encoding="utf-8"))
+    files = [data["root"]]
+
+    def walk(entries: list[dict[str, Any]]) -> None:
+        for entry in entries:
+            if "file" in entry:
+                files.append(entry["file"])
+            for key in ("chapters", "sections"):
+                walk(entry.get(key) or [])
+
+    walk(data.get("parts") or [])
+    walk(data.get("chapters") or [])
+    return [f.removesuffix(".md").removesuffix(".ipynb") + ".html" for f in files]
+
+
+class _Quiet(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, format: str, *args: Any) -> None:
+        pass
+
+
+#: a page is ready to print when its fonts are loaded and every live view has mounted (or 20 s passed)
+READY_JS = """() => document.fonts.status === 'loaded'
+  && Array.from(document.querySelectorAll('[data-model]')).every(v => v.dataset.ready === '1')"""
+
+
+def build(site: Path, toc: Path, out: Path) -> dict[str, Any]:
+    from playwright.sync_api import sync_playwright
+    from pypdf import PdfReader, PdfWriter
+
+    pages = toc_pages(toc)
+    missing = [p for p in pages if not (site / p).is_file()]
+    if missing:
+        raise FileNotFoundError(f"book_pdf: pages of {toc.name} missing from {site}: {missing} (run make book)")
+    handler = functools.partial(_Quiet, directory=str(site))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    base = f"http://127.0.0.1:{server.server_address[1]}/"
+    writer = PdfWriter()
+    start = time.monotonic()
+    try:
+        with sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
+            try:
+                context = browser.new_context(viewport={"width": 1000, "height": 1400})
+                page = context.new_page()
+                for path in pages:
+                    page.goto(base + path, wait_until="load", timeout=60_000)
+                    try:
+                        page.wait_for_function(READY_JS, timeout=20_000)
+                    except Exception:
+                        print(f"book_pdf: {path}: live views not ready after 20 s, printed as they are",
+                              file=sys.stderr)
+                    title = page.title().split("—")[0].split(" | ")[0].strip() or path
+                    data = page.pdf(format="A4", print_background=True, display_header_footer=False,
+                                    margin={"top": "15mm", "bottom": "15mm", "left": "14mm", "right": "14mm"})
+                    first = len(writer.pages)
+                    for p in PdfReader(io.BytesIO(data)).pages:
+                        writer.add_page(p)
+                    writer.add_outline_item(title=title, page_number=first)
+                context.close()
+            finally:
+                browser.close()
+    finally:
+        server.shutdown()
+        server.server_close()
+    writer.add_metadata({"/Title": "Manipulator Jacobians", "/Author": "The Manipulator Jacobians course team"})
+    out.parent.mkdir(parents=True, exist_ok=True)
+    with out.open("wb") as f:
+        writer.write(f)
+    return {"pages": len(pages), "pdf_pages": len(writer.pages), "bytes": out.stat().st_size,
+            "seconds": time.monotonic() - start}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("site", nargs="?", type=Path, default=ROOT / "_build" / "html")
+    parser.add_argument("--toc", type=Path, default=ROOT / "_toc.yml")
+    parser.add_argument("--out", type=Path, default=None)
+    args = parser.parse_args(argv)
+    out = args.out or args.site / PDF_NAME
+    try:
+        r = build(args.site, args.toc, out)
+    except FileNotFoundError as exc:
+        print(exc, file=sys.stderr)
+        return 2
+    print(f"book_pdf: {r['pages']} pages of the book -> {out} ({r['pdf_pages']} PDF pages, "
+          f"{r['bytes'] / 1e6:.1f} MB, {r['seconds']:.0f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

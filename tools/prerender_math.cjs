@@ -1,0 +1,128 @@
+// Typeset the math of built book pages once, at build time, with MathJax in Node
+// (npm mathjax-full, the same MathJax 3.2.2 as the browser copy), so that no page
+// waits for MathJax on the reader's phone.
+//
+// Usage: node tools/prerender_math.cjs <static-dir> <page.html>...
+//
+// In each page, every Sphinx math element (<span class="math">\(..\)</span>,
+// <div class="math">\[..\]</div> or a bare \begin{env}..\end{env}) gets the
+// CommonHTML MathJax would write in the browser, with its hidden MathML for
+// screen readers (mjx-assistive-mml); the element keeps its TeX in data-tex
+// (the on-demand menu, _theme/math_menu.js, typesets it again from there).
+// The CSS of the characters the page uses goes into one <style> in its head
+// (not MathJax's own id, MJX-CHTML-styles: MathJax in the page would replace it),
+// the fonts are the vendored woff-v2 files under <static-dir>/mathjax. The
+// page's MathJax configuration and startup.js are removed. A TeX error stops
+// the run with the page and the formula.
+//
+// Prints one JSON line per page: {"page", "math", "css"} (formulas, CSS bytes).
+"use strict";
+
+const fs = require("fs");
+const path = require("path");
+const { mathjax } = require("mathjax-full/js/mathjax.js");
+const { TeX } = require("mathjax-full/js/input/tex.js");
+const { CHTML } = require("mathjax-full/js/output/chtml.js");
+const { liteAdaptor } = require("mathjax-full/js/adaptors/liteAdaptor.js");
+const { RegisterHTMLHandler } = require("mathjax-full/js/handlers/html.js");
+const { AssistiveMmlHandler } = require("mathjax-full/js/a11y/assistive-mml.js");
+require("mathjax-full/js/input/tex/AllPackages.js");
+
+// The packages the browser's configuration loads, and those its autoload
+// would fetch when a formula uses them (physics is not autoloaded: left out).
+const PACKAGES = ["base", "ams", "newcommand", "configmacros", "noundefined", "action", "amscd", "bbox",
+  "boldsymbol", "braket", "cancel", "cases", "centernot", "color", "empheq", "enclose", "extpfeil",
+  "gensymb", "html", "mathtools", "upgreek", "unicode", "verb"];
+
+const adaptor = liteAdaptor();
+AssistiveMmlHandler(RegisterHTMLHandler(adaptor));
+
+// Sphinx's math, and myst-nb's text/latex outputs (class "output text_latex math notranslate nohighlight")
+// (and any classes an author adds before or after them)
+const MATH = /<(span|div)( class="(?:[^"]*\s)?math notranslate nohighlight(?:\s[^"]*)?"[^>]*)>([\s\S]*?)<\/\1>/g;
+const EQNO = /^\s*<span class="eqno">[\s\S]*?<\/span>/;
+const CONFIG_SCRIPT = /<script>window\.MathJax = [\s\S]*?<\/script>\s*/;
+const STARTUP_SCRIPT = /<script defer="defer" src="[^"]*mathjax\/es5\/startup\.js[^"]*"><\/script>\s*/;
+
+function unescapeHtml(s) {
+  return s.replace(/&lt;/g, "<").replace(/&gt;/g, ">").replace(/&quot;/g, '"').replace(/&#39;/g, "'")
+    .replace(/&amp;/g, "&");
+}
+
+function escapeAttr(s) {
+  return s.replace(/&/g, "&amp;").replace(/"/g, "&quot;").replace(/</g, "&lt;").replace(/>/g, "&gt;");
+}
+
+/** The TeX of a math element's text and whether it is display math. */
+function source(tag, text) {
+  const t = unescapeHtml(text).trim();
+  if (tag === "span" && t.startsWith("\\(") && t.endsWith("\\)")) return [t.slice(2, -2), false];
+  if (t.startsWith("\\[") && t.endsWith("\\]")) return [t.slice(2, -2), true];
+  if (t.startsWith("$$") && t.endsWith("$$") && t.length > 4) return [t.slice(2, -2), true];
+  if (tag === "div") return [t, true];
+  return null;
+}
+
+// What an earlier run wrote: the typeset formulas (back to their TeX), the page's math CSS and menu settings
+const TYPESET = /<(span|div)( class="[^"]*"[^>]*?) data-tex="([^"]*)">(<span class="eqno">[\s\S]*?<\/span>)?<mjx-container[\s\S]*?<\/mjx-container><\/\1>/g;
+const OURS = /<style id="course-math-styles">[\s\S]*?<\/style>\n?|<script type="application\/json" id="math-menu-config">[\s\S]*?<\/script>\n?/g;
+
+/** The page as Sphinx wrote it, if an earlier run typeset it (so that a page can be typeset again). */
+function untypeset(html) {
+  return html.replace(OURS, "").replace(TYPESET, (whole, tag, attrs, tex, eqno) => {
+    const t = tex.replace(/&quot;/g, '"');  // (escapeAttr's other entities stay: the TeX is HTML text again)
+    return `<${tag}${attrs}>${eqno || ""}${tag === "span" ? "\\(" + t + "\\)" : "\\[" + t + "\\]"}</${tag}>`;
+  });
+}
+
+function render(page, staticDir, macros) {
+  let html = untypeset(fs.readFileSync(page, "utf8"));
+  const fontURL = path.relative(path.dirname(page), path.join(staticDir, "mathjax/es5/output/chtml/fonts/woff-v2"))
+    .split(path.sep).join("/");
+  const doc = mathjax.document("", {
+    InputJax: new TeX({ packages: PACKAGES, macros }),
+    OutputJax: new CHTML({ fontURL, adaptiveCSS: true }),
+  });
+  let count = 0;
+  const errors = [];
+  html = html.replace(MATH, (whole, tag, attrs, body) => {
+    const eqno = (tag === "div" && EQNO.exec(body)) || [""];  // Sphinx's equation number goes first
+    const text = body.slice(eqno[0].length);
+    const src = !attrs.includes("data-tex=") && source(tag, text);  // (typeset already: left as it is)
+    if (!src) return whole;
+    const [tex, display] = src;
+    const node = doc.convert(tex, { display });
+    const out = adaptor.outerHTML(node);
+    if (/<mjx-merror|data-mjx-error/.test(out)) errors.push(tex);
+    count += 1;
+    return `<${tag}${attrs} data-tex="${escapeAttr(tex)}">${eqno[0]}${out}</${tag}>`;
+  });
+  if (errors.length) {
+    throw new Error(`${page}: MathJax could not typeset ${errors.length} formula(s):\n  ` + errors.join("\n  "));
+  }
+  let css = 0;
+  if (count) {
+    const style = adaptor.textContent(doc.outputJax.styleSheet(doc));
+    css = style.length;
+    const menu = JSON.stringify({ macros }).replace(/</g, "\\u003c");
+    html = html.replace("</head>", `<style id="course-math-styles">\n${style}</style>\n`
+      + `<script type="application/json" id="math-menu-config">${menu}</script>\n</head>`);
+  }
+  // no page loads MathJax any more: its configuration and loader go (pages without math have neither)
+  html = html.replace(CONFIG_SCRIPT, "").replace(STARTUP_SCRIPT, "");
+  fs.writeFileSync(page, html);
+  return { page, math: count, css };
+}
+
+function main(argv) {
+  const [staticDir, macrosJson, ...pages] = argv;
+  if (!staticDir || !macrosJson) {
+    process.stderr.write("usage: node tools/prerender_math.cjs <static-dir> <macros-json> <page.html>...\n");
+    return 2;
+  }
+  const macros = JSON.parse(macrosJson);
+  for (const page of pages) process.stdout.write(JSON.stringify(render(page, staticDir, macros)) + "\n");
+  return 0;
+}
+
+process.exitCode = main(process.argv.slice(2));
