@@ -129,7 +129,7 @@ def _print(browser: Any, slides: Path, decks: list[dict[str, Any]]) -> list[dict
         row: dict[str, Any] = {"name": deck["name"]}
         for key, query in PRINTS:
             page = browser.new_page(viewport={"width": 1280, "height": 720})
-            page.goto((slides / deck["file"]).as_uri() + query, wait_until="load")
+            page.goto((slides / deck["file"]).as_uri() + query, wait_until="load", timeout=120_000)
             page.wait_for_selector("html[data-math-done]", state="attached", timeout=120_000)
             page.wait_for_selector(".pdf-page", state="attached", timeout=60_000)
             page.evaluate("document.fonts.ready")
