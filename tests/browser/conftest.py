@@ -42,6 +42,8 @@ WORKER = os.environ.get("PYTEST_XDIST_WORKER", "")
 
 
 def pytest_sessionstart(session):
+    if session.config.getoption("markexpr", "") == "not browser":
+        return  # make test-lib (it may run beside make test-browser: leave that run's summaries alone)
     if not WORKER:  # the controller (or a run without xdist): no summary left from an earlier run
         for old in ARTIFACTS.glob("summary-*.txt"):
             old.unlink()
