@@ -118,7 +118,7 @@ def lab():
     (work / "nb" / "live3d.ipynb").write_text(json.dumps(notebook(CELLS_3D)), encoding="utf-8")
     env = dict(os.environ, PYTHONPATH=f"{ROOT / 'lib'}{os.pathsep}{ROOT}")
     try:
-        with running_lab(sys.executable, work / "nb", work, env, start_timeout=90) as (base, token):
+        with running_lab(sys.executable, work / "nb", work, env) as (base, token):
             yield base, token, work / "nb"
     finally:
         shutil.rmtree(work, ignore_errors=True)
