@@ -17,7 +17,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
 
-.PHONY: help setup book test lint test-lib test-js test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
+.PHONY: help setup book test test-site lint test-lib test-js test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -72,15 +72,18 @@ book: vendor browser
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
 
 # ------------------------------------------------------------------ tests
-test: setup
-	$(MAKE) lint
-	$(MAKE) test-lib
-	$(MAKE) test-js
-	$(MAKE) test-notebooks
+# make test runs two chains side by side (-j2: one job each on the 2 cores): the book, then the tests that
+# read the built site, then the targets that rewrite it; and the stages that need no built site (static
+# checks, library, JavaScript, a student's install). The book executes its notebooks one at a time, so the
+# other chain fills the second core. Each stage's output is printed whole when it ends (--output-sync); a
+# failing stage fails the run.
+test: setup browser sandbox
+	$(MAKE) -j2 --output-sync=target test-site lint test-lib test-js test-install
+
+# the book, the browser tests on it, the targets after it (in this order: the last rewrites the site)
+test-site: setup
 	$(MAKE) book
 	$(MAKE) test-browser
-	$(MAKE) test-slides
-	$(MAKE) test-install
 	$(MAKE) test-targets
 
 lint: setup
@@ -90,24 +93,31 @@ lint: setup
 	node_modules/.bin/eslint lib/jacobians/widgets/static/live tests/js
 	node_modules/.bin/tsc -p jsconfig.json
 
+# every test not marked `browser` (tests/conftest.py: a test under tests/browser, tests/install or tests/site,
+# or one that uses a browser or built-site fixture, or marked by hand), on every core
 test-lib: setup sandbox
-	MPLBACKEND=Agg $(BIN)/pytest -n auto --ignore=tests/browser --ignore=tests/install --ignore=tests/site --ignore=tests/slides/test_decks.py --ignore=tests/slides/test_deck_live_views.py --ignore=tests/slides/test_pdf.py --ignore=tests/slides/test_deck_keys.py --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+	MPLBACKEND=Agg $(BIN)/pytest -n auto -m "not browser" --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
 
 # the live views' numeric modules under Node, against values the library writes (no browser)
 test-js: setup
 	$(PY) -m tools.js_fixtures _build/js-fixtures.json
 	JS_FIXTURES=_build/js-fixtures.json node --test tests/js/
 
+# nbval on every notebook, without building the book. Not part of make test: the book build runs the same
+# cells and fails on any error (tests/test_book_executes_notebooks.py keeps that true).
 test-notebooks: setup
 	rm -rf _build/nbval && mkdir -p _build/nbval
 	$(PY) -m tools.to_ipynb _build/nbval
 	cd _build/nbval && ../../$(BIN)/pytest --nbval-lax -n 2 --dist loadscope -p no:cacheprovider -q .
 
+# the built site and the decks in Chromium: tests/browser, and the tests of tests/slides that open a deck (the
+# others run in test-lib), in one run on both cores (a module stays whole in one worker, with its browser)
 test-browser: setup browser
-	$(BIN)/pytest tests/browser -q -n 2 --dist loadfile
+	$(BIN)/pytest tests/browser tests/slides -m browser -q -n 2 --dist loadfile
 
+# the deck tests alone (part of test-browser)
 test-slides: setup browser
-	$(BIN)/pytest tests/slides -q
+	$(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadfile
 
 # A student's install: a wheel of the checkout into a fresh venv with [student] (from the pip cache), every
 # student notebook run there, a live view mounted in its JupyterLab; prints the time, size and package count.

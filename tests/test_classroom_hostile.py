@@ -19,6 +19,7 @@ import tempfile
 import threading
 import time
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -40,19 +41,58 @@ def parent() -> Iterator[Path]:
     shutil.rmtree(path, ignore_errors=True)
 
 
-def _run(code: str, parent: Path, limits: Limits | None = None, timeout: float = 60) -> tuple[dict, list[str]]:
-    """Run ``code`` in a fresh sandbox; it prints one JSON object. Returns it and the limits the sandbox hit."""
+@contextmanager
+def _sandbox(code: str, parent: Path, limits: Limits | None = None, cpu_seconds: float = 60):
+    """``code`` started in a fresh sandbox (as a file: the sandbox's /proc shows argv); yields (process,
+    scratch folder). On exit the sandbox is killed with everything it started and its scratch removed."""
     scratch = make_scratch(parent)
-    (scratch / "attack.py").write_text(code, encoding="utf-8")  # (a file: the sandbox's /proc shows argv)
-    proc = start([sys.executable, "-P", "attack.py"], scratch, limits or Limits(), cpu_seconds=timeout,
+    (scratch / "attack.py").write_text(code, encoding="utf-8")
+    proc = start([sys.executable, "-P", "attack.py"], scratch, limits or Limits(), cpu_seconds=cpu_seconds,
                  pipes=True)
     try:
-        out, _ = proc.communicate(timeout=timeout)
+        yield proc, scratch
     finally:
-        hit = limits_hit(proc)
         kill_tree(proc)
         remove_scratch(scratch)
+
+
+def _run(code: str, parent: Path, limits: Limits | None = None, timeout: float = 60) -> tuple[dict, list[str]]:
+    """Run ``code`` in a fresh sandbox; it prints one JSON object. Returns it and the limits the sandbox hit."""
+    with _sandbox(code, parent, limits, cpu_seconds=timeout) as (proc, _):
+        try:
+            out, _ = proc.communicate(timeout=timeout)
+        finally:
+            hit = limits_hit(proc)
     return json.loads(out.decode() or "{}"), hit
+
+
+@contextmanager
+def _listening_server():
+    """A TCP server on 127.0.0.1 that records what it receives: yields (port, received)."""
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(5)
+    server.settimeout(0.2)
+    received: list[bytes] = []
+    stop = threading.Event()
+
+    def serve() -> None:
+        while not stop.is_set():
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                continue
+            received.append(conn.recv(4096))
+            conn.close()
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    try:
+        yield server.getsockname()[1], received
+    finally:
+        stop.set()
+        thread.join()
+        server.close()
 
 
 def _alive(uid: int) -> list[int]:
@@ -102,26 +142,8 @@ print(json.dumps(out))
 
 
 def test_no_network_not_even_to_a_server_of_this_machine(parent):
-    server = socket.socket()
-    server.bind(("127.0.0.1", 0))
-    server.listen(5)
-    server.settimeout(0.2)
-    port = server.getsockname()[1]
-    accepted: list[bytes] = []
-    stop = threading.Event()
-
-    def serve() -> None:
-        while not stop.is_set():
-            try:
-                conn, _ = server.accept()
-            except OSError:
-                continue
-            accepted.append(conn.recv(4096))
-            conn.close()
-
-    thread = threading.Thread(target=serve, daemon=True)
-    thread.start()
-    code = f"""
+    with _listening_server() as (port, accepted):
+        code = f"""
 import json, socket
 out = {{}}
 for host in ("127.0.0.1", "localhost", "10.0.2.2"):
@@ -133,12 +155,7 @@ for host in ("127.0.0.1", "localhost", "10.0.2.2"):
         out[host] = type(exc).__name__
 print(json.dumps(out))
 """
-    try:
         got, _ = _run(code, parent)
-    finally:
-        stop.set()
-        thread.join()
-        server.close()
     assert got and "connected" not in got.values(), got
     assert accepted == []
 
@@ -158,14 +175,11 @@ if pid == 0:
 time.sleep(0.5)
 print(json.dumps({"child": pid}))
 """
-    scratch = make_scratch(parent)
-    uid = sandbox.scratch_owner(scratch)
-    proc = start([sys.executable, "-P", "-c", code], scratch, Limits(), cpu_seconds=30, pipes=True)
-    out, _ = proc.communicate(timeout=60)
-    assert json.loads(out)["child"] > 0
-    assert uid is not None and _alive(uid), "the survivor should be running before the sandbox is killed"
-    kill_tree(proc)
-    remove_scratch(scratch)
+    with _sandbox(code, parent, cpu_seconds=30) as (proc, scratch):
+        uid = sandbox.scratch_owner(scratch)
+        out, _ = proc.communicate(timeout=60)
+        assert json.loads(out)["child"] > 0
+        assert uid is not None and _alive(uid), "the survivor should be running before the sandbox is killed"
     deadline = time.monotonic() + 5
     while _alive(uid) and time.monotonic() < deadline:
         time.sleep(0.05)
@@ -420,6 +434,14 @@ def _uids_alive() -> list[int]:
 
 @pytest.fixture(scope="module")
 def hostile_class(tmp_path_factory):
+    root = tmp_path_factory.mktemp("hostile") / "submissions"
+    (root / "dup").mkdir(parents=True)
+    with _listening_server() as (port, received):
+        rows, before, after = _grade_hostile_class(root, port)
+    return root, rows, before, after, received
+
+
+def _grade_hostile_class(root: Path, port: int):
     import hashlib
 
     import nbformat
@@ -427,27 +449,6 @@ def hostile_class(tmp_path_factory):
 
     from course.classroom.grade import grade_class
 
-    root = tmp_path_factory.mktemp("hostile") / "submissions"
-    (root / "dup").mkdir(parents=True)
-    server = socket.socket()
-    server.bind(("127.0.0.1", 0))
-    server.listen(5)
-    server.settimeout(0.2)
-    received: list[bytes] = []
-    stop = threading.Event()
-
-    def serve() -> None:
-        while not stop.is_set():
-            try:
-                conn, _ = server.accept()
-            except OSError:
-                continue
-            received.append(conn.recv(4096))
-            conn.close()
-
-    thread = threading.Thread(target=serve, daemon=True)
-    thread.start()
-    port = server.getsockname()[1]
     w = nbformat.write
     w(_with_cell(submission(CH02, "s-survivor", "right"), 1, _SURVIVOR), root / "a_survivor.ipynb")
     w(submission(CH02, "s-victim", BOOK), root / "b_victim.ipynb")
@@ -469,16 +470,11 @@ def hostile_class(tmp_path_factory):
     roster.write_text("ID,Name\ns-victim,Vic Tim\ns-book,Bo Ok\nS2401012,Dee Up\ns-absent,Ada Absent\n",
                       encoding="utf-8")
     before = {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in root.rglob("*") if p.is_file()}
-    try:
-        rows = grade_class(root, workers=2, roster=roster,
-                           limits=Limits(cell_timeout=60, notebook_timeout=200, memory=400 << 20, processes=48))
-    finally:
-        stop.set()
-        thread.join()
-        server.close()
+    rows = grade_class(root, workers=2, roster=roster,
+                       limits=Limits(cell_timeout=60, notebook_timeout=200, memory=400 << 20, processes=48))
     after = {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in root.rglob("*") if p.is_file()
              if p.name not in ("gradebook.csv", "grades.csv", "class.html") and not {"reports", "exports"} & set(p.parts)}
-    return root, rows, before, after, received
+    return rows, before, after
 
 
 def _of(rows, notebook):

@@ -3,15 +3,17 @@
 axe-core comes from npm (``node_modules/axe-core/axe.min.js``); it is injected
 into each page after the page has settled (MathJax has typeset, the live views
 have mounted), and runs the rules tagged ``wcag2a``, ``wcag2aa``, ``wcag21a``
-and ``wcag21aa``. Each page is loaded once per colour mode:
+and ``wcag21aa``. Each page is loaded once and checked in both colour modes:
 
 * light: the reader's system asks for light (``prefers-color-scheme: light``);
-* dark: it asks for dark; the book follows it (the theme's mode is "auto"), and
-  so do the live views and the decks (``course.css``, the decks' stylesheet).
+* dark: it asks for dark; the book follows it (the theme's mode is "auto": the
+  theme sets ``<html data-theme>`` from the media query and again when it
+  changes, which :func:`check_modes` waits for), and so do the live views and the decks
+  (``course.css``, the decks' stylesheet: media queries, applied at once).
 
-Used by ``test_axe_light.py`` and ``test_axe_dark.py`` (one module per mode, so
-``make test-browser`` runs the two modes on its two workers) and from the
-command line (``python tests/browser/axe_pages.py [--dark] [page ...]``),
+Used by ``test_axe_pages.py`` (the book's pages) and ``test_axe_decks.py`` (the
+decks; two modules, so ``make test-browser`` runs them on its two workers) and
+from the command line (``python tests/browser/axe_pages.py [--dark] [page ...]``),
 which prints each violation with its nodes.
 """
 
@@ -81,18 +83,36 @@ _RUN = """async (tags) => {
 }"""
 
 
-def check(context, base: str, path: str, mode: str) -> AxeResult:
-    """Load ``path`` once in ``mode`` ("light" or "dark"), run axe-core, return its violations."""
+_MODE_APPLIED = """(mode) => {
+  const root = document.documentElement;
+  return root.dataset.mode !== "auto" || root.dataset.theme === mode;
+}"""
+
+
+def check_modes(context, base: str, path: str, modes: tuple[str, ...] = ("light", "dark"),
+                timeout: float = 60_000) -> list[AxeResult]:
+    """Load ``path`` once; for each mode, ask for its colours, let the page follow, run axe-core."""
     page = context.new_page()
+    out = []
     try:
-        page.emulate_media(color_scheme=mode)
-        page.goto(base + path, wait_until="load", timeout=60_000)
+        page.emulate_media(color_scheme=modes[0])
+        page.goto(base + path, wait_until="load", timeout=timeout)
         page.evaluate(_SETTLE)
         page.add_script_tag(path=str(AXE_JS))
-        got = page.evaluate(_RUN, WCAG_TAGS)
+        for mode in modes:
+            page.emulate_media(color_scheme=mode)
+            page.wait_for_function(_MODE_APPLIED, arg=mode, timeout=timeout)
+            page.evaluate(_SETTLE)
+            got = page.evaluate(_RUN, WCAG_TAGS)
+            out.append(AxeResult(path, mode, got["violations"], got["passes"]))
     finally:
         page.close()
-    return AxeResult(path, mode, got["violations"], got["passes"])
+    return out
+
+
+def check(context, base: str, path: str, mode: str) -> AxeResult:
+    """Load ``path`` in ``mode`` ("light" or "dark"), run axe-core, return its violations."""
+    return check_modes(context, base, path, (mode,))[0]
 
 
 def main(argv: list[str]) -> int:
@@ -106,8 +126,8 @@ def main(argv: list[str]) -> int:
     with bookcheck.BookServer(html) as server, sync_playwright() as p:
         context, _profile = bookcheck.launch_browser(p)
         for path in paths:
-            for mode in (["dark"] if dark else ["light", "dark"]):
-                r = check(context, server.base, path, mode)
+            for r in check_modes(context, server.base, path, ("dark",) if dark else ("light", "dark")):
+                mode = r.mode
                 total += len(r.violations)
                 for line in r.lines():
                     print(line)

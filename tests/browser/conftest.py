@@ -9,7 +9,6 @@ Environment:
 from __future__ import annotations
 
 import os
-import shutil
 from pathlib import Path
 
 import bookcheck
@@ -43,6 +42,8 @@ WORKER = os.environ.get("PYTEST_XDIST_WORKER", "")
 
 
 def pytest_sessionstart(session):
+    if session.config.getoption("markexpr", "") == "not browser":
+        return  # make test-lib (it may run beside make test-browser: leave that run's summaries alone)
     if not WORKER:  # the controller (or a run without xdist): no summary left from an earlier run
         for old in ARTIFACTS.glob("summary-*.txt"):
             old.unlink()
@@ -65,20 +66,7 @@ def book_url(book_html):
         yield server.base
 
 
-@pytest.fixture(scope="session")
-def browser_context():
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as p:
-        try:
-            context, profile = bookcheck.launch_browser(p)
-        except FileNotFoundError as exc:
-            pytest.fail(str(exc), pytrace=False)
-        try:
-            yield context
-        finally:
-            context.close()
-            shutil.rmtree(profile, ignore_errors=True)
+# browser_context (one Chromium per worker) is tests/conftest.py's, shared with tests/install and tests/slides
 
 
 @pytest.fixture(scope="session")

@@ -30,24 +30,22 @@ from __future__ import annotations
 import json
 import math
 import os
-import secrets
 import shutil
-import socket
-import subprocess
 import sys
 import tempfile
-import time
-import urllib.request
 from pathlib import Path
 from urllib.parse import urlsplit
 
 import numpy as np
 import pytest
+from labdriver import HALF_ULP, READ_PLANAR, notebook, running_lab
+from labdriver import open_notebook as _open
+from labdriver import run_cell as _run_cell
+from labdriver import wait_file as _wait_file
 
 import jacobians as jac
 
 ROOT = Path(__file__).resolve().parents[2]
-HALF_ULP = 0.005 + 1e-9
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "lab"  # screenshots of the 3-D views in JupyterLab (not committed)
 
 CELLS = [
@@ -111,99 +109,19 @@ READ_TABLES = """(el) => {
     Ja: rows("table.jl-Ja") };
 }"""
 
-READ_PLANAR = """(el) => ({
-  theta: JSON.parse(el.dataset.theta), frame: el.dataset.frame,
-  table: [...el.querySelectorAll("table.jl-matrix tbody tr")].map(
-    (tr) => [...tr.querySelectorAll("td")].map((td) => Number(td.textContent.replace("\\u2212", "-")))),
-})"""
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-def _notebook(cells: list[str]) -> dict:
-    return {"cells": [{"cell_type": "code", "execution_count": None, "id": f"c{i}", "metadata": {}, "outputs": [],
-                       "source": src} for i, src in enumerate(cells)],
-            "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python", "name": "python3"}},
-            "nbformat": 4, "nbformat_minor": 5}
-
-
 @pytest.fixture(scope="module")
 def lab():
+    """This venv's JupyterLab on a temporary folder with the two notebooks: (base URL, token, folder)."""
     work = Path(tempfile.mkdtemp(prefix="live-lab-"))
     (work / "nb").mkdir()
-    (work / "nb" / "live.ipynb").write_text(json.dumps(_notebook(CELLS)), encoding="utf-8")
-    (work / "nb" / "live3d.ipynb").write_text(json.dumps(_notebook(CELLS_3D)), encoding="utf-8")
-    port, token = _free_port(), secrets.token_hex(16)
-    env = dict(os.environ, JUPYTER_CONFIG_DIR=str(work / "config"), JUPYTER_RUNTIME_DIR=str(work / "runtime"),
-               IPYTHONDIR=str(work / "ipython"), PYTHONPATH=f"{ROOT / 'lib'}{os.pathsep}{ROOT}")
-    cmd = [sys.executable, "-m", "jupyterlab", "--no-browser", f"--port={port}", "--ip=127.0.0.1",
-           f"--IdentityProvider.token={token}", "--LabApp.expose_app_in_browser=True",
-           "--ServerApp.disable_check_xsrf=False", f"--notebook-dir={work / 'nb'}", "--LabApp.news_url=",
-           "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate", "--ServerApp.open_browser=False"]
-    if os.geteuid() == 0:
-        cmd.append("--allow-root")
-    log = open(work / "lab.log", "wb")
-    proc = subprocess.Popen(cmd, cwd=work / "nb", env=env, stdout=log, stderr=subprocess.STDOUT)
-    base = f"http://127.0.0.1:{port}"
+    (work / "nb" / "live.ipynb").write_text(json.dumps(notebook(CELLS)), encoding="utf-8")
+    (work / "nb" / "live3d.ipynb").write_text(json.dumps(notebook(CELLS_3D)), encoding="utf-8")
+    env = dict(os.environ, PYTHONPATH=f"{ROOT / 'lib'}{os.pathsep}{ROOT}")
     try:
-        deadline = time.time() + 90
-        while True:
-            try:
-                urllib.request.urlopen(f"{base}/api/status?token={token}", timeout=2).read()
-                break
-            except OSError:
-                if proc.poll() is not None or time.time() > deadline:
-                    raise RuntimeError("jupyter lab did not start:\n"
-                                       + (work / "lab.log").read_text(errors="replace")[-3000:]) from None
-                time.sleep(0.5)
-        yield base, token, work / "nb"
+        with running_lab(sys.executable, work / "nb", work, env) as (base, token):
+            yield base, token, work / "nb"
     finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-        log.close()
         shutil.rmtree(work, ignore_errors=True)
-
-
-def _run_cell(page, index: int) -> None:
-    page.evaluate("""async (i) => {
-      const app = window.jupyterapp;
-      const panel = app.shell.currentWidget;
-      await panel.sessionContext.ready;
-      panel.content.activeCellIndex = i;
-      await app.commands.execute("notebook:run-cell");
-    }""", index)
-
-
-def _wait_file(path: Path, check, timeout: float = 30.0) -> dict:
-    deadline = time.time() + timeout
-    last = None
-    while time.time() < deadline:
-        try:
-            last = json.loads(path.read_text(encoding="utf-8"))
-            if check(last):
-                return last
-        except (OSError, ValueError):
-            pass
-        time.sleep(0.2)
-    raise AssertionError(f"{path.name} never satisfied the check; last {last}")
-
-
-def _open(page, base: str, token: str, name: str) -> None:
-    page.set_viewport_size({"width": 1280, "height": 900})
-    # a workspace of its own: the default one would also restore the notebook another test opened
-    page.goto(f"{base}/lab/workspaces/{name.split('.')[0]}/tree/{name}?token={token}", wait_until="load")
-    page.wait_for_function("(name) => window.jupyterapp && window.jupyterapp.shell.currentWidget"
-                           " && window.jupyterapp.shell.currentWidget.sessionContext"
-                           " && window.jupyterapp.shell.currentWidget.context.path === name", arg=name, timeout=90_000)
-    page.wait_for_function("() => window.jupyterapp.shell.currentWidget.sessionContext.session?.kernel",
-                           timeout=90_000)
 
 
 def _numbers(rows: list[list[str]]) -> np.ndarray:
@@ -218,12 +136,7 @@ def test_python_and_the_view_agree_both_ways(lab, browser_context):
     page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
     page.on("request", lambda r: requests.append(r.url))
     try:
-        page.set_viewport_size({"width": 1280, "height": 900})
-        page.goto(f"{base}/lab/tree/live.ipynb?token={token}", wait_until="load")
-        page.wait_for_function("() => window.jupyterapp && window.jupyterapp.shell.currentWidget"
-                               " && window.jupyterapp.shell.currentWidget.sessionContext", timeout=90_000)
-        page.wait_for_function("() => window.jupyterapp.shell.currentWidget.sessionContext.session?.kernel",
-                               timeout=90_000)
+        _open(page, base, token, "live.ipynb")
         chain = jac.robots.planar_2r()
         # 1. the widget renders from Python's state
         _run_cell(page, 0)

@@ -7,35 +7,16 @@ of the run and written to ``_build/test-artifacts/install/student_install.txt``.
 
 from __future__ import annotations
 
-import shutil
-import sys
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tests" / "browser"))  # bookcheck (the browser), test_live_lab (driving JupyterLab)
-
-import bookcheck  # noqa: E402
-
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "install"
 NOTE: dict[str, str] = {}  # what the closing note says, filled by the tests
 
 
-@pytest.fixture(scope="session")
-def browser_context():
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as p:
-        try:
-            context, profile = bookcheck.launch_browser(p)
-        except FileNotFoundError as exc:
-            pytest.fail(str(exc), pytrace=False)
-        try:
-            yield context
-        finally:
-            context.close()
-            shutil.rmtree(profile, ignore_errors=True)
+# browser_context: tests/conftest.py (the one Chromium launch of the tests)
 
 
 @pytest.fixture(scope="session")

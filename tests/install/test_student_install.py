@@ -23,12 +23,10 @@ from __future__ import annotations
 
 import json
 import os
-import secrets
 import shutil
 import subprocess
 import sys
 import time
-import urllib.request
 from pathlib import Path
 
 import numpy as np
@@ -203,7 +201,7 @@ def test_every_student_notebook_runs_every_check(student, work, note):
 
 
 def test_a_live_view_mounts_in_jupyterlab_from_the_wheel(student, work, browser_context, note):
-    import test_live_lab as lab  # tests/browser: how a headless JupyterLab is driven
+    import labdriver as lab  # tests/browser: how a headless JupyterLab is driven
 
     nbdir = work / "lab"
     nbdir.mkdir()
@@ -220,51 +218,30 @@ def test_a_live_view_mounts_in_jupyterlab_from_the_wheel(student, work, browser_
         "w",
         "w.theta = [-0.7, 0.4]",
     ]
-    (nbdir / "live.ipynb").write_text(json.dumps(lab._notebook(cells)), encoding="utf-8")
-    port, token = lab._free_port(), secrets.token_hex(16)
-    cmd = [str(student), "-m", "jupyterlab", "--no-browser", f"--port={port}", "--ip=127.0.0.1",
-           f"--IdentityProvider.token={token}", "--LabApp.expose_app_in_browser=True", f"--notebook-dir={nbdir}",
-           "--LabApp.news_url=", "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate"]
-    if os.geteuid() == 0:
-        cmd.append("--allow-root")
-    env = _clean_env(JUPYTER_CONFIG_DIR=str(work / "lab-config"), JUPYTER_RUNTIME_DIR=str(work / "lab-runtime"),
-                     JUPYTER_DATA_DIR=str(work / "lab-data"), IPYTHONDIR=str(work / "lab-ipython"))
-    base = f"http://127.0.0.1:{port}"
+    (nbdir / "live.ipynb").write_text(json.dumps(lab.notebook(cells)), encoding="utf-8")
     start = time.perf_counter()
-    with open(work / "lab.log", "wb") as log:
-        proc = subprocess.Popen(cmd, cwd=nbdir, env=env, stdout=log, stderr=subprocess.STDOUT)
-        page = None
+    with lab.running_lab(student, nbdir, work, _clean_env()) as (base, token):
+        page = browser_context.new_page()
         try:
-            deadline = time.time() + 120
-            while True:
-                try:
-                    urllib.request.urlopen(f"{base}/api/status?token={token}", timeout=2).read()
-                    break
-                except OSError:
-                    if proc.poll() is not None or time.time() > deadline:
-                        raise AssertionError("jupyter lab did not start:\n"
-                                             + (work / "lab.log").read_text(errors="replace")[-3000:]) from None
-                    time.sleep(0.5)
-            page = browser_context.new_page()
             errors: list[str] = []
             page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
-            lab._open(page, base, token, "live.ipynb")
+            lab.open_notebook(page, base, token, "live.ipynb")
             chain = jac.robots.planar_2r()
-            lab._run_cell(page, 0)
+            lab.run_cell(page, 0)
             el = page.wait_for_selector(".jp-OutputArea .jac-live[data-theta]", state="attached", timeout=120_000)
             got = el.evaluate(lab.READ_PLANAR)
             assert np.allclose(got["theta"], [0.3, 1.2])
             assert np.abs(np.array(got["table"]) - jac.space_jacobian(chain, [0.3, 1.2])).max() <= lab.HALF_ULP
-            state = lab._wait_file(nbdir / "py_state.json", lambda s: np.allclose(s["theta"], [0.3, 1.2]))
+            state = lab.wait_file(nbdir / "py_state.json", lambda s: np.allclose(s["theta"], [0.3, 1.2]))
             site = _site_packages(student)
             assert Path(state["lib"]).is_relative_to(site) and Path(state["live"]).is_relative_to(site), state
             # the view responds: a key on the θ1 slider reaches the kernel, which computes J there
             el.query_selector("input.jl-theta").focus()
             page.keyboard.press("ArrowRight")
-            state = lab._wait_file(nbdir / "py_state.json", lambda s: abs(s["theta"][0] - 0.31) < 1e-9)
+            state = lab.wait_file(nbdir / "py_state.json", lambda s: abs(s["theta"][0] - 0.31) < 1e-9)
             assert np.allclose(state["J"], jac.space_jacobian(chain, [0.31, 1.2]), atol=1e-12)
             # and the kernel moves the view
-            lab._run_cell(page, 1)
+            lab.run_cell(page, 1)
             page.wait_for_function("(el) => JSON.parse(el.dataset.theta)[0] === -0.7", arg=el, timeout=30_000)
             got = el.evaluate(lab.READ_PLANAR)
             assert np.abs(np.array(got["table"]) - jac.space_jacobian(chain, [-0.7, 0.4])).max() <= lab.HALF_ULP
@@ -272,14 +249,7 @@ def test_a_live_view_mounts_in_jupyterlab_from_the_wheel(student, work, browser_
             note["JupyterLab"] = (f"a live view mounted from the wheel, answered a key and a kernel assignment "
                                   f"({time.perf_counter() - start:.0f} s with the server's start)")
         finally:
-            if page is not None:
-                page.close()
-            proc.terminate()
-            try:
-                proc.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
+            page.close()
 
 
 def test_the_numeric_library_installs_alone_with_numpy_only(numpy_only, work):
