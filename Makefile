@@ -86,7 +86,7 @@ lint: setup
 	$(BIN)/ruff check lib tools _ext tests
 	$(BIN)/mypy
 	$(BIN)/mypy _ext
-	node_modules/.bin/eslint lib/jacobians/widgets/static/live tests/js
+	node_modules/.bin/eslint lib/jacobians/widgets/static/live tests/js _ext/exercise_checks
 	node_modules/.bin/tsc -p jsconfig.json
 
 test-lib: setup sandbox
@@ -141,6 +141,7 @@ bench: setup
 	$(PY) -m tools.bench_live
 	$(PY) -m tools.bench_live_spatial
 	$(PY) -m tools.bench_grade
+	$(PY) -m tools.bench_exercise_checks
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
 LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json

@@ -28,7 +28,7 @@ import html
 import json
 import shutil
 import subprocess
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -45,7 +45,7 @@ OUT_DIR = "_static/exercise-checks"
 LOG = logging.getLogger(__name__)
 
 
-@lru_cache(maxsize=None)
+@cache
 def exercise_kind(exercise_id: str) -> str:
     """The kind of an exercise (from its variant 0; ``KeyError`` for an unknown id)."""
     from course.exercises import CATALOGUE

@@ -45,7 +45,6 @@ export function agrees(/** @type {string} */ what, /** @type {string} */ singula
   return s ? plural : singular;
 }
 
-const size = (/** @type {number[]} */ shape) => shape.reduce((a, b) => a * b, 1);
 const sameShape = (/** @type {number[]} */ a, /** @type {number[]} */ b) =>
   a.length === b.length && a.every((v, i) => v === b[i]);
 

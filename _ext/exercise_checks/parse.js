@@ -42,9 +42,9 @@ function entry(/** @type {string} */ text) {
     const unknown = /Undefined symbol (\S+)/.exec(msg) || /Undefined function (\S+)/.exec(msg);
     if (unknown) {
       throw new Error(`“${unknown[1]}” is not a number or a function the checker knows: give numbers (fractions, ` +
-        "pi, sqrt, sin, cos, tan, exp, log are accepted).");
+        "pi, sqrt, sin, cos, tan, exp, log are accepted).", { cause: err });
     }
-    throw new Error(`“${text.slice(0, 40)}” could not be read as a number.`);
+    throw new Error(`“${text.slice(0, 40)}” could not be read as a number.`, { cause: err });
   }
   if (typeof value !== "number") throw new Error(`“${text.slice(0, 40)}” is not a single real number.`);
   return value;

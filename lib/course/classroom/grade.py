@@ -515,6 +515,9 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
     rows = [r for rs in _supersede(results, mtimes) for r in rs]
     if not how.ok:
         rows = [replace(r, message=UNSAFE_NOTE + r.message) for r in rows]
+    from .page_answers import find_answer_files, grade_answers_file  # answers saved from the book's pages
+    page_rows = [r for f in find_answer_files(root) for r in grade_answers_file(f, root)]
+    rows += [r for r in page_rows if student is None or r.student == normalise_id(student)]
     rows = kept + rows
     if names is not None:
         rows += _roster_rows(rows, names)

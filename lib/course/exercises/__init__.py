@@ -44,10 +44,9 @@ from collections.abc import Callable
 from typing import Any
 
 from jacobians.grading import Exercise, Feedback
-
-from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09, ch10, ch11, ch12  # noqa: F401  (importing them registers the exercises)
 from jacobians.grading.catalogue import MAX_SEED_LENGTH, seed_value
 
+from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09, ch10, ch11, ch12  # noqa: F401  (importing them registers the exercises)
 from ._bank import variant_index, variant_seed
 from ._progress import Progress, record
 from ._progress import summary as _summary
