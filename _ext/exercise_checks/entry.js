@@ -7,5 +7,12 @@ import { checkText, fnv1a32, mountAll, normaliseId, variantIndex } from "./page.
 
 /** @type {any} */ (window).courseExercises = { checkText, decide, parseAnswer, fnv1a32, normaliseId, variantIndex };
 
-if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", mountAll);
-else mountAll();
+// A deferred script runs before the deferred bank scripts after it: mount on DOMContentLoaded (after every
+// deferred script), or at once if the document is already complete.
+let mounted = false;
+const mountOnce = () => { if (!mounted) { mounted = true; mountAll(); } };
+if (document.readyState === "complete") mountOnce();
+else {
+  document.addEventListener("DOMContentLoaded", mountOnce);
+  window.addEventListener("load", mountOnce);
+}

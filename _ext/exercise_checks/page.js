@@ -239,8 +239,11 @@ export function mountAll() {
   const withBank = hosts.filter((h) => banks()[h.dataset.exercise || ""]);
   if (withBank.length) {
     const { panel, progress } = idPanel();
-    const first = document.querySelector("main h1, article h1, h1");
-    (first && first.parentElement ? first : withBank[0]).after(panel);
+    // after the page's visible title (the theme also has a hidden one), else above the first box
+    const title = [...document.querySelectorAll("article h1, main h1")]
+      .find((h) => /** @type {HTMLElement} */ (h).offsetParent !== null);
+    if (title) title.after(panel);
+    else withBank[0].before(panel);
     const onChange = () => { progress.textContent = progressText(); };
     withBank.forEach((h) => mountBox(h, onChange));
     onChange();
