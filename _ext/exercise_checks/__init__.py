@@ -149,7 +149,7 @@ def bundle(out_file: Path) -> None:
 
 
 def _finished(app: Sphinx, exception: Exception | None) -> None:
-    if exception is not None or app.builder.format != "html":
+    if exception is not None or app.builder.name not in ("html", "dirhtml"):  # not the decks' revealjs build
         return
     ids = [e for ids in getattr(app.env, "course_answer_boxes", {}).values() for e in ids]
     if not ids:
