@@ -19,8 +19,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests" / "browser"))
 
-import bookcheck  # noqa: E402
-from exercise_answers import answers_for  # noqa: E402
+import bookcheck  # type: ignore[import-not-found]  # noqa: E402
+from exercise_answers import answers_for  # type: ignore[import-not-found]  # noqa: E402
 
 from course import exercises  # noqa: E402
 from course.exercises._bank import PAGE_KINDS, variant_index  # noqa: E402

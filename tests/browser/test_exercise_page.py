@@ -25,7 +25,7 @@ import pytest
 from exercise_answers import answers_for
 
 from course import exercises
-from course.classroom.page_answers import grade_answers_text
+from course.classroom.page_answers import read_answers_text
 from course.exercises._bank import BANK_SIZE, PAGE_KINDS, variant_index
 from jacobians.grading.feedback import statement_html
 
@@ -171,7 +171,7 @@ def test_a_reader_answers_with_the_keyboard(browser_context, book_url, artifacts
         if limit[0] != eid:
             assert saved["answers"][eid]["text"] == " ".join(f"{x:.4f}" for x in m.value)
         # make grade regrades the saved file: the verdicts the page showed
-        rows = {r.exercise: r for r in grade_answers_text(Path(dl.value.path()).read_bytes(), "answers.json")}
+        rows = {r.exercise: r for r in read_answers_text(Path(dl.value.path()).read_bytes())[1]}
         assert (rows[limit[0]].correct, rows[limit[0]].mistake) == ("0", "too_few_decimals")
         if limit[0] != eid:
             assert (rows[eid].correct, rows[eid].mistake) == ("0", m.name)

@@ -14,10 +14,11 @@ the variant is the one of the ID (``exercises.load``), and every answer is regra
 (:func:`course.exercises.check` without the session's log: ``Exercise.check``). Each problem gets a row that
 says what is wrong; a file never stops the grading of the class.
 
->>> rows = grade_answers_text(b'{"format": "jacobians-course-answers", "version": 1, "id": "s1", "answers": {}}',
-...                           "answers-s1.json")
->>> [r.message for r in rows]
-['holds no answer']
+The grader (:func:`course.classroom.grade.grade_class`) turns the marks into gradebook rows.
+
+>>> sid, marks = read_answers_text(b'{"format": "jacobians-course-answers", "version": 1, "id": "s1", "answers": {}}')
+>>> sid, [m.message for m in marks]
+('s1', ['holds no answer'])
 """
 
 from __future__ import annotations
@@ -25,13 +26,12 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from jacobians.grading.answers import MAX_ENTRIES
 
-from .grade import NOTEBOOK, Row, is_placeholder, student_key
-
-__all__ = ["FORMAT", "MAX_ANSWERS", "MAX_BYTES", "find_answer_files", "grade_answers_file", "grade_answers_text"]
+__all__ = ["FORMAT", "MAX_ANSWERS", "MAX_BYTES", "Mark", "find_answer_files", "read_answers_file",
+           "read_answers_text"]
 
 #: The ``format`` of a file the page saves.
 FORMAT = "jacobians-course-answers"
@@ -39,6 +39,16 @@ FORMAT = "jacobians-course-answers"
 MAX_BYTES = 4 << 20
 #: Most answers read from one file.
 MAX_ANSWERS = 200
+
+
+class Mark(NamedTuple):
+    """One verdict of an answers file: ``exercise`` is ``""`` for a note about the whole file; ``correct`` is
+    ``"1"``, ``"0"`` or ``""`` (a note), as in the gradebook."""
+
+    exercise: str
+    correct: str
+    message: str
+    mistake: str = ""
 
 
 def find_answer_files(root: Path) -> list[Path]:
@@ -79,63 +89,56 @@ def _value(entry: Any) -> list[Any] | float | None | str:
     return [nums[i * shape[1]:(i + 1) * shape[1]] for i in range(shape[0])]
 
 
-def grade_answers_text(raw: bytes, rel: str) -> list[Row]:
-    """The gradebook rows of one answers file's bytes (``rel``: its path in the submissions folder)."""
+def read_answers_text(raw: bytes) -> tuple[str | None, list[Mark]]:
+    """The student ID of one answers file's bytes (None if it has none) and its marks."""
     from course import exercises
 
-    def note(message: str, student: str = "", seed: str = "") -> Row:
-        return Row(student, rel, NOTEBOOK, seed, "", message)
+    def note(message: str) -> Mark:
+        return Mark("", "", message)
 
     if len(raw) > MAX_BYTES:
-        return [note(f"is an answers file of {len(raw) >> 10} KB, more than the {MAX_BYTES >> 10} KB one may have; "
-                     "not graded")]
+        return None, [note(f"is an answers file of {len(raw) >> 10} KB, more than the {MAX_BYTES >> 10} KB one may "
+                           "have; not graded")]
     try:
         data = json.loads(raw)
     except (ValueError, RecursionError, UnicodeDecodeError):
-        return [note("is not an answers file saved by the book's exercise pages (not valid JSON); not graded")]
+        return None, [note("is not an answers file saved by the book's exercise pages (not valid JSON); not graded")]
     if not isinstance(data, dict) or data.get("format") != FORMAT:
-        return [note(f"is not an answers file saved by the book's exercise pages (no format {FORMAT!r}); "
-                     "not graded")]
+        return None, [note(f"is not an answers file saved by the book's exercise pages (no format {FORMAT!r}); "
+                           "not graded")]
     sid = data.get("id")
     if not isinstance(sid, str) or not sid.strip() or len(sid) > 200:
-        return [note("has no student ID (the page saves it when an ID is set); not graded")]
-    student, seed = student_key(sid, rel), sid
-    rows: list[Row] = []
-    if is_placeholder(sid):
-        rows.append(note(f"keeps the placeholder ID {sid!r}: graded for that ID and listed on its own", student, seed))
+        return None, [note("has no student ID (the page saves it when an ID is set); not graded")]
     answers = data.get("answers")
     if not isinstance(answers, dict):
-        return [*rows, note("has no answers object; not graded", student, seed)]
+        return sid, [note("has no answers object; not graded")]
     if not answers:
-        return [*rows, note("holds no answer", student, seed)]
+        return sid, [note("holds no answer")]
     if len(answers) > MAX_ANSWERS:
-        return [*rows, note(f"holds {len(answers)} answers, more than the {MAX_ANSWERS} read; not graded",
-                            student, seed)]
+        return sid, [note(f"holds {len(answers)} answers, more than the {MAX_ANSWERS} read; not graded")]
     known = set(exercises.exercise_ids())
+    marks: list[Mark] = []
     for eid, entry in answers.items():
         if eid not in known:
-            rows.append(note(f"answers an unknown exercise {str(eid)[:40]!r}; that answer is ignored", student, seed))
+            marks.append(note(f"answers an unknown exercise {str(eid)[:40]!r}; that answer is ignored"))
             continue
         value = _value(entry)
         if isinstance(value, str):
-            rows.append(Row(student, rel, eid, seed, "0", f"The saved answer {value}: it cannot be graded."))
+            marks.append(Mark(eid, "0", f"The saved answer {value}: it cannot be graded."))
             continue
-        ex = exercises.load(eid, seed=sid)
-        fb = ex.check(value)
-        rows.append(Row(student, rel, eid, seed, "1" if fb.correct else "0", fb.message[:400], fb.mistake or ""))
-    return rows
+        fb = exercises.load(eid, seed=sid).check(value)
+        marks.append(Mark(eid, "1" if fb.correct else "0", fb.message[:400], fb.mistake or ""))
+    return sid, marks
 
 
-def grade_answers_file(path: Path, root: Path) -> list[Row]:
-    """The gradebook rows of one answers file (see the module docstring); never raises for a bad file."""
-    rel = str(Path(path).relative_to(root))
+def read_answers_file(path: Path) -> tuple[str | None, list[Mark]]:
+    """The student ID and marks of one answers file (see the module docstring); never raises for a bad file."""
     try:
         with open(path, "rb") as f:
             raw = f.read(MAX_BYTES + 1)
     except OSError as exc:
-        return [Row("", rel, NOTEBOOK, "", "", f"could not be read ({exc.strerror}); not graded")]
+        return None, [Mark("", "", f"could not be read ({exc.strerror}); not graded")]
     try:
-        return grade_answers_text(raw, rel)
+        return read_answers_text(raw)
     except Exception as exc:  # a grader bug: say so in the gradebook, keep going
-        return [Row("", rel, NOTEBOOK, "", "", f"the grader failed on this answers file ({type(exc).__name__}); "
-                    "please report it")]
+        return None, [Mark("", "", f"the grader failed on this answers file ({type(exc).__name__}); please report it")]
