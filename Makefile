@@ -90,7 +90,7 @@ lint: setup
 	$(BIN)/ruff check lib tools _ext tests
 	$(BIN)/mypy
 	$(BIN)/mypy _ext
-	node_modules/.bin/eslint lib/jacobians/widgets/static/live tests/js
+	node_modules/.bin/eslint lib/jacobians/widgets/static/live tests/js _ext/exercise_checks
 	node_modules/.bin/tsc -p jsconfig.json
 
 # every test not marked `browser` (tests/conftest.py: a test under tests/browser, tests/install or tests/site,
@@ -152,6 +152,7 @@ bench: setup
 	$(PY) -m tools.bench_live_spatial
 	$(PY) -m tools.bench_grade
 	$(PY) -m tools.bench_phone
+	$(PY) -m tools.bench_exercise_checks
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
 LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json

@@ -45,6 +45,7 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
+from .page_answers import find_answer_files, read_answers_file  # answers saved from the exercise pages
 from .sandbox import (
     EVENTS,
     Limits,
@@ -582,6 +583,11 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
     rows = [r for rs in _supersede(results, mtimes) for r in rs]
     if not how.ok:
         rows = [replace(r, message=UNSAFE_NOTE + r.message) for r in rows]
+    for f in find_answer_files(root):  # answers saved from the book's exercise pages (page_answers.py)
+        sid, marks = read_answers_file(f)
+        who, rel = student_key(sid, str(f.relative_to(root))) if sid else "", str(f.relative_to(root))
+        if student is None or who == normalise_id(student):
+            rows += [Row(who, rel, m.exercise or NOTEBOOK, sid or "", m.correct, m.message, m.mistake) for m in marks]
     rows = kept + rows
     if names is not None:
         rows += _roster_rows(rows, names)

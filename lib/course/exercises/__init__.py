@@ -11,8 +11,10 @@ pages call::
     exercises.check("ch02_ex1", answer, seed=SEED)    # the verdict, never an exception
 
 ``SEED`` is any text (or a non-negative int; ``5`` and ``"5"`` are one seed).
-It is hashed stably (SHA-256), so a student ID gives the same variants on
-every machine, and every exercise draws from its own random stream.
+It picks one of the exercise's :data:`~course.exercises._bank.BANK_SIZE` variants through a stable
+hash (FNV-1a of the exercise id and the normalised ID, :func:`~course.exercises._bank.variant_index`), the
+same hash the book page computes: the notebook and the page show an ID the same numbers. Each variant
+draws from its own random stream (variant ``k`` is the catalogue's variant for the seed ``"variant-k"``).
 
 >>> from course import exercises
 >>> len(exercises.exercise_ids())
@@ -42,8 +44,10 @@ from collections.abc import Callable
 from typing import Any
 
 from jacobians.grading import Exercise, Feedback
+from jacobians.grading.catalogue import MAX_SEED_LENGTH, seed_value
 
 from . import ch01, ch02, ch03, ch04, ch05, ch06, ch07, ch08, ch09, ch10, ch11, ch12  # noqa: F401  (importing them registers the exercises)
+from ._bank import variant_index, variant_seed
 from ._progress import Progress, record
 from ._progress import summary as _summary
 from ._registry import CATALOGUE
@@ -79,7 +83,12 @@ def load(exercise_id: str, seed: int | str | None = None) -> Exercise:
     Raises ``KeyError`` for an unknown id and ``TypeError``/``ValueError`` for a
     bad seed: these are the author's inputs, not the student's.
     """
-    return CATALOGUE.load(exercise_id, seed=seed)
+    text = seed_value(seed)
+    if not isinstance(exercise_id, str):
+        raise TypeError(f"Expected an exercise id such as 'ch02_ex1', got {type(exercise_id).__name__}")
+    ex = CATALOGUE.load(exercise_id, seed=variant_seed(variant_index(exercise_id, text)))
+    ex.seed = text  # the student's ID, as feedback and progress name it
+    return ex
 
 
 def check(exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Feedback:
@@ -88,7 +97,13 @@ def check(exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Fe
     An unknown ``exercise_id`` or a bad seed also comes back as feedback (kind
     ``"invalid"``), so a typo in a notebook shows a box, not a traceback.
     """
-    fb = CATALOGUE.check(exercise_id, answer, seed=seed)
+    try:
+        ex = load(exercise_id, seed=seed)
+    except Exception as exc:
+        fb = Feedback(False, f"Cannot load this exercise: {exc}", "invalid", exercise_id=str(exercise_id)[:40],
+                      seed=str(seed)[:MAX_SEED_LENGTH])
+    else:
+        fb = ex.check(answer)
     record(exercise_id, seed, answer, fb)  # the session's progress (and make grade's log)
     for listener in list(_LISTENERS):
         try:

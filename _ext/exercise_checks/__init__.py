@@ -1,0 +1,172 @@
+"""Sphinx extension: an answer box under each exercise of the exercise pages, checked in the page.
+
+An exercise page writes, in a ``book-only`` Markdown cell after the exercise's ``exercises.load`` cell::
+
+    ```{answer-box} ch01_ex1
+    ```
+
+For an exercise the page checks (numbers, vectors, matrices, one number in a range: kinds
+:data:`course.exercises._bank.PAGE_KINDS`), this writes a host ``<div class="course-answer"
+data-exercise=...>`` and a deferred ``<script>`` loading that exercise's bank,
+``_static/exercise-checks/banks/<id>.js`` (``window.__courseBanks[id] = {...}``: every variant's statement,
+reference, tolerance rule, catalogued mistakes with their messages, and hint, computed by the library,
+:func:`course.exercises._bank.bank`). Banks are written when the build finishes, for the exercises that have a
+box, and kept while no Python file under ``lib/`` changes (a stamp of their hash). The page's script,
+``_static/exercise-checks/checker.js``, is bundled by npm's esbuild from ``_ext/exercise_checks/*.js`` (math.js
+included) into one classic script, added to the pages with a box only: it mounts the boxes, the ID panel and
+progress (localStorage), and compares as :func:`jacobians.grading.compare.compare` does. Classic scripts, no
+fetch: the page works from ``file://`` as well as served.
+
+Exercises of other kinds (code, symbolic formulas) get a sentence saying they are checked in the notebook,
+with a link to the page's student notebook (``student/<page>.ipynb``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import html
+import json
+import shutil
+import subprocess
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+from docutils import nodes
+from sphinx.application import Sphinx
+from sphinx.util import logging
+from sphinx.util.docutils import SphinxDirective
+
+__all__ = ["AnswerBox", "box_html", "setup", "write_banks"]
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+OUT_DIR = "_static/exercise-checks"
+LOG = logging.getLogger(__name__)
+
+
+@cache
+def exercise_kind(exercise_id: str) -> str:
+    """The kind of an exercise (from its variant 0; ``KeyError`` for an unknown id)."""
+    from course.exercises import CATALOGUE
+    from course.exercises._bank import variant_seed
+    return CATALOGUE.load(exercise_id, seed=variant_seed(0)).kind
+
+
+def box_html(exercise_id: str, kind: str, docname: str) -> str:
+    """The HTML under an exercise: the host of its answer box and its bank's script, or the sentence that it is
+    checked in the notebook."""
+    from course.exercises._bank import PAGE_KINDS
+    depth = docname.count("/")
+    notebook = "student/" + docname.rsplit("/", 1)[-1] + ".ipynb"
+    link = f'<a href="{html.escape(notebook)}" download>the student notebook</a>'
+    if kind not in PAGE_KINDS:
+        what = "a function you write" if kind == "function" else "a formula"
+        return (f'<div class="course-answer course-answer-elsewhere" data-exercise-elsewhere="{exercise_id}">'
+                f"<p>The answer to this exercise is {what}: it is checked in the notebook, not on this page. "
+                f"Download {link}, write your answer in its answer cell and run the check cell.</p></div>")
+    src = ("../" * depth) + f"{OUT_DIR}/banks/{exercise_id}.js"
+    return (f'<div class="course-answer" data-exercise="{exercise_id}" data-kind="{kind}">'
+            f"<noscript>Checking your answer on this page needs JavaScript; {link} checks it in Jupyter."
+            f"</noscript></div>\n<script defer src=\"{html.escape(src)}\"></script>")
+
+
+class AnswerBox(SphinxDirective):
+    """``{answer-box} <exercise id>``: the answer box of one exercise (see the module's docstring)."""
+
+    required_arguments = 1
+    has_content = False
+
+    def run(self) -> list[nodes.Node]:
+        exercise_id = self.arguments[0].strip()
+        try:
+            kind = exercise_kind(exercise_id)
+        except KeyError as exc:
+            raise self.error(f"answer-box: {exc}") from None
+        store: dict[str, list[str]] = getattr(self.env, "course_answer_boxes", {})
+        store.setdefault(self.env.docname, [])
+        if exercise_id not in store[self.env.docname]:
+            store[self.env.docname].append(exercise_id)
+        self.env.course_answer_boxes = store  # type: ignore[attr-defined]
+        return [nodes.raw("", box_html(exercise_id, kind, self.env.docname), format="html")]
+
+
+def _purge(app: Sphinx, env: Any, docname: str) -> None:
+    getattr(env, "course_answer_boxes", {}).pop(docname, None)
+
+
+def _merge(app: Sphinx, env: Any, docnames: set[str], other: Any) -> None:
+    store = getattr(env, "course_answer_boxes", {})
+    store.update({d: ids for d, ids in getattr(other, "course_answer_boxes", {}).items() if d in docnames})
+    env.course_answer_boxes = store
+
+
+def _page_assets(app: Sphinx, pagename: str, templatename: str, context: dict[str, Any], doctree: Any) -> None:
+    """The checker's script and style on the pages with an answer box only."""
+    if getattr(app.env, "course_answer_boxes", {}).get(pagename):
+        app.add_js_file("exercise-checks/checker.js", loading_method="defer")
+        app.add_css_file("exercise-checks/answers.css")
+
+
+def _lib_stamp() -> str:
+    """A hash of every Python file under lib/ (the references, mistakes and checker the banks come from)."""
+    h = hashlib.sha256()
+    for p in sorted((ROOT / "lib").rglob("*.py")):
+        h.update(str(p.relative_to(ROOT)).encode() + b"\0" + p.read_bytes())
+    return h.hexdigest()
+
+
+def write_banks(out: Path, exercise_ids: list[str]) -> list[str]:
+    """Write the bank script of each exercise the page checks into ``out`` (a folder); returns those written.
+    Skipped when the stamp of lib/ and the list of exercises are those of the banks already there."""
+    from course.exercises._bank import PAGE_KINDS, bank
+    wanted = sorted(e for e in set(exercise_ids) if exercise_kind(e) in PAGE_KINDS)
+    stamp = _lib_stamp() + "\n" + ",".join(wanted)
+    stamp_file = out / ".stamp"
+    if stamp_file.is_file() and stamp_file.read_text() == stamp and all((out / f"{e}.js").is_file() for e in wanted):
+        return []
+    out.mkdir(parents=True, exist_ok=True)
+    for e in wanted:
+        data = json.dumps(bank(e), separators=(",", ":"), ensure_ascii=False, allow_nan=False)
+        # "</" cannot end the script early: JSON allows "<\/"
+        text = data.replace("</", "<\\/")
+        (out / f"{e}.js").write_text(f"(window.__courseBanks=window.__courseBanks||{{}})[{json.dumps(e)}]={text};\n",
+                                     encoding="utf-8")
+    stamp_file.write_text(stamp)
+    return wanted
+
+
+def bundle(out_file: Path) -> None:
+    """The page's checker as one classic script, bundled by npm's esbuild (math.js included)."""
+    esbuild = ROOT / "node_modules" / ".bin" / "esbuild"
+    if not esbuild.is_file():
+        raise FileNotFoundError(f"{esbuild} is missing: run `npm ci` (make does this) first")
+    done = subprocess.run([str(esbuild), str(HERE / "entry.js"), "--bundle", "--format=iife", "--target=es2020",
+                           "--minify", "--legal-comments=eof", f"--outfile={out_file}", "--log-level=warning"],
+                          cwd=ROOT, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        raise RuntimeError(f"esbuild failed to bundle the exercise checker:\n{done.stderr}")
+
+
+def _finished(app: Sphinx, exception: Exception | None) -> None:
+    if exception is not None or app.builder.name not in ("html", "dirhtml"):  # not the decks' revealjs build
+        return
+    ids = [e for ids in getattr(app.env, "course_answer_boxes", {}).values() for e in ids]
+    if not ids:
+        return
+    out = Path(app.outdir) / OUT_DIR
+    out.mkdir(parents=True, exist_ok=True)
+    bundle(out / "checker.js")
+    shutil.copyfile(HERE / "answers.css", out / "answers.css")
+    written = write_banks(out / "banks", ids)
+    if written:
+        LOG.info(f"exercise checks: wrote {len(written)} banks into {out / 'banks'}")
+
+
+def setup(app: Sphinx) -> dict[str, Any]:
+    app.add_directive("answer-box", AnswerBox)
+    app.connect("env-purge-doc", _purge)
+    app.connect("env-merge-info", _merge)
+    app.connect("html-page-context", _page_assets)
+    app.connect("build-finished", _finished)
+    return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}

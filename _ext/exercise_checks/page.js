@@ -1,0 +1,251 @@
+// The answer boxes of an exercise page: the reader's ID (kept in localStorage), the statement of their
+// variant, the Check button with the verdict, progress, and "Save my answers". The data of each exercise is
+// its bank (window.__courseBanks[id], one small script per exercise, on its page only); the verdict is
+// decide.js's, the reading of the answer parse.js's.
+
+import { decide } from "./decide.js";
+import { parseAnswer } from "./parse.js";
+
+const BASIS = 2166136261;
+const PRIME = 16777619;
+const STORE = "jacobians-course:answers";
+const ID_KEY = "jacobians-course:id";
+/** IDs left from the notebook's template count as practice (course.classroom.grade.PLACEHOLDERS). */
+const PLACEHOLDERS = new Set(["", "student-id", "your-id", "your student id", "0"]);
+
+/** FNV-1a, 32 bits, of the UTF-8 bytes of `text` (course.exercises._bank.fnv1a32). */
+export function fnv1a32(/** @type {string} */ text) {
+  let h = BASIS;
+  for (const b of new TextEncoder().encode(text)) h = Math.imul(h ^ b, PRIME) >>> 0;
+  return h >>> 0;
+}
+
+/** The ID as the hash reads it (course.exercises._bank.normalise_id): spaces collapsed and trimmed, lower case. */
+export function normaliseId(/** @type {string} */ id) {
+  return String(id).replace(/\s+/g, " ").replace(/^ +| +$/g, "").toLowerCase();
+}
+
+/** The variant number an ID gets of an exercise (course.exercises._bank.variant_index). */
+export function variantIndex(/** @type {string} */ exerciseId, /** @type {string} */ id, /** @type {number} */ size) {
+  return fnv1a32(`${exerciseId}\n${normaliseId(id)}`) % size;
+}
+
+/** @returns {Record<string, any>} */
+function banks() {
+  const w = /** @type {any} */ (window);
+  return w.__courseBanks || (w.__courseBanks = {});
+}
+
+/** The verdict on `text` for variant `k` of exercise `exerciseId` (what the Check button shows). */
+export function checkText(/** @type {string} */ exerciseId, /** @type {number} */ k, /** @type {string} */ text) {
+  const bank = banks()[exerciseId];
+  if (!bank) return { correct: false, kind: "invalid", mistake: null, message: `No checking data for ${exerciseId}.` };
+  const parsed = /** @type {any} */ (parseAnswer(text));
+  if (parsed.kind) return { correct: false, kind: parsed.kind, mistake: null, message: parsed.message, value: null };
+  return { ...decide(parsed, bank.variants[k], bank), value: parsed };
+}
+
+function load(/** @type {string} */ key, /** @type {any} */ fallback) {
+  try {
+    const v = window.localStorage.getItem(key);
+    return v == null ? fallback : JSON.parse(v);
+  } catch {
+    return fallback;
+  }
+}
+
+function save(/** @type {string} */ key, /** @type {any} */ value) {
+  try {
+    window.localStorage.setItem(key, JSON.stringify(value));
+  } catch {
+    /* private mode or full storage: progress is not kept, checking still works */
+  }
+}
+
+const currentId = () => String(load(ID_KEY, "") || "");
+const isPractice = (/** @type {string} */ id) => PLACEHOLDERS.has(normaliseId(id));
+
+function typeset(/** @type {HTMLElement} */ el) {
+  const mj = /** @type {any} */ (window).MathJax;
+  if (mj && mj.startup && mj.startup.promise && mj.typesetPromise) {
+    mj.startup.promise.then(() => mj.typesetPromise([el])).catch(() => {});
+  }
+}
+
+function el(/** @type {string} */ tag, /** @type {Record<string, string>} */ attrs = {}, /** @type {string} */ text = "") {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  if (text) e.textContent = text;
+  return e;
+}
+
+/** @type {Array<{refresh: () => void}>} */
+const boxes = [];
+
+function answersOf(/** @type {string} */ id) {
+  const all = load(STORE, {});
+  return (all && typeof all === "object" && all[normaliseId(id)]) || {};
+}
+
+function record(/** @type {string} */ id, /** @type {string} */ exerciseId, /** @type {any} */ entry) {
+  const all = load(STORE, {}) || {};
+  const key = normaliseId(id);
+  all[key] = { ...(all[key] || {}), [exerciseId]: entry };
+  save(STORE, all);
+}
+
+function progressText() {
+  const id = currentId();
+  const ids = [...document.querySelectorAll(".course-answer[data-exercise]")]
+    .filter((b) => /** @type {HTMLElement} */ (b).dataset.checked === "page")
+    .map((b) => /** @type {HTMLElement} */ (b).dataset.exercise || "");
+  if (isPractice(id)) return `Practice: set your student ID to keep progress (${ids.length} exercises on this page checked here).`;
+  const answers = answersOf(id);
+  const right = ids.filter((x) => answers[x] && answers[x].correct).length;
+  const tried = ids.filter((x) => answers[x] && !answers[x].correct).length;
+  const all = Object.values(answers).filter((a) => a && a.correct).length;
+  return `This page: ${right} right, ${tried} tried, ${ids.length - right - tried} untouched ` +
+    `(the last answer counts). The course: ${all} right.`;
+}
+
+function download() {
+  const id = currentId();
+  const answers = answersOf(id);
+  const out = { format: "jacobians-course-answers", version: 1, id, saved: new Date().toISOString(), answers: {} };
+  for (const [ex, a] of Object.entries(answers)) {
+    /** @type {any} */ (out.answers)[ex] = { text: a.text, value: a.value || null, variant: a.variant };
+  }
+  const blob = new Blob([JSON.stringify(out, null, 1)], { type: "application/json" });
+  const a = el("a", { href: URL.createObjectURL(blob), download: `answers-${normaliseId(id).replace(/[^\w-]+/g, "_") || "practice"}.json` });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.getAttribute("href") || ""), 1000);
+}
+
+function idPanel() {
+  const panel = el("section", { class: "course-id-panel", "aria-label": "Your student ID and progress" });
+  const label = el("label", { for: "course-student-id" }, "Student ID");
+  const input = /** @type {HTMLInputElement} */ (el("input", {
+    id: "course-student-id", type: "text", autocomplete: "off", spellcheck: "false", maxlength: "200",
+  }));
+  input.value = isPractice(currentId()) ? "" : currentId();
+  const set = el("button", { type: "button" }, "Use this ID");
+  const clear = el("button", { type: "button" }, "Practice without an ID");
+  const saveBtn = el("button", { type: "button" }, "Save my answers");
+  const status = el("p", { class: "course-id-status", role: "status", "aria-live": "polite" });
+  const progress = el("p", { class: "course-progress" });
+  const apply = () => {
+    save(ID_KEY, input.value.trim());
+    status.textContent = isPractice(input.value) ? "No ID: practice variants." :
+      `Every statement now shows the numbers of ID “${input.value.trim()}”.`;
+    boxes.forEach((b) => b.refresh());
+    progress.textContent = progressText();
+  };
+  set.addEventListener("click", apply);
+  input.addEventListener("keydown", (e) => { if (e.key === "Enter") { e.preventDefault(); apply(); } });
+  clear.addEventListener("click", () => { input.value = ""; apply(); });
+  saveBtn.addEventListener("click", download);
+  const row = el("div", { class: "course-id-row" });
+  row.append(label, input, set, clear, saveBtn);
+  panel.append(row, status, progress);
+  progress.textContent = progressText();
+  return { panel, progress };
+}
+
+let uid = 0;
+
+function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onChange) {
+  const exerciseId = host.dataset.exercise || "";
+  const bank = banks()[exerciseId];
+  if (!bank) return;
+  host.textContent = "";
+  const n = ++uid;
+  const head = el("p", { class: "course-answer-variant" });
+  const newVariant = el("button", { type: "button", class: "course-answer-new" }, "New variant");
+  const statement = el("div", { class: "course-answer-statement mathjax_process" });
+  const label = el("label", { for: `course-answer-${n}` }, "Your answer");
+  const help = el("span", { class: "course-answer-help", id: `course-answer-help-${n}` },
+    bank.kind === "scalar" ? " (one number; fractions and pi are accepted)" :
+      " (numbers separated by commas or spaces, a matrix one row a line, or pasted from NumPy or MATLAB; " +
+      "fractions and pi are accepted; Ctrl+Enter checks)");
+  const box = /** @type {HTMLTextAreaElement} */ (el("textarea", {
+    id: `course-answer-${n}`, rows: bank.kind === "scalar" ? "1" : "3", spellcheck: "false", autocomplete: "off",
+    "aria-describedby": `course-answer-help-${n}`,
+  }));
+  const check = el("button", { type: "button", class: "course-answer-check" }, "Check");
+  const out = el("div", { class: "course-answer-verdict", role: "status", "aria-live": "polite" });
+  const size = bank.variants.length;
+  let practice = Math.floor(Math.random() * size);
+  const variantNow = () => (isPractice(currentId()) ? practice : variantIndex(exerciseId, currentId(), size));
+
+  const refresh = () => {
+    const id = currentId();
+    const k = variantNow();
+    host.dataset.variant = String(k);
+    if (isPractice(id)) {
+      head.textContent = `Practice variant ${k + 1} of ${size} (no student ID set). `;
+      head.append(newVariant);
+    } else {
+      head.textContent = `Your variant, for ID “${id}”:`;
+    }
+    statement.innerHTML = bank.variants[k].statement;  // the library's HTML of the statement (build time)
+    typeset(statement);
+    const last = isPractice(id) ? null : answersOf(id)[exerciseId];
+    box.value = last && last.variant === k ? last.text : "";
+    out.textContent = "";
+    out.className = "course-answer-verdict";
+  };
+  newVariant.addEventListener("click", () => {
+    practice = (practice + 1 + Math.floor(Math.random() * (size - 1))) % size;
+    refresh();
+    newVariant.focus();
+  });
+  const run = () => {
+    const k = variantNow();
+    const fb = checkText(exerciseId, k, box.value);
+    out.textContent = "";
+    out.className = `course-answer-verdict course-answer-${fb.kind}`;
+    const headText = { correct: "✔ Correct", wrong: "✘ Not yet", empty: "… No answer yet", invalid: "? Cannot read this" };
+    out.append(el("strong", {}, /** @type {any} */ (headText)[fb.kind] || "Not yet"), " ");
+    if (fb.mistake) out.append(el("code", { class: "course-answer-mistake" }, fb.mistake), " ");
+    out.append(el("span", {}, fb.message));
+    const hint = bank.messages[bank.variants[k].hint];
+    if (fb.kind === "wrong" && hint && !fb.message.includes(hint)) {
+      const d = el("details", { class: "course-answer-hint" });
+      d.append(el("summary", {}, "Hint"), el("span", {}, hint));
+      out.append(d);
+    }
+    const id = currentId();
+    if (!isPractice(id) && (fb.kind === "correct" || fb.kind === "wrong")) {
+      record(id, exerciseId, { text: box.value, value: fb.value || null, variant: k, correct: fb.correct,
+        mistake: fb.mistake, at: new Date().toISOString() });
+    }
+    onChange();
+  };
+  check.addEventListener("click", run);
+  box.addEventListener("keydown", (e) => { if (e.key === "Enter" && (e.ctrlKey || e.metaKey)) { e.preventDefault(); run(); } });
+  const field = el("div", { class: "course-answer-field" });
+  field.append(box, check);
+  host.append(head, statement, label, help, field, out);
+  host.dataset.checked = "page";
+  boxes.push({ refresh });
+  refresh();
+}
+
+export function mountAll() {
+  const hosts = /** @type {HTMLElement[]} */ ([...document.querySelectorAll(".course-answer[data-exercise]")]);
+  if (!hosts.length) return;
+  const withBank = hosts.filter((h) => banks()[h.dataset.exercise || ""]);
+  if (withBank.length) {
+    const { panel, progress } = idPanel();
+    // after the page's visible title (the theme also has a hidden one), else above the first box
+    const title = [...document.querySelectorAll("article h1, main h1")]
+      .find((h) => /** @type {HTMLElement} */ (h).offsetParent !== null);
+    if (title) title.after(panel);
+    else withBank[0].before(panel);
+    const onChange = () => { progress.textContent = progressText(); };
+    withBank.forEach((h) => mountBox(h, onChange));
+    onChange();
+  }
+}
