@@ -283,3 +283,115 @@ def test_validation():
         clik(arm, [0, 0], np.stack([T, T]), dt=0.1, method="newton")
     with pytest.raises(ValueError, match=r"target_velocities with shape \(2, 6\)"):
         clik(arm, [0, 0], np.stack([T, T]), dt=0.1, target_velocities=np.zeros((2, 3)))
+
+
+# ------------------------------------------------------------------ joint limits and wrapping
+
+PLANAR_LIMITS = np.array([[-np.pi, np.pi], [0.0, 2.6], [-2.6, 2.6]])
+
+
+def test_clamped_iterates_stay_in_the_box_and_can_find_the_other_solution():
+    arm = jac.robots.planar_3r()
+    T_d = arm.fk([0.2, 1.1, 0.6])                   # elbow up; elbow down is (1.3, -1.1, 1.7)
+    free = ik(arm, T_d, [1.2, -0.5, 0.3], eps_omega=1e-9, eps_v=1e-9)
+    out = ik(arm, T_d, [1.2, -0.5, 0.3], eps_omega=1e-9, eps_v=1e-9, limits=PLANAR_LIMITS, record_history=True)
+    assert free.converged and free.theta[1] < 0
+    assert out.converged and np.allclose(out.theta, [0.2, 1.1, 0.6], atol=1e-8)
+    assert np.all((out.history >= PLANAR_LIMITS[:, 0]) & (out.history <= PLANAR_LIMITS[:, 1]))
+
+
+def test_clamped_run_stalls_at_a_fixed_point_of_the_clamped_step():
+    arm = jac.robots.planar_3r()
+    T_d = arm.fk([0.2, 1.1, 0.6])
+    out = ik(arm, T_d, [0.9, -0.6, 1.0], eps_omega=1e-9, eps_v=1e-9, limits=PLANAR_LIMITS, max_iterations=30)
+    assert not out.converged and out.error_v > 1.0
+    # every joint at a limit, and Newton's step there points out of the box (so clipping undoes it)
+    step = jac.velocity.pinv_rates(jac.body_jacobian(arm, out.theta), pose_error(arm, out.theta, T_d))
+    at_lo, at_hi = out.theta == PLANAR_LIMITS[:, 0], out.theta == PLANAR_LIMITS[:, 1]
+    assert np.all((at_lo & (step < 0)) | (at_hi & (step > 0)))
+
+
+def test_a_wrong_clamp_is_caught():
+    """Without the clamp (limits ignored) the same start leaves the box: the box test above is not vacuous."""
+    arm = jac.robots.planar_3r()
+    out = ik(arm, arm.fk([0.2, 1.1, 0.6]), [1.2, -0.5, 0.3], record_history=True)
+    assert np.any(out.history[:, 1] < PLANAR_LIMITS[1, 0])
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_wrapping_shifts_every_iterate_by_multiples_of_two_pi(seed):
+    rng = np.random.default_rng(seed)
+    chain = random_chain(rng, dof=6, prismatic_probability=0.3, pitch_probability=0.3)
+    S = chain.screw_axes
+    turns = np.array([c == "R" for c in chain.joint_types]) & (np.abs(np.sum(S[:3] * S[3:], axis=0)) < 1e-12)
+    theta = random_theta(chain, rng)
+    T_d = chain.fk(theta)
+    start = theta + rng.normal(scale=0.3, size=6) + 4 * np.pi * turns
+    free = ik(chain, T_d, start, record_history=True, max_iterations=10)
+    wrapped = ik(chain, T_d, start, record_history=True, max_iterations=10, wrap=True)
+    diff = free.history - wrapped.history
+    # plain revolute joints: multiples of 2 pi (rounding of the shift amplified by 10 steps stays far below 1e-6);
+    # prismatic and screw joints are never wrapped (a screw joint's pose is not 2 pi-periodic)
+    assert np.allclose(jac.ik.wrap_angles(diff[..., turns]), 0, atol=1e-6)
+    assert np.allclose(diff[..., ~turns], 0, atol=1e-6)
+    assert np.all(np.abs(wrapped.history[1:][..., turns]) <= np.pi)
+
+
+def test_wrap_angles_range():
+    x = np.array([np.pi, -np.pi, 3 * np.pi, 1e-17 - np.pi, 7.0, -7.0, 0.0])
+    w = jac.ik.wrap_angles(x)
+    assert np.all((w > -np.pi) & (w <= np.pi))
+    assert np.allclose(np.cos(w), np.cos(x)) and np.allclose(np.sin(w), np.sin(x), atol=1e-12)
+    with pytest.raises(ValueError, match="finite"):
+        jac.ik.wrap_angles([np.nan])
+
+
+def test_limits_validation():
+    arm = jac.robots.planar_3r()
+    T_d = arm.fk([0.2, 1.1, 0.6])
+    with pytest.raises(ValueError, match=r"limits of shape \(3, 2\)"):
+        ik(arm, T_d, [0, 0, 0], limits=[[0, 1], [0, 1]])
+    with pytest.raises(ValueError, match="lower <= upper"):
+        ik(arm, T_d, [0, 0, 0], limits=[[0, 1], [1, 0], [0, 1]])
+    with pytest.raises(ValueError, match="NaN"):
+        ik(arm, T_d, [0, 0, 0], limits=[[0, 1], [np.nan, 1], [0, 1]])
+    with pytest.raises(TypeError, match="wrap"):
+        ik(arm, T_d, [0, 0, 0], wrap="yes")
+    # infinite bounds are no limit
+    a = ik(arm, T_d, [0.5, 0.5, 0.5], limits=[[-np.inf, np.inf]] * 3)
+    b = ik(arm, T_d, [0.5, 0.5, 0.5])
+    assert np.array_equal(a.theta, b.theta)
+
+
+# ------------------------------------------------------------------ Euler-angle CLIK
+
+def test_euler_clik_error_decays_by_one_minus_k_dt_on_a_fixed_target():
+    ur = jac.robots.ur5()
+    th = np.array([0.3, -0.9, 1.1, 0.2, 0.5, 0.1])
+    out = clik(ur, th + 0.02, np.repeat(ur.fk(th)[None], 30, axis=0), dt=0.01, gain=20.0, orientation="zyx")
+    e = np.linalg.norm(out.error_angles, axis=-1)
+    assert np.allclose(e[6:] / e[5:-1], 0.8, atol=0.02)
+    assert out.error_orientation[-1] < 0.82 ** 29 * out.error_orientation[0]   # at most 0.82 a step
+
+
+def test_euler_clik_is_the_axis_angle_law_to_first_order_when_b_is_the_identity():
+    """At phi = 0 (the zyx wrist at home) B(0) has columns z, y, x: the first step of both laws agrees to first order."""
+    wrist = jac.robots.zyx_wrist()
+    target = wrist.fk([0.0, 0.0, 0.0])
+    d = 1e-4 * np.array([1.0, -2.0, 0.5])
+    a = clik(wrist, d, np.repeat(target[None], 2, axis=0), dt=0.01, gain=5.0)
+    b = clik(wrist, d, np.repeat(target[None], 2, axis=0), dt=0.01, gain=5.0, orientation="zyx")
+    assert np.allclose(a.rates[0], b.rates[0], atol=1e-6)      # they differ at second order, ~ K |d|^2 = 5e-8
+
+
+def test_euler_clik_refuses_the_lock_and_bad_orientation():
+    wrist = jac.robots.zyx_wrist()
+    poses = np.repeat(wrist.fk([0.1, 0.2, 0.3])[None], 3, axis=0)
+    with pytest.raises(jac.representations.RepresentationSingularityError, match="axis-angle"):
+        clik(wrist, [0.0, np.pi / 2, 0.0], poses, dt=0.01, orientation="zyx")
+    lock = np.repeat(wrist.fk([0.0, np.pi / 2, 0.0])[None], 3, axis=0)
+    with pytest.raises(jac.representations.RepresentationSingularityError):
+        clik(wrist, [0.1, 0.2, 0.3], lock, dt=0.01, orientation="zyx", target_velocities=np.zeros((3, 6)))
+    with pytest.raises(ValueError, match="orientation"):
+        clik(wrist, [0.1, 0.2, 0.3], poses, dt=0.01, orientation="rpy")
+    assert clik(wrist, [0.1, 0.2, 0.3], poses, dt=0.01).error_angles is None

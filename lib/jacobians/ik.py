@@ -81,9 +81,10 @@ from .chain import SerialChain, _as_chain
 from .frames import Frame, check_frame
 from .jacobian import _evaluate_pose
 from .lie import _adjoint, _inverse_transform, _log_so3, log_se3
+from .representations import RepresentationSingularityError, _Binv, _coords, _margin
 from .velocity import dls_rates, pinv_rates
 
-__all__ = ["ik", "IKResult", "pose_error", "clik", "CLIKResult"]
+__all__ = ["ik", "IKResult", "pose_error", "clik", "CLIKResult", "wrap_angles"]
 
 Method = Literal["newton", "dls", "transpose"]
 _METHODS = ("newton", "dls", "transpose")
@@ -144,9 +145,41 @@ def _error(T: NDArray[np.float64], Td: NDArray[np.float64], frame: str) -> NDArr
     return out
 
 
+def wrap_angles(theta: ArrayLike) -> NDArray[np.float64]:
+    r"""Angles wrapped into :math:`(-\pi, \pi]`: :math:`\theta - 2\pi\lceil(\theta - \pi)/(2\pi)\rceil`.
+
+    >>> import numpy as np
+    >>> wrap_angles([np.pi, -np.pi, 3 * np.pi / 2, 7.0]).round(6)
+    array([ 3.141593,  3.141593, -1.570796,  0.716815])
+    """
+    th = as_float_array(theta, "theta")
+    check_finite(th, "theta")
+    return _wrap(th)
+
+
+def _wrap(th: NDArray[np.float64]) -> NDArray[np.float64]:
+    out: NDArray[np.float64] = th - 2 * np.pi * np.ceil((th - np.pi) / (2 * np.pi))
+    return out
+
+
+def _limits(limits: ArrayLike | None, n: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(lower, upper), each of shape (n,), from ``limits`` of shape (n, 2); no limits if None."""
+    if limits is None:
+        return np.full(n, -np.inf), np.full(n, np.inf)
+    L = as_float_array(limits, "limits")
+    if L.shape != (n, 2):
+        raise ValueError(f"Expected limits of shape ({n}, 2), one row (lower, upper) a joint, got shape {L.shape}")
+    if np.any(np.isnan(L)):
+        raise ValueError("Expected limits without NaN (use -inf or inf for a joint without a limit)")
+    if np.any(L[:, 0] > L[:, 1]):
+        i = int(np.argmax(L[:, 0] > L[:, 1]))
+        raise ValueError(f"Expected lower <= upper for every joint, got limits[{i}] = {L[i].tolist()}")
+    return L[:, 0].copy(), L[:, 1].copy()
+
+
 def ik(chain: SerialChain, T_d: ArrayLike, theta0: ArrayLike, frame: Frame = "body", method: Method = "newton",
        eps_omega: float = 1e-6, eps_v: float = 1e-6, max_iterations: int = 100, damping: float = 0.05,
-       record_history: bool = False) -> IKResult:
+       record_history: bool = False, limits: ArrayLike | None = None, wrap: bool = False) -> IKResult:
     r"""Solve :math:`T_{sb}(\theta) = T_{sd}` by iteration from ``theta0``.
 
     Each step: :math:`\mathcal V = ` the error twist in ``frame``
@@ -176,6 +209,16 @@ def ik(chain: SerialChain, T_d: ArrayLike, theta0: ArrayLike, frame: Frame = "bo
         :math:`\lambda` for ``"dls"`` (ignored otherwise).
     record_history : bool
         Keep every iterate in ``IKResult.history``.
+    limits : array_like, shape (n, 2), optional
+        Hard joint limits, one row ``(lower, upper)`` a joint (``-inf``/``inf`` for none). Each
+        iterate, the start included, is *clamped* into them: :math:`\theta_i \leftarrow
+        \min(\max(\theta_i, \text{lower}_i), \text{upper}_i)`. A clamped iteration is no longer
+        Newton's method: it can converge to another solution than the free one, or stall at a limit
+        with the error left (``converged`` False).
+    wrap : bool
+        Wrap each revolute joint into :math:`(-\pi, \pi]` after every step (before clamping), which
+        changes no pose. Prismatic joints and screw joints (nonzero pitch, whose pose is not periodic)
+        are never wrapped.
 
     Returns
     -------
@@ -188,7 +231,7 @@ def ik(chain: SerialChain, T_d: ArrayLike, theta0: ArrayLike, frame: Frame = "bo
     Newton's method converges to *a* solution, the one whose basin holds the
     start; from a start far from every solution, or one that crosses a
     singularity, it can wander or fail (``converged`` False). Joint angles are
-    not wrapped into :math:`(-\pi, \pi]`.
+    not wrapped into :math:`(-\pi, \pi]` unless ``wrap`` is set.
 
     >>> import numpy as np
     >>> import jacobians as jac
@@ -215,7 +258,19 @@ def ik(chain: SerialChain, T_d: ArrayLike, theta0: ArrayLike, frame: Frame = "bo
     lam = positive_float(damping, "damping", allow_zero=True)
     if not isinstance(record_history, bool):
         raise TypeError(f"Expected record_history True or False, got {type(record_history).__name__}")
+    if not isinstance(wrap, bool):
+        raise TypeError(f"Expected wrap True or False, got {type(wrap).__name__}")
     n = chain.dof
+    lower, upper = _limits(limits, n)
+    # joints whose motion is 2 pi-periodic: revolute with zero pitch (a screw joint advances as it turns)
+    S = chain.screw_axes
+    revolute = np.array([c == "R" for c in chain.joint_types]) & (np.abs(np.sum(S[:3] * S[3:], axis=0)) < 1e-12)
+
+    def constrain(th: NDArray[np.float64]) -> NDArray[np.float64]:
+        if wrap:
+            th = np.where(revolute, _wrap(th), th)
+        return np.clip(th, lower, upper)
+
     th0 = theta_array(theta0, n, "theta0")
     Td = transform_array(T_d, "T_d")
     try:
@@ -224,7 +279,7 @@ def ik(chain: SerialChain, T_d: ArrayLike, theta0: ArrayLike, frame: Frame = "bo
         raise ValueError(
             f"The batch shapes of T_d {Td.shape[:-2]} and theta0 {th0.shape[:-1]} do not broadcast"
         ) from None
-    theta = np.array(np.broadcast_to(th0, batch + (n,)), dtype=float)
+    theta = constrain(np.array(np.broadcast_to(th0, batch + (n,)), dtype=float))
     Td = np.broadcast_to(Td, batch + (4, 4))
 
     def measure(th: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
@@ -250,7 +305,7 @@ def ik(chain: SerialChain, T_d: ArrayLike, theta0: ArrayLike, frame: Frame = "bo
             den = np.sum(JJtV * JJtV, axis=-1)
             alpha = np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
             step = alpha[..., None] * (np.swapaxes(J, -1, -2) @ V[..., :, None])[..., 0]
-        theta = np.where(active[..., None], theta + step, theta)
+        theta = np.where(active[..., None], constrain(theta + step), theta)
         iterations += active
         V_new, J_new, _ = measure(theta)
         V = np.where(active[..., None], V_new, V)
@@ -274,10 +329,14 @@ class CLIKResult:
     thetas: NDArray[np.float64]
     #: (N, n) joint rates applied from step k to k + 1.
     rates: NDArray[np.float64]
-    #: (N,) orientation error :math:`\|e_o\|` (rad), :math:`e_o = \log(R_dR^T)^\vee`.
+    #: (N,) orientation error :math:`\|e_o\|` (rad), :math:`e_o = \log(R_dR^T)^\vee`: the angle between
+    #: :math:`R` and :math:`R_d`, whichever error the law fed back.
     error_orientation: NDArray[np.float64]
     #: (N,) position error :math:`\|p_d - p\|`.
     error_position: NDArray[np.float64]
+    #: (N, 3) the Euler-angle error :math:`e_\phi = \phi_d - \phi` (wrapped) fed back, for an Euler
+    #: ``orientation``; None for ``"axis-angle"``.
+    error_angles: NDArray[np.float64] | None = None
 
     def __repr__(self) -> str:
         return (f"CLIKResult({self.thetas.shape[0]} steps, final errors: orientation "
@@ -285,7 +344,8 @@ class CLIKResult:
 
 
 def clik(chain: SerialChain, theta0: ArrayLike, target_poses: ArrayLike, dt: float, gain: float = 10.0,
-         target_velocities: ArrayLike | None = None, method: str = "pinv", damping: float = 0.05) -> CLIKResult:
+         target_velocities: ArrayLike | None = None, method: str = "pinv", damping: float = 0.05,
+         orientation: str = "axis-angle") -> CLIKResult:
     r"""Follow a path of poses by closed-loop inverse kinematics with an orientation error.
 
     With the geometric Jacobian (rows :math:`(\omega_s, \dot p)`) and, at step k,
@@ -304,6 +364,20 @@ def clik(chain: SerialChain, theta0: ArrayLike, target_poses: ArrayLike, dt: flo
     is the same to first order in the error.) Discretised with Euler steps, it
     is stable for :math:`0 < K\Delta t < 2`; :math:`K\Delta t = 1` on a fixed
     target is one Newton step of the geometric error per time step.
+
+    **Euler angles** (``orientation="zyx"`` or ``"zyz"``). With :math:`\phi` the Euler angles of
+    :math:`R` (:mod:`jacobians.representations`, :math:`\omega_s = B(\phi)\dot\phi`), the analytic
+    Jacobian :math:`J_A = \operatorname{diag}(B(\phi)^{-1}, I)\,J` and the error
+    :math:`e_\phi = \phi_d - \phi` (each angle wrapped into :math:`(-\pi, \pi]`), the law is
+
+    .. math:: \dot\theta = J_A^{\#}\begin{bmatrix}\dot\phi_d + Ke_\phi\\ \dot p_d + Ke_p\end{bmatrix},
+
+    so that :math:`\dot e_\phi = -Ke_\phi` where :math:`J_A` exists; :math:`\dot\phi_d` is
+    :math:`B(\phi_d)^{-1}\omega_d` from ``target_velocities``, else the forward differences of the
+    (wrapped) :math:`\phi_d`. Near the representation's singularity (ZYX pitch :math:`\pm\pi/2`,
+    ZYZ middle angle 0 or :math:`\pi`) :math:`B^{-1}`, :math:`\dot\phi_d` and the error's yaw and roll
+    parts grow like one over the distance to it; exactly at it the law does not exist and
+    :class:`~jacobians.representations.RepresentationSingularityError` is raised.
 
     When to use it: to follow a *path* in real time, one cheap step per
     control cycle, the error staying small; :func:`ik` is for one pose, solved
@@ -325,6 +399,9 @@ def clik(chain: SerialChain, theta0: ArrayLike, target_poses: ArrayLike, dt: flo
     method : {"pinv", "dls"}
         :math:`J^{\#}` is the pseudo-inverse or damped least squares.
     damping : float, >= 0
+    orientation : {"axis-angle", "zyx", "zyz"}
+        The orientation error fed back: :math:`\log(R_dR^T)^\vee` with the geometric Jacobian, or
+        an Euler-angle error with the analytic Jacobian (above).
 
     >>> import numpy as np
     >>> import jacobians as jac
@@ -349,6 +426,9 @@ def clik(chain: SerialChain, theta0: ArrayLike, target_poses: ArrayLike, dt: flo
     if method not in ("pinv", "dls"):
         raise ValueError(f"Expected method 'pinv' or 'dls', got {method!r}")
     lam = positive_float(damping, "damping", allow_zero=True)
+    if orientation not in ("axis-angle", "zyx", "zyz"):
+        raise ValueError(f"Expected orientation 'axis-angle', 'zyx' or 'zyz', got {orientation!r}")
+    euler = orientation != "axis-angle"
     if target_velocities is None:
         Vd = np.zeros((N, 6))
         Vd[:-1, :3] = _log_so3(P[1:, :3, :3] @ np.swapaxes(P[:-1, :3, :3], -1, -2)) / dt
@@ -358,10 +438,19 @@ def clik(chain: SerialChain, theta0: ArrayLike, target_poses: ArrayLike, dt: flo
         if Vd.shape != (N, 6):
             raise ValueError(f"Expected target_velocities with shape ({N}, 6), (omega_d, pdot_d), got {Vd.shape}")
         check_finite(Vd, "target_velocities")
+    if euler:
+        phi_d = _coords(P[:, :3, :3], orientation)
+        if target_velocities is None:
+            phid_dot = np.zeros((N, 3))
+            phid_dot[:-1] = _wrap(np.diff(phi_d, axis=0)) / dt
+        else:
+            _no_lock(phi_d, orientation, "the target path")
+            phid_dot = (_Binv(phi_d, orientation) @ Vd[:, :3, None])[..., 0]
     thetas = np.empty((N, n))
     rates = np.empty((N, n))
     e_o_norm = np.empty(N)
     e_p_norm = np.empty(N)
+    e_phi = np.empty((N, 3)) if euler else None
     for k in range(N):
         J, T = _evaluate_pose(chain, theta, "geometric", with_pose=True)
         assert T is not None
@@ -369,9 +458,26 @@ def clik(chain: SerialChain, theta0: ArrayLike, target_poses: ArrayLike, dt: flo
         Rd, pd = P[k, :3, :3], P[k, :3, 3]
         e_o = _log_so3(Rd @ R.T)
         e_p = pd - p
-        ref = np.concatenate([R @ Rd.T @ Vd[k, :3] + K * e_o, Vd[k, 3:] + K * e_p])
+        if e_phi is None:
+            ref = np.concatenate([R @ Rd.T @ Vd[k, :3] + K * e_o, Vd[k, 3:] + K * e_p])
+        else:
+            phi = _coords(R, orientation)
+            _no_lock(phi, orientation, f"the arm's orientation at step {k}")
+            e_phi[k] = _wrap(phi_d[k] - phi)
+            J = np.concatenate([_Binv(phi, orientation) @ J[:3], J[3:]])        # the analytic Jacobian
+            ref = np.concatenate([phid_dot[k] + K * e_phi[k], Vd[k, 3:] + K * e_p])
         rate = pinv_rates(J, ref) if method == "pinv" else dls_rates(J, ref, lam)
         thetas[k], rates[k] = theta, rate
         e_o_norm[k], e_p_norm[k] = np.linalg.norm(e_o), np.linalg.norm(e_p)
         theta = theta + rate * dt
-    return CLIKResult(thetas, rates, e_o_norm, e_p_norm)
+    return CLIKResult(thetas, rates, e_o_norm, e_p_norm, e_phi)
+
+
+def _no_lock(phi: NDArray[np.float64], representation: str, what: str) -> None:
+    """Raise where the Euler angles ``phi`` are at their representation's singularity (B not invertible)."""
+    bad = _margin(phi, representation) < 1e-9
+    if np.any(bad):
+        raise RepresentationSingularityError(
+            f"The {representation!r} angles of {what} are at their singularity (phi = "
+            f"{np.asarray(phi).reshape(-1, 3)[int(np.argmax(bad.reshape(-1)))]}): the analytic Jacobian does not "
+            "exist there; use orientation='axis-angle'")

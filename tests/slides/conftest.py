@@ -37,21 +37,9 @@ def usb(tmp_path_factory) -> Path:
     return stick
 
 
-# Slides of the new sections of chapters 10 and 11 that do not yet meet the deck rules. Each is a known
-# gap of the decks (their text is to be cut to 45 words, notes with minutes written, and a statement's
-# short form to keep its formulas as math); strict, so a fix that makes one pass must also remove it here.
-KNOWN_DECK_GAPS = {
-    "test_one_idea_a_slide_at_most_45_words[10_inverse_kinematics]":
-        "slide 10.5 (the Jacobian transpose and CLIK) has 54 words",
-    "test_one_idea_a_slide_at_most_45_words[11_redundancy]":
-        "slide 11.4 (weights, joint limits and obstacles) has 48 words",
-    "test_every_content_slide_has_notes_with_minutes[10_inverse_kinematics]":
-        "slide 13 of the deck has no notes with minutes yet",
-    "test_every_content_slide_has_notes_with_minutes[11_redundancy]":
-        "slide 10 of the deck has no notes with minutes yet",
-    "test_no_raw_labels_wording_or_printouts[11_redundancy]":
-        "the short form of Prop. 11 (which singularities a self-motion can leave) shows its inline math as TeX",
-}
+# Slides that do not yet meet the deck rules, each a known gap of the decks (test id: what is wrong). Strict:
+# a fix that makes one pass must also remove it here.
+KNOWN_DECK_GAPS: dict[str, str] = {}
 
 # Text of the animations and the live views, as drawn: 24 px at 1280x720 and 20 px at 1024x768 is wanted.
 # An animation's frames are PNGs drawn with the book's fonts (smallest text 10-14 px of the frame, 14-18 px on
