@@ -17,8 +17,8 @@ from jacobians.grading.feedback import verdict
 from jacobians.ik import ik
 from jacobians.velocity import dls_rates, pinv_rates
 
-from ._hand import planar_jv, planar_tip, planar_trig
-from ._kinematics import DEG, Array, adj
+from ._hand import adjoint_steps, log_se3_steps, planar_jv, planar_tip, planar_trig
+from ._kinematics import DEG, Array, adj, inv_T
 from ._latex import bmatrix, degs, num, vec
 from ._mistakes import IK_MESSAGES, degrees_mistake, ik_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
@@ -94,8 +94,14 @@ def _ch10_ex1(rng: Generator) -> Exercise:
           f"\n\n$$T_{{sd}} = {bmatrix(T_sd, 6)}$$\n\n(positions in metres). Give the {asked} error twist "
           f"${sym} = (\\omega, v)$: the twist, expressed in {frame}, that carries {{b}} onto {{d}} in unit time "
           "(angular part first, ω in rad, v in m).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """T_bd = T_sb⁻¹ T_sd written down, its log step by step (θ, sin θ, ω̂, the coefficient of [ω̂]², v); for
+        the space twist, [Ad_T_sb] with its block [p]R written down, times V_b."""
+        V = log_se3_steps(r, np.asarray(r(inv_T(T_sb) @ T_sd)))
+        return V if asked == "body" else adjoint_steps(r, T_sb) @ V
+
     return numeric_exercise(f"The {asked} error twist", st, {"T_sb": T_sb, "T_sd": T_sd, "asked": asked}, ref,
-                            mistakes, what="error twist")
+                            mistakes, what="error twist", method=method)
 
 
 # ----------------------------------------------------------------- exercise 2: one Newton step, planar 2R
