@@ -141,6 +141,7 @@ bench: setup
 	$(PY) -m tools.bench_live
 	$(PY) -m tools.bench_live_spatial
 	$(PY) -m tools.bench_grade
+	$(PY) -m tools.bench_ik_check
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
 LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json
