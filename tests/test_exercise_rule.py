@@ -267,3 +267,26 @@ def test_worked_example_of_a_code_exercise_is_the_librarys_answer_and_the_refere
         np.testing.assert_allclose(ex.reference(*args.values()), result, atol=1e-9, err_msg=seed)
         assert ex.check(ex.reference).correct, seed
         assert f"must return {_py(result, 4)} (to 4 decimals)" in ex.statement, seed
+
+
+def test_the_fast_kinematics_of_the_ik_cases_follows_the_library():
+    """The search of IK test cases runs the loop with plain-numpy kinematics; its iterates are the library's (same
+    formulas: they agree to rounding, far below the 1e-11 nudge a case must survive), on random chains with
+    prismatic joints, from starts near and far."""
+    from course.exercises import ch10
+    from course.exercises._variants import random_chain
+
+    rng = np.random.default_rng(23)
+    for _ in range(12):
+        S, M, th = random_chain(rng)
+        chain = jac.SerialChain(S, M)
+        T_sd = chain.fk(th)
+        th0 = th + rng.uniform(0.05, 1.0) * rng.normal(size=len(th))
+        for frame in ("body", "space"):
+            fast, lib = ch10._trail(chain, T_sd, th0, frame, 8), ch10.trail_by_library(chain, T_sd, th0, frame, 8)
+            k = min(len(fast.thetas), len(lib.thetas))
+            assert k >= 2
+            for a, b, na, nb in zip(fast.thetas[:k], lib.thetas[:k], fast.norms[:k], lib.norms[:k], strict=True):
+                if nb[2] > 1e-12:  # before convergence to rounding (after it the fast trail stops computing)
+                    np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * (1 + np.abs(b).max()))
+                    np.testing.assert_allclose(na, nb, rtol=1e-6, atol=1e-13)
