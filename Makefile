@@ -151,8 +151,9 @@ bench: setup
 	$(PY) -m tools.bench_live
 	$(PY) -m tools.bench_live_spatial
 	$(PY) -m tools.bench_grade
-	$(PY) -m tools.bench_phone
 	$(PY) -m tools.bench_exercise_checks
+	$(PY) -m tools.bench_ik_check
+	$(PY) -m tools.bench_phone
 
 # JupyterLab opens the MyST sources as notebooks (jupytext), not as text
 LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json

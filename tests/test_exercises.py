@@ -326,46 +326,43 @@ def test_conversion_references_agree_with_the_library():
 
 
 def test_symbolic_references_agree_with_the_library_for_every_arm():
+    """Every arm of the symbolic exercises (12 pairs of joints x 4 shapes): J_s and J_b against the library's
+    symbolic Jacobians, and the position Jacobian of ch06_ex1 against finite differences of the numeric forward
+    kinematics; and the exercises draw their references from these arms."""
     import jacobians.symbolic as jsym
-    from course.exercises._symbolic_2r import ARMS
+    from course.exercises._symbolic_2r import ARMS, SHAPES, sym_arm
 
+    for arm in ARMS:
+        for shape in SHAPES:
+            (th1, th2, l1, l2), S, M, J_s, J_b, _, T = sym_arm(arm, shape)
+            chain = jsym.SymbolicChain(S, M)
+            for ref, fn in ((J_s, jsym.space_jacobian), (J_b, jsym.body_jacobian)):
+                assert (fn(chain, [th1, th2]) - ref).applyfunc(sp.simplify) == sp.zeros(6, 2), (arm, shape)
+            point = {l1: 0.7, l2: 1.3}
+            Snum = np.array(S.subs(point).evalf().tolist(), dtype=float)
+            Mnum = np.array(M.subs(point).evalf().tolist(), dtype=float)
+            num = jac.SerialChain(Snum, Mnum)
+            th = np.array([0.4, -1.1])
+            Jv = sp.Matrix([T[0, 3], T[1, 3]]).jacobian([th1, th2])
+            val = np.array(Jv.subs({th1: th[0], th2: th[1], **point}).evalf().tolist(), dtype=float)
+            np.testing.assert_allclose(val, jac.numerical_jacobian(lambda x, c=num: c.fk(x)[:2, 3], th), atol=1e-6)
     seen = set()
     for seed in range(60):
-        for eid, fn in (("ch02_ex3", jsym.space_jacobian), ("ch03_ex3", jsym.body_jacobian)):
+        for eid, k in (("ch02_ex3", 3), ("ch03_ex3", 4)):
             ex = exercises.load(eid, seed=seed)
-            arm = ex.given["joints"]
-            if (eid, arm) in seen:
-                continue
-            seen.add((eid, arm))
-            s = ex.symbols
-            chain = jsym.SymbolicChain(ex.given["S"], ex.given["M"])
-            lib = fn(chain, [s["theta1"], s["theta2"]])
-            assert (lib - ex.reference).applyfunc(sp.simplify) == sp.zeros(6, 2), (eid, arm)
-    assert {a for _, a in seen} == set(ARMS)  # all 12 arms are drawn
-    for seed in range(8):  # the position Jacobian by finite differences of the numeric forward kinematics
+            key = (ex.given["joints"], ex.given["shape"])
+            seen.add(key)
+            assert ex.reference == sym_arm(*key)[k]
         ex = exercises.load("ch06_ex1", seed=seed)
-        s = ex.symbols
-        l1, l2 = 0.7, 1.3
-        S_sym = _sym_chain(ex.given["joints"])[0]
-        Snum = np.array(S_sym.subs({s["l1"]: l1}).evalf().tolist(), dtype=float)
-        M = np.eye(4)
-        M[0, 3] = l1 + l2
-        chain = jac.SerialChain(Snum, M)
-        th = np.array([0.4, -1.1])
-        val = np.array(ex.reference.subs({s["theta1"]: th[0], s["theta2"]: th[1], s["l1"]: l1, s["l2"]: l2})
-                       .evalf().tolist(), dtype=float)
-        np.testing.assert_allclose(val, jac.numerical_jacobian(lambda x, c=chain: c.fk(x)[:2, 3], th), atol=1e-6)
-
-
-def _sym_chain(arm):
-    from course.exercises._symbolic_2r import sym_arm
-    _, S, M, *_ = sym_arm(arm)
-    return S, M
+        (th1, th2, *_), *_, T = sym_arm(ex.given["joints"], ex.given["shape"])
+        assert ex.reference == sp.Matrix([T[0, 3], T[1, 3]]).jacobian([th1, th2])
+    assert {a for a, _ in seen} == set(ARMS) and {s for _, s in seen} == set(SHAPES)
 
 
 def test_symbolic_answers_in_other_forms():
     th1, th2, l1, l2 = sp.symbols("theta1 theta2 l1 l2")  # no assumptions: matched by name
-    seed = next(s for s in range(200) if exercises.load("ch06_ex1", seed=s).given["joints"] == ("R+", "R+"))
+    seed = next(s for s in range(400) if exercises.load("ch06_ex1", seed=s).given["joints"] == ("R+", "R+")
+                and exercises.load("ch06_ex1", seed=s).given["shape"] == "x")
     ex = exercises.load("ch06_ex1", seed=seed)
     x = l1 * sp.cos(th1) + l2 * sp.cos(th1 + th2)
     y = l1 * sp.sin(th1) + l2 * sp.sin(th1 + th2)

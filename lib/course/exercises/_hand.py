@@ -100,3 +100,32 @@ def ad_twist(V: Array) -> Array:
     out[:3, :3] = out[3:, 3:] = skew3(V[:3])
     out[3:, :3] = skew3(V[3:])
     return out
+
+
+def rotate_halves(r: R, Rm: Array, J: Array) -> Array:
+    """diag(R, R) J: each half of the 6-row matrix (or vector) rotated, written down."""
+    return np.concatenate([np.asarray(r(Rm @ J[:3])), np.asarray(r(Rm @ J[3:]))])
+
+
+def euler_zyx_or_zyz(r: R, phi: Array, rep: str) -> Array:
+    """B(φ) of the ZYX or ZYZ angles (ω_s = B φ̇) from rounded cosines and sines of φ1, φ2, its products
+    written down."""
+    ca, sa, cb, sb = (float(r(f(x))) for x, f in ((phi[0], np.cos), (phi[0], np.sin), (phi[1], np.cos),
+                                                    (phi[1], np.sin)))
+    if rep == "zyx":
+        return np.array([[0.0, -sa, float(r(ca * cb))], [0.0, ca, float(r(sa * cb))], [1.0, 0.0, -sb]])
+    return np.array([[0.0, -sa, float(r(ca * sb))], [0.0, ca, float(r(sa * sb))], [1.0, 0.0, cb]])
+
+
+def log_se3_steps(r: R, T: Array) -> Array:
+    """The twist V = log(T)^∨ = (ω̂θ, G⁻¹(θ)p θ) of a pose turning by 0 < θ < π, as written down: θ from the
+    trace, sin θ, the unit axis ω̂ from R − Rᵀ, the coefficient 1 − (θ/2)cot(θ/2), then
+    v = (I − (θ/2)[ω̂] + (1 − (θ/2)cot(θ/2))[ω̂]²) p."""
+    Rm, p = T[:3, :3], T[:3, 3]
+    th = float(r(np.arccos(np.clip((np.trace(Rm) - 1.0) / 2.0, -1.0, 1.0))))
+    s = float(r(np.sin(th)))
+    w = np.asarray(r(np.array([Rm[2, 1] - Rm[1, 2], Rm[0, 2] - Rm[2, 0], Rm[1, 0] - Rm[0, 1]]) / (2.0 * s)))
+    k = float(r(1.0 - th / 2.0 / np.tan(th / 2.0)))
+    W = skew3(w)
+    v = np.asarray(r(p - th / 2.0 * (W @ p) + k * (W @ (W @ p))))
+    return np.concatenate([np.asarray(r(w * th)), v])

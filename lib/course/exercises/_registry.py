@@ -38,7 +38,8 @@ class CodeVariant(NamedTuple):
     """One variant of a function exercise: its statement, reference, test cases, the function's name,
     what it returns, and the facts of the variant (its ``given``); optionally the test cases after the random
     ones, the mistake of a function that runs out of time, an adapter of the result (see
-    :func:`jacobians.grading.function_exercise`) and an example drawn per seed, added to the statement."""
+    :func:`jacobians.grading.function_exercise`), an example drawn per seed, added to the statement, and the
+    number of random cases (6 if None)."""
 
     statement: str
     reference: Callable[..., Any]
@@ -50,6 +51,7 @@ class CodeVariant(NamedTuple):
     on_timeout: Mistake | None = None
     adapt: Callable[[Any, tuple[Any, ...], Any], Any] | None = None
     example: Callable[[np.random.Generator], tuple[str, dict[str, Any]]] | None = None
+    n_cases: int | None = None
 
 
 def register_code(exercise_id: str, title: str, variants: list[CodeVariant]) -> None:
@@ -65,5 +67,7 @@ def register_code(exercise_id: str, title: str, variants: list[CodeVariant]) -> 
                                what=v.what, more_cases=v.more_cases, on_timeout=v.on_timeout, adapt=v.adapt)
         ex.given = given
         ex.hint = HINTS.get(exercise_id, "")
+        if v.n_cases is not None:
+            ex.n_cases = v.n_cases
         return ex
     CATALOGUE.register(exercise_id)(build)

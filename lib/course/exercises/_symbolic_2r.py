@@ -3,8 +3,10 @@ of mistakes of the symbolic exercises (space and body Jacobian, chapters 2 and 3
 chapter 6).
 
 The arm varies with the seed: each joint is revolute about $+z$ or $-z$, or prismatic along $x$ or $y$
-(not both prismatic), 12 arms in all. Joint 1 sits at the origin, joint 2 (if revolute) turns about an
-axis through $(l_1, 0, 0)$, and the tool frame is at $(l_1 + l_2, 0, 0)$ at home, oriented like {s}.
+(not both prismatic), 12 pairs of joints; and its shape at home: link 1 (length $l_1$) and link 2 (length
+$l_2$) each along $x$ or along $y$ (:data:`SHAPES`, 4 shapes), 48 arms in all. Joint 1 sits at the origin,
+joint 2 (if revolute) turns about an axis through the end of link 1, and the tool frame is at the end of
+link 2 at home, oriented like {s}.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 from numpy.random import Generator
+from sympy.simplify.fu import TR10i
 
 from jacobians.grading import Mistake
 
@@ -25,9 +28,19 @@ JOINTS = ("R+", "R-", "Px", "Py")
 ARMS: tuple[tuple[str, str], ...] = tuple((a, b) for a in JOINTS for b in JOINTS if not (a[0] == b[0] == "P"))
 
 
+#: The shapes at home: the directions (x, y) of link 1 and of link 2 in {s}.
+SHAPES: dict[str, tuple[tuple[int, int], tuple[int, int]]] = {
+    "x": ((1, 0), (1, 0)), "y": ((0, 1), (0, 1)), "xy": ((1, 0), (0, 1)), "yx": ((0, 1), (1, 0))}
+
+
 def draw_arm(rng: Generator) -> tuple[str, str]:
     """One of :data:`ARMS`, drawn from the exercise's stream."""
     return ARMS[int(rng.integers(len(ARMS)))]
+
+
+def draw_shape(rng: Generator) -> str:
+    """One of :data:`SHAPES`, drawn from the exercise's stream (after :func:`draw_arm`)."""
+    return list(SHAPES)[int(rng.integers(len(SHAPES)))]
 
 
 def sym_names(syms: tuple[Any, ...]) -> dict[str, Any]:
@@ -39,12 +52,12 @@ def _sym_2r() -> tuple[Any, Any, Any, Any]:
     return th1, th2, l1, l2
 
 
-def _screw(kind: str, qx: Any) -> Any:
-    """The screw axis of a joint of kind ``kind`` whose revolute axis passes through (qx, 0, 0)."""
+def _screw(kind: str, qx: Any, qy: Any = 0) -> Any:
+    """The screw axis of a joint of kind ``kind`` whose revolute axis passes through (qx, qy, 0)."""
     if kind == "R+":
-        return sp.Matrix([0, 0, 1, 0, -qx, 0])     # v = -ω × q
+        return sp.Matrix([0, 0, 1, qy, -qx, 0])     # v = -ω × q = -(−qy, qx, 0)
     if kind == "R-":
-        return sp.Matrix([0, 0, -1, 0, qx, 0])
+        return sp.Matrix([0, 0, -1, -qy, qx, 0])
     if kind == "Px":
         return sp.Matrix([0, 0, 0, 1, 0, 0])
     if kind == "Py":
@@ -78,20 +91,24 @@ def _sym_adj(T: Any) -> Any:
 
 
 def _tidy(A: Any) -> Any:
-    return A.applyfunc(lambda e: sp.trigsimp(sp.expand(sp.expand_trig(e))))
+    """Each entry expanded, its products of sines and cosines gathered into sines and cosines of sums (Fu's
+    rule TR10i, far cheaper than ``trigsimp``), common factors taken out."""
+    return A.applyfunc(lambda e: sp.factor_terms(TR10i(sp.expand(e))))
 
 
-@functools.lru_cache(maxsize=len(ARMS))
-def sym_arm(arm: tuple[str, str] = ("R+", "R+")) -> tuple[tuple[Any, Any, Any, Any], Any, Any, Any, Any, Any, Any]:
-    """Symbolic S, M, J_s, J_b, B and T(θ) of a two-joint planar arm (cached per arm)."""
+@functools.lru_cache(maxsize=len(ARMS) * len(SHAPES))
+def sym_arm(arm: tuple[str, str] = ("R+", "R+"), shape: str = "x"
+            ) -> tuple[tuple[Any, Any, Any, Any], Any, Any, Any, Any, Any, Any]:
+    """Symbolic S, M, J_s, J_b, B and T(θ) of a two-joint planar arm of the given shape (cached per arm)."""
     th1, th2, l1, l2 = _sym_2r()
-    S1, S2 = _screw(arm[0], 0), _screw(arm[1], l1)
+    (a1, b1), (a2, b2) = SHAPES[shape]
+    S1, S2 = _screw(arm[0], 0), _screw(arm[1], a1 * l1, b1 * l1)
     E1, E2 = _sym_exp(S1, th1), _sym_exp(S2, th2)
     M = sp.eye(4)
-    M[0, 3] = l1 + l2
+    M[0, 3], M[1, 3] = a1 * l1 + a2 * l2, b1 * l1 + b2 * l2
     J_s = _tidy(sp.Matrix.hstack(S1, _sym_adj(E1) * S2))
     Minv = sp.eye(4)
-    Minv[0, 3] = -(l1 + l2)
+    Minv[0, 3], Minv[1, 3] = -M[0, 3], -M[1, 3]
     B = _tidy(_sym_adj(Minv) * sp.Matrix.hstack(S1, S2))
     # Body recursion: J_b2 = B2, J_b1 = Ad(e^{-[B2] theta2}) B1.
     J_b = _tidy(sp.Matrix.hstack(_sym_adj(_sym_exp(B[:, 1], -th2)) * B[:, 0], B[:, 1]))
@@ -104,8 +121,17 @@ def sym_planar_2r() -> tuple[tuple[Any, Any, Any, Any], Any, Any, Any, Any, Any,
     return sym_arm(("R+", "R+"))
 
 
-def describe_arm(arm: tuple[str, str]) -> str:
+def _point(x: str, y: str) -> str:
+    return f"$({x}, {y}, 0)$"
+
+
+def describe_arm(arm: tuple[str, str], shape: str = "x") -> str:
     """The arm in words, for a statement."""
+    (a1, b1), (a2, b2) = SHAPES[shape]
+    end1 = _point("l_1", "0") if a1 else _point("0", "l_1")
+    tool = {"x": _point("l_1 + l_2", "0"), "y": _point("0", "l_1 + l_2"), "xy": _point("l_1", "l_2"),
+            "yx": _point("l_2", "l_1")}[shape]
+
     def joint(kind: str, where: str) -> str:
         if kind[0] == "R":
             return f"turns about ${'+' if kind == 'R+' else '-'}z$ through {where}"
@@ -113,8 +139,10 @@ def describe_arm(arm: tuple[str, str]) -> str:
     prismatic = [str(i + 1) for i, k in enumerate(arm) if k[0] == "P"]
     slide = (f" For the prismatic joint {prismatic[0]}, $\\theta_{prismatic[0]}$ is its displacement (0 at home)."
              if prismatic else "")
+    links = ("both links along $x$" if shape == "x" else "both links along $y$" if shape == "y" else
+             f"link 1 along ${'x' if a1 else 'y'}$, link 2 along ${'x' if a2 else 'y'}$")
     return (f"A planar arm with two joints: joint 1 {joint(arm[0], 'the origin')}, joint 2 "
-            f"{joint(arm[1], '$(l_1, 0, 0)$ at home')}; at home the tool frame is at $(l_1 + l_2, 0, 0)$, "
+            f"{joint(arm[1], end1 + ' at home')}; at home ({links}) the tool frame is at {tool}, "
             f"oriented like {{s}}.{slide}")
 
 

@@ -217,3 +217,27 @@ def example_text(call: str, args: dict[str, Any], result: Any) -> str:
                        for k, v in args.items())
     return (f"Try it first on this example (yours, from your ID): {inputs}; `{call}` must return "
             f"{_py(result, 4)} (to 4 decimals).")
+
+
+#: What a worked example is built from: the seed's stream in; the arguments (name -> value, in call order) and
+#: what the function must return on them out.
+ExampleBuild = Callable[[Generator], tuple[dict[str, Any], Any]]
+
+
+def worked_example(call: str, build: ExampleBuild) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """The ``example`` of a code variant: an input drawn per ID and the result the function must return on it,
+    added to the statement (so that two IDs rarely share one) and to the given as ``example`` (the arguments)
+    and ``example_result``, where the tests check it against the library."""
+    def example(rng: Generator) -> tuple[str, dict[str, Any]]:
+        args, result = build(rng)
+        return example_text(call, args, result), {"example": args, "example_result": np.asarray(result, float)}
+    return example
+
+
+def planar_exact_state(rng: Generator) -> tuple[Array, Array, Array, Array]:
+    """A planar 2R arm of :func:`planar_example` at exact angles, as printed: its space screw axes S (columns),
+    home pose M, angles θ (rad) and the pose T_sb(θ), whose entries are short exact decimals (the rounding to 10
+    only removes binary noise), so the printed pose is a pose."""
+    _, th, B, M = planar_example(rng, exact=True)
+    S = np.round(adj(M) @ B, 12)
+    return S, M, th, np.round(fk(S, M, th), 10)

@@ -16,7 +16,7 @@ from ._kinematics import Array, adj, inv_T, swap
 from ._latex import bmatrix, vec
 from ._mistakes import swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import random_transform
+from ._variants import random_transform, worked_example
 
 SKEW_HINT = "Recall [p] is the skew matrix with [p]x = p × x."
 
@@ -42,8 +42,12 @@ def _ch01_ex1(rng: Generator) -> Exercise:
     st = (f"A revolute joint turns about the unit axis $\\hat\\omega = {vec(w)}$ through the point "
           f"$q = {vec(q)}$ (in {{s}}). Give its screw axis $\\mathcal S = (\\omega, v)$ as a 6-vector, "
           "angular part first.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """v = −ω × q written down (integers: nothing to round, but the rule does not assume it)."""
+        return np.concatenate([w, r(-np.cross(w, q))])
+
     return numeric_exercise("Screw axis of a revolute joint", st, {"omega": w, "q": q}, ref, mistakes,
-                            what="screw axis", hint="Check v = -ω × q entry by entry.")
+                            what="screw axis", hint="Check v = -ω × q entry by entry.", method=method)
 def _adj_mistakes(T: Array) -> list[Mistake]:
     R, p = T[:3, :3], T[:3, 3]
     A = adj(T)
@@ -76,8 +80,12 @@ def _ch01_ex2(rng: Generator) -> Exercise:
     ref = adj(T)
     st = (f"Give the $6\\times 6$ adjoint matrix $[\\mathrm{{Ad}}_T]$ of \n\n$$T = {bmatrix(T, 6)},$$\n\n"
           "for twists ordered $(\\omega, v)$.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """R copied, the block [p]R written down."""
+        return adjoint_steps(r, T)
+
     return numeric_exercise("The adjoint of a transform", st, {"T": T}, ref, _adj_mistakes(T), what="adjoint matrix",
-                            hint="Compare block by block with [[R, 0], [[p]R, R]].")
+                            hint="Compare block by block with [[R, 0], [[p]R, R]].", method=method)
 
 
 @register("ch01_ex3")
@@ -138,12 +146,24 @@ def _adj_inv_case(rng: Generator) -> Case:
 
 
 _ADJ_TASK = ("Write a function `my_adjoint(T)` that takes a $4\\times4$ transform $T$ (numpy array) and returns ")
+
+
+def _adj_example(inverse: bool) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """A transform of the seed (an exact rotation, a position in halves) and the adjoint the function must
+    return on it: varies the statement, so that two IDs rarely share one."""
+    def build(rng: Generator) -> tuple[dict[str, Any], Any]:
+        T = random_transform(rng)
+        return {"T": T}, adj(inv_T(T)) if inverse else adj(T)
+    return worked_example("my_adjoint(T)", build)
+
+
 register_code("ch01_ex4", "Code: the adjoint map", [
     CodeVariant(_ADJ_TASK + "its $6\\times 6$ adjoint $[\\mathrm{Ad}_T]$ for twists ordered $(\\omega, v)$. "
                 "Set `answer = my_adjoint`. It is tested on random transforms.",
-                adj, _adj_case, "my_adjoint", "adjoint matrix", {"inverse": False}),
+                adj, _adj_case, "my_adjoint", "adjoint matrix", {"inverse": False}, example=_adj_example(False)),
     CodeVariant(_ADJ_TASK + "the $6\\times 6$ adjoint of its inverse, $[\\mathrm{Ad}_{T^{-1}}]$, for twists "
                 "ordered $(\\omega, v)$, written from $R$ and $p$ (do not call a matrix inverse). "
                 "Set `answer = my_adjoint`. It is tested on random transforms.",
-                ref_adjoint_of_inverse, _adj_inv_case, "my_adjoint", "adjoint matrix", {"inverse": True}),
+                ref_adjoint_of_inverse, _adj_inv_case, "my_adjoint", "adjoint matrix", {"inverse": True},
+                example=_adj_example(True)),
 ])

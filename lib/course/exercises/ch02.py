@@ -16,8 +16,8 @@ from ._kinematics import DEG, Array, adj, body_jac, expS, space_jac
 from ._latex import degs, num, vec
 from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, sym_arm, sym_catalogue, sym_names
-from ._variants import LAYOUT_TEXT, angles_deg, layout_cases, planar_column
+from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, draw_shape, sym_arm, sym_catalogue, sym_names
+from ._variants import LAYOUT_TEXT, angles_deg, layout_cases, planar_column, planar_example, worked_example
 
 
 @register("ch02_ex1")
@@ -92,26 +92,35 @@ def _ch02_ex2(rng: Generator) -> Exercise:
           f"$(0, 0, {num(h)})$, joint 3 slides along $x$; at home the tool is at $({num(reach)}, 0, {num(h)})$. "
           f"At $\\theta_1 = {int(th_deg[0])}^\\circ$, $\\theta_2 = {int(th_deg[1])}^\\circ$, "
           f"$\\theta_3 = {num(d3)}$ give the space Jacobian $J_s(\\theta)$ ($6\\times3$).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos and sin of θ1, θ2; column 2: ω2 = R_z(θ1) y, v2 = −ω2 × (0, 0, h); column 3: (0, R_z(θ1)R_y(θ2) x)."""
+        c1, s1, c2, s2 = (float(r(f(x * DEG))) for x, f in ((th_deg[0], np.cos), (th_deg[0], np.sin),
+                                                            (th_deg[1], np.cos), (th_deg[1], np.sin)))
+        w2 = np.array([-s1, c1, 0.0])
+        v2 = np.asarray(r(-np.cross(w2, [0.0, 0.0, h])))
+        v3 = np.asarray(r(np.array([c1 * c2, s1 * c2, -s2])))
+        return np.column_stack([S[:, 0], np.concatenate([w2, v2]), np.concatenate([np.zeros(3), v3])])
+
     return numeric_exercise("The space Jacobian of an RRP arm", st,
                             {"h": h, "reach": reach, "theta1_deg": th_deg[0], "theta2_deg": th_deg[1], "d3": d3}, ref,
-                            mistakes, what="space Jacobian")
+                            mistakes, what="space Jacobian", method=method)
 
 
 @register("ch02_ex3")
 def _ch02_ex3(rng: Generator) -> Exercise:
-    arm = draw_arm(rng)
-    syms, S, M, J_s, J_b, B, T = sym_arm(arm)
+    arm, shape = draw_arm(rng), draw_shape(rng)
+    syms, S, M, J_s, J_b, B, T = sym_arm(arm, shape)
     mistakes = sym_catalogue(
         J_s, J_b, "body_for_space",
         "This is the body Jacobian. The space Jacobian expresses each column in the fixed frame {s}.",
         S, "Joint 2's screw axis is carried along by joint 1's motion: carry it with the adjoint of e^[S1]θ1.")
-    st = (describe_arm(arm) + " Give the space Jacobian $J_s(\\theta_1, \\theta_2)$ as a $6\\times2$ symbolic "
+    st = (describe_arm(arm, shape) + " Give the space Jacobian $J_s(\\theta_1, \\theta_2)$ as a $6\\times2$ symbolic "
           "matrix in $\\theta_1, \\theta_2, l_1, l_2$. " + SYM_NOTE)
     ex = symbolic_exercise("Symbolic space Jacobian of a planar two-joint arm", st, sym_names(syms), J_s, mistakes,
                            what="space Jacobian")
     ex.hint = ("Column 1 is S1; column 2 is Ad(e^[S1]θ1) S2. Check which column, and within it the angular "
                "rows 1-3 or the linear rows 4-6.")
-    ex.given.update({"joints": arm, "S": S, "M": M})
+    ex.given.update({"joints": arm, "shape": shape, "S": S, "M": M})
     return ex
 
 
@@ -139,10 +148,22 @@ def _own(S: Array, th: Array) -> Array:
 
 
 _SPACE_CASES = layout_cases(_space_case)
+
+
+def _space_example(layout: str) -> Callable[[np.random.Generator], tuple[str, dict[str, Any]]]:
+    """A planar 2R arm of the seed (lengths, angles in tenths of a radian) and the J_s the function must return:
+    varies the statement, so that two IDs rarely share one."""
+    def build(rng: np.random.Generator) -> tuple[dict[str, Any], Any]:
+        _, th, B, M = planar_example(rng)
+        S = np.round(adj(M) @ B, 12)
+        return {"S": S if layout == "columns" else S.T, "theta": th}, space_jac(S, th)
+    return worked_example("my_space_jacobian(S, theta)", build)
+
+
 register_code("ch02_ex4", "Code: the space Jacobian", [
     CodeVariant(f"Write `my_space_jacobian(S, theta)`: `S` is {LAYOUT_TEXT[layout]} at home, `theta` a length-$n$ "
                 "array of joint values; return $J_s(\\theta)$, $6\\times n$. You may use `jacobians.lie.exp_se3` and "
                 "`jacobians.lie.adjoint`, but not `jacobians.space_jacobian`. Set `answer = my_space_jacobian`.",
                 space_jac if layout == "columns" else (lambda S, th: space_jac(np.asarray(S).T, th)),
-                case, "my_space_jacobian", "space Jacobian", {"layout": layout})
+                case, "my_space_jacobian", "space Jacobian", {"layout": layout}, example=_space_example(layout))
     for layout, case in _SPACE_CASES.items()])

@@ -16,7 +16,7 @@ from ._kinematics import DEG, Array, adj, body_jac, inv_T, space_jac
 from ._latex import bmatrix, degs, num, vec
 from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, sym_arm, sym_catalogue, sym_names
+from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, draw_shape, sym_arm, sym_catalogue, sym_names
 from ._variants import LAYOUT_TEXT, example_text, layout_cases, planar_column, planar_example
 
 
@@ -81,20 +81,20 @@ def _ch03_ex2(rng: Generator) -> Exercise:
 
 @register("ch03_ex3")
 def _ch03_ex3(rng: Generator) -> Exercise:
-    arm = draw_arm(rng)
-    syms, S, M, J_s, J_b, B, T = sym_arm(arm)
+    arm, shape = draw_arm(rng), draw_shape(rng)
+    syms, S, M, J_s, J_b, B, T = sym_arm(arm, shape)
     mistakes = sym_catalogue(
         J_b, J_s, "space_for_body",
         "This is the space Jacobian. The body Jacobian expresses each column in the tool frame {b}.",
         B, "Joint 1's axis, seen from the tool, moves when joint 2 moves: carry B1 with the adjoint of "
         "e^-[B2]θ2.")
-    st = (describe_arm(arm) + " Give the body Jacobian $J_b(\\theta_1, \\theta_2)$ as a $6\\times2$ symbolic "
+    st = (describe_arm(arm, shape) + " Give the body Jacobian $J_b(\\theta_1, \\theta_2)$ as a $6\\times2$ symbolic "
           "matrix in $\\theta_1, \\theta_2, l_1, l_2$. " + SYM_NOTE)
     ex = symbolic_exercise("Symbolic body Jacobian of a planar two-joint arm", st, sym_names(syms), J_b, mistakes,
                            what="body Jacobian")
     ex.hint = ("Column 2 is B2; column 1 is Ad(e^-[B2]θ2) B1, with B = Ad(M⁻¹) S. Check which column, and within "
                "it the angular rows 1-3 or the linear rows 4-6.")
-    ex.given.update({"joints": arm, "S": S, "M": M})
+    ex.given.update({"joints": arm, "shape": shape, "S": S, "M": M})
     return ex
 
 

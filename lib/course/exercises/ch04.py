@@ -13,12 +13,12 @@ from jacobians import robots
 from jacobians.chain import SerialChain
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
-from ._hand import adjoint_steps, inverse_adjoint_steps
+from ._hand import adjoint_steps, inverse_adjoint_steps, planar_jv, planar_points, planar_trig
 from ._kinematics import Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import chain_case, exact_angle, planar_pose
+from ._variants import chain_case, exact_angle, planar_exact_state, planar_pose, worked_example
 
 
 def _rrp_state(rng: Generator) -> tuple[SerialChain, Array, Array, Array, Array]:
@@ -124,17 +124,28 @@ def _b2s_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list
     return (J_b, T), ref, mistakes
 
 
+def _change_example(direction: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """A planar 2R arm of the seed at angles with exact one-decimal cosines and sines: its J_s (or J_b) and
+    T_sb, short exact decimals (a pose as printed), and the Jacobian the function must return on them."""
+    def build(rng: Generator) -> tuple[dict[str, Any], Any]:
+        S, _, th, T = planar_exact_state(rng)
+        J_s = np.round(space_jac(S, th), 10)
+        J_b = np.round(adj(inv_T(T)) @ J_s, 10)
+        return ({"J": J_s, "T_sb": T}, J_b) if direction == "space_to_body" else ({"J": J_b, "T_sb": T}, J_s)
+    return worked_example("my_change_frame(J, T_sb)", build)
+
+
 register_code("ch04_ex3", "Code: change the frame of a Jacobian", [
     CodeVariant("Write `my_change_frame(J, T_sb)` that takes the space Jacobian $J_s$ ($6\\times n$) and $T_{sb}$ "
                 "($4\\times4$), numpy arrays, and returns the body Jacobian $J_b$. Do not call "
                 "`jacobians.space_to_body`. Set `answer = my_change_frame`.",
                 ref_space_to_body, chain_case(_s2b_case), "my_change_frame", "body Jacobian",
-                {"direction": "space_to_body"}),
+                {"direction": "space_to_body"}, example=_change_example("space_to_body")),
     CodeVariant("Write `my_change_frame(J, T_sb)` that takes the body Jacobian $J_b$ ($6\\times n$) and $T_{sb}$ "
                 "($4\\times4$), numpy arrays, and returns the space Jacobian $J_s$. Do not call "
                 "`jacobians.body_to_space`. Set `answer = my_change_frame`.",
                 ref_body_to_space, chain_case(_b2s_case), "my_change_frame", "space Jacobian",
-                {"direction": "body_to_space"}),
+                {"direction": "body_to_space"}, example=_change_example("body_to_space")),
 ])
 
 
@@ -189,6 +200,20 @@ def _ch04_ex4(rng: Generator) -> Exercise:
     hint = {"body": "Both halves are in the tool frame {b}: check the linear rows 4-6 with V_b = J_b θ̇.",
             "space": "The linear rows 4-6 are the velocity of the body point at the origin of {s}: v_s = ṗ - ω × p.",
             "geometric": "The linear rows 4-6 are ṗ, the velocity of the tool point in {s}."}[asked]
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin; ω = (0, 0, Σθ̇). Geometric: ṗ = J_v θ̇. Space: the joint points q_i, v_s = Σ (q_iy, −q_ix) θ̇_i.
+        Body: ṗ = J_v θ̇ rotated into the tool frame, v_b = R_sbᵀ ṗ."""
+        trig = planar_trig(r, th)
+        w = np.array([0.0, 0.0, float(np.sum(dth))])
+        if asked == "space":
+            Q = planar_points(r, ls, trig)[:3]
+            return np.concatenate([w, r(np.array([Q[:, 1] @ dth, -(Q[:, 0] @ dth), 0.0]))])
+        p_dot = np.asarray(r(planar_jv(r, ls, th, trig) @ dth))
+        if asked == "geometric":
+            return np.concatenate([w, p_dot, [0.0]])
+        c, s = trig[0][-1], trig[1][-1]
+        return np.concatenate([w, r(np.array([c * p_dot[0] + s * p_dot[1], -s * p_dot[0] + c * p_dot[1]])), [0.0]])
+
     return numeric_exercise(f"The {name} from joint rates", st,
                             {"lengths": ls, "theta_deg": th_deg, "theta_dot": dth, "asked": asked}, ref, mistakes,
-                            what=name, hint=hint)
+                            what=name, hint=hint, method=method)

@@ -11,12 +11,12 @@ from numpy.typing import ArrayLike
 
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
-from ._hand import planar_jv
+from ._hand import planar_jv, rotate_halves
 from ._kinematics import DEG, Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import LAYOUT_TEXT, layout_cases, planar_pose, spatial_5r_pose
+from ._variants import LAYOUT_TEXT, layout_cases, planar_example, planar_pose, spatial_5r_pose, worked_example
 
 
 def _geo_catalogue(ref: Array, J_b: Array, R: Array, J_s: Array | None = None) -> list[Mistake]:
@@ -70,8 +70,12 @@ def _ch05_ex2(rng: Generator) -> Exercise:
     mistakes = _geo_catalogue(ref, J_b, T[:3, :3], J_s)
     st = (f"A 5-joint arm has body Jacobian \n\n$$J_b = {bmatrix(J_b, 6)}$$\n\nat a pose with "
           f"\n\n$$T_{{sb}} = {bmatrix(T, 6)}.$$\n\nGive its geometric Jacobian $J$ (rows $(\\omega_s, \\dot p)$).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """R_sb times each half of J_b, written down."""
+        return rotate_halves(r, T[:3, :3], J_b)
+
     return numeric_exercise("From the body to the geometric Jacobian", st, {"J_b": J_b, "T_sb": T}, ref, mistakes,
-                            what="geometric Jacobian")
+                            what="geometric Jacobian", method=method)
 
 
 @register("ch05_ex3")
@@ -99,8 +103,12 @@ def _ch05_ex3(rng: Generator) -> Exercise:
     st = (f"Joint $i$ of an arm is revolute; at the current configuration its axis points along "
           f"$z_i = {vec(z)}$ and passes through $p_i = {vec(p_i)}$, and the tool point is at $p = {vec(p)}$. "
           "Give column $i$ of the geometric Jacobian (6-vector, angular part first).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """the lever arm p − p_i, then z_i × (p − p_i), written down."""
+        return np.concatenate([z, r(np.cross(z, r(p - p_i)))])
+
     return numeric_exercise("A geometric-Jacobian column from the axis", st, {"z_i": z, "p_i": p_i, "p": p}, ref,
-                            mistakes, what="column")
+                            mistakes, what="column", method=method)
 
 
 def ref_geometric_jacobian(S: ArrayLike, M: ArrayLike, theta: ArrayLike) -> Array:
@@ -122,6 +130,16 @@ def _geo_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list
     return (S, M, th), ref, mistakes
 
 
+def _geo_example(layout: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """A planar 2R arm of the seed (lengths, angles in tenths of a radian) and the geometric Jacobian the
+    function must return: varies the statement, so that two IDs rarely share one."""
+    def build(rng: Generator) -> tuple[dict[str, Any], Any]:
+        _, th, B, M = planar_example(rng)
+        S = np.round(adj(M) @ B, 12)
+        return {"S": S if layout == "columns" else S.T, "M": M, "theta": th}, ref_geometric_jacobian(S, M, th)
+    return worked_example("my_geometric_jacobian(S, M, theta)", build)
+
+
 register_code("ch05_ex4", "Code: the geometric Jacobian", [
     CodeVariant(f"Write `my_geometric_jacobian(S, M, theta)` returning the geometric Jacobian $J(\\theta)$ (rows "
                 f"$(\\omega_s, \\dot p)$, $6\\times n$) of the chain whose space screw axes `S` are "
@@ -130,5 +148,6 @@ register_code("ch05_ex4", "Code: the geometric Jacobian", [
                 "or the conversion functions. Set `answer = my_geometric_jacobian`.",
                 ref_geometric_jacobian if layout == "columns"
                 else (lambda S, M, th: ref_geometric_jacobian(np.asarray(S).T, M, th)),
-                case, "my_geometric_jacobian", "geometric Jacobian", {"layout": layout})
+                case, "my_geometric_jacobian", "geometric Jacobian", {"layout": layout},
+                example=_geo_example(layout))
     for layout, case in layout_cases(_geo_case).items()])

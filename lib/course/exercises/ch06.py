@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 import sympy as sp
 from numpy.random import Generator
@@ -10,18 +13,19 @@ from jacobians import lie, robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, scalar_exercise, symbolic_exercise
 from jacobians.grading.exercise import Interval
 
+from ._hand import euler_zyx_or_zyz
 from ._kinematics import DEG, Array, blockdiag, body_jac, fk
 from ._latex import bmatrix, degs, num
 from ._mistakes import degrees_mistake, swap_mistake
 from ._registry import register
-from ._symbolic_2r import describe_arm, distinct_sym, draw_arm, sym_arm, sym_names, theta_mixups
+from ._symbolic_2r import describe_arm, distinct_sym, draw_arm, draw_shape, sym_arm, sym_names, theta_mixups
 from ._variants import angles_deg
 
 
 @register("ch06_ex1")
 def _ch06_ex1(rng: Generator) -> Exercise:
-    arm = draw_arm(rng)
-    syms, S, M, J_s, J_b, B, T = sym_arm(arm)
+    arm, shape = draw_arm(rng), draw_shape(rng)
+    syms, S, M, J_s, J_b, B, T = sym_arm(arm, shape)
     th1, th2, l1, l2 = syms
     x, y = T[0, 3], T[1, 3]
     ref = sp.Matrix([[sp.diff(x, th1), sp.diff(x, th2)], [sp.diff(y, th1), sp.diff(y, th2)]])
@@ -35,17 +39,17 @@ def _ch06_ex1(rng: Generator) -> Exercise:
                 "a term of its own."),
         *theta_mixups(ref),
     ]
-    if arm == ("R+", "R+"):
+    if arm == ("R+", "R+") and shape == "x":
         only_l2 = sp.Matrix([[-l1 * sp.sin(th1), -l2 * sp.sin(th2)], [l1 * sp.cos(th1), l2 * sp.cos(th2)]])
         mistakes.append(Mistake("relative_angle", only_l2,
                                 "Link 2's direction is θ1 + θ2 (absolute angle), not θ2 alone."))
-    st = (describe_arm(arm) + f" Its tool point is at $x = {sp.latex(x)}$, $y = {sp.latex(y)}$. Give the "
+    st = (describe_arm(arm, shape) + f" Its tool point is at $x = {sp.latex(x)}$, $y = {sp.latex(y)}$. Give the "
           "$2\\times2$ analytic (position) Jacobian $\\partial(x, y)/\\partial(\\theta_1, \\theta_2)$ as a sympy "
           "Matrix in `theta1, theta2, l1, l2` (real symbols).")
     ex = symbolic_exercise("Position Jacobian of a planar two-joint arm", st, sym_names(syms), ref,
                            distinct_sym(ref, mistakes), what="position Jacobian")
     ex.hint = "Entry (i, j) is the derivative of coordinate i (x, then y) with respect to θj: check that entry."
-    ex.given.update({"joints": arm, "x": x, "y": y})
+    ex.given.update({"joints": arm, "shape": shape, "x": x, "y": y})
     return ex
 
 
@@ -78,6 +82,7 @@ def _ch06_ex2(rng: Generator) -> Exercise:
           f"$\\omega_s = B(\\phi)\\dot\\phi$ at $\\phi = {degs(phi_deg)}$.")
     return numeric_exercise("From Euler-angle rates to angular velocity", st,
                             {"representation": rep, "phi_deg": phi_deg}, ref, mistakes, what="matrix B",
+                            method=lambda r: euler_zyx_or_zyz(r, phi, rep),
                             hint="Column j of B is the axis of the j-th rotation, carried by the rotations before it.")
 
 
@@ -112,8 +117,13 @@ def _ch06_ex3(rng: Generator) -> Exercise:
           f"{num(arm.home[0, 3])} along $x$) is at $\\theta = {degs(th_deg)}$, so the ZYX angles of its tool are "
           f"$\\phi = \\theta$. Its geometric Jacobian is \n\n$$J = {bmatrix(J, 4)}.$$\n\nGive the analytic Jacobian "
           "$J_a$ for $x = (\\phi, p)$ (rows: the three ZYX angle rates, then $\\dot p$).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """B(φ) from rounded cosines and sines, its inverse written down, then B⁻¹ times the angular rows."""
+        Bi = np.asarray(r(np.linalg.inv(euler_zyx_or_zyz(r, phi_deg * DEG, "zyx"))))
+        return np.vstack([r(Bi @ J[:3]), J[3:]])
+
     return numeric_exercise("The analytic Jacobian of a ZYX wrist", st, {"J": J, "phi_deg": phi_deg}, ref, mistakes,
-                            what="analytic Jacobian")
+                            what="analytic Jacobian", method=method)
 
 
 #: Euler-angle sequences: Tait-Bryan (three different axes) lock at φ2 = ±π/2, proper Euler (first axis =
@@ -185,5 +195,10 @@ def _ch06_ex5(rng: Generator) -> Exercise:
     st = (f"The ZYX wrist is at $\\theta = {degs(th_deg)}$ (away from gimbal lock). Give the $3\\times3$ angular "
           "block of its analytic Jacobian for ZYX angles, $\\partial\\dot\\phi/\\partial\\dot\\theta$. "
           "Think before you compute.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """Thought, not computed: the wrist's angular block of J has columns z, R_z(θ1) y, R_z(θ1)R_y(θ2) x, which
+        is B(φ) at φ = θ, so B⁻¹ times it is the identity; nothing is rounded on the way."""
+        return np.eye(3)
+
     return numeric_exercise("Angular block of the wrist's analytic Jacobian", st, {"theta_deg": th_deg}, ref, mistakes,
-                            what="matrix")
+                            what="matrix", method=method)

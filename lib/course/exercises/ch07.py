@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -10,10 +11,11 @@ from numpy.typing import ArrayLike
 
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
+from ._hand import rotate_halves
 from ._kinematics import Array, adj, blockdiag, fk, inv_T, space_jac, swap
 from ._latex import bmatrix
 from ._registry import CodeVariant, register, register_code
-from ._variants import chain_case, spatial_5r_pose
+from ._variants import chain_case, planar_exact_state, spatial_5r_pose, worked_example
 
 V_FIRST = ("Rows 1-3 of your answer should be the angular part and rows 4-6 the linear part: Modern Robotics "
            "puts ω first, unlike Siciliano, Corke and Pinocchio.")
@@ -40,8 +42,12 @@ def _ch07_ex1(rng: Generator) -> Exercise:
     st = (f"Siciliano's book writes the geometric Jacobian with rows $(\\dot p, \\omega)$. For a 5-joint arm it "
           f"is \n\n$$J_{{Sic}} = {bmatrix(J_sic, 6)}.$$\n\nGive the same Jacobian in this course's convention, rows "
           "$(\\omega_s, \\dot p)$.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """the rows reordered: nothing is computed, nothing rounded."""
+        return swap(J_sic)
+
     return numeric_exercise("Siciliano's geometric Jacobian", st, {"J_sic": J_sic}, ref, mistakes,
-                            what="geometric Jacobian")
+                            what="geometric Jacobian", method=method)
 
 
 @register("ch07_ex2")
@@ -65,8 +71,14 @@ def _ch07_ex2(rng: Generator) -> Exercise:
           f"with rows $(v, \\omega)$: \n\n$$J_0 = {bmatrix(J0, 6)}.$$\n\n"
           f"The tool pose is \n\n$$T_{{sb}} = {bmatrix(T, 6)}.$$\n\n"
           "Give the space Jacobian $J_s$ of Modern Robotics.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """the rows reordered, p × ω of each column written down, added to ṗ."""
+        out = Jg.copy()
+        out[3:] = Jg[3:] + np.asarray(r(np.cross(p, Jg[:3].T).T))
+        return out
+
     return numeric_exercise("From Corke's jacob0 to the space Jacobian", st, {"J0": J0, "T_sb": T}, ref, mistakes,
-                            what="space Jacobian")
+                            what="space Jacobian", method=method)
 
 
 @register("ch07_ex3")
@@ -90,8 +102,12 @@ def _ch07_ex3(rng: Generator) -> Exercise:
     st = (f"Pinocchio's `getFrameJacobian(..., LOCAL_WORLD_ALIGNED)` gives, for the tool frame of a 5-joint arm, "
           f"rows $(v, \\omega)$ of the frame's origin in world axes: \n\n$$J_{{LWA}} = {bmatrix(J_lwa, 6)},$$\n\nat "
           f"\n\n$$T_{{sb}} = {bmatrix(T, 6)}.$$\n\nGive the body Jacobian $J_b$ of Modern Robotics.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """the rows reordered, then R_sbᵀ times each half, written down."""
+        return rotate_halves(r, R.T, Jg)
+
     return numeric_exercise("From Pinocchio's LOCAL_WORLD_ALIGNED to the body Jacobian", st,
-                            {"J_lwa": J_lwa, "T_sb": T}, ref, mistakes, what="body Jacobian")
+                            {"J_lwa": J_lwa, "T_sb": T}, ref, mistakes, what="body Jacobian", method=method)
 
 
 def ref_from_pinocchio_world(J_world: ArrayLike) -> Array:
@@ -127,15 +143,26 @@ def _local_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, li
     return (J_local,), J_b, mistakes
 
 
+def _pinocchio_example(frame: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """Pinocchio's WORLD (or LOCAL) Jacobian of a planar 2R arm of the seed at angles with exact one-decimal
+    cosines and sines (short exact decimals), and the Modern Robotics Jacobian the function must return."""
+    def build(rng: Generator) -> tuple[dict[str, Any], Any]:
+        S, _, th, T = planar_exact_state(rng)
+        J_s = np.round(space_jac(S, th), 10)
+        J = J_s if frame == "WORLD" else np.round(adj(inv_T(T)) @ J_s, 10)
+        return {"J": swap(J)}, J
+    return worked_example("from_pinocchio(J)", build)
+
+
 register_code("ch07_ex4", "Code: from Pinocchio's conventions", [
     CodeVariant("Pinocchio's `WORLD` Jacobian is the space Jacobian with rows $(v, \\omega)$. Write "
                 "`from_pinocchio(J)` that takes it and returns the Modern Robotics space Jacobian $J_s$ "
                 "($6\\times n$, numpy). Set `answer = from_pinocchio`.",
                 ref_from_pinocchio_world, chain_case(_world_case), "from_pinocchio", "space Jacobian",
-                {"pinocchio_frame": "WORLD"}),
+                {"pinocchio_frame": "WORLD"}, example=_pinocchio_example("WORLD")),
     CodeVariant("Pinocchio's `LOCAL` Jacobian of the tool frame is the body Jacobian with rows $(v, \\omega)$. "
                 "Write `from_pinocchio(J)` that takes it and returns the Modern Robotics body Jacobian $J_b$ "
                 "($6\\times n$, numpy). Set `answer = from_pinocchio`.",
                 ref_from_pinocchio_world, chain_case(_local_case), "from_pinocchio", "body Jacobian",
-                {"pinocchio_frame": "LOCAL"}),
+                {"pinocchio_frame": "LOCAL"}, example=_pinocchio_example("LOCAL")),
 ])

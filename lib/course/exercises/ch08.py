@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -10,11 +11,12 @@ from numpy.typing import ArrayLike
 
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
+from ._hand import planar_points, planar_trig
 from ._kinematics import DEG, Array, adj, blockdiag, expS, fk, inv_T, planar_chain, space_jac
 from ._latex import degs, vec
 from ._mistakes import degrees_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import LAYOUT_TEXT, angles_deg, layout_cases, lengths, planar_pose
+from ._variants import LAYOUT_TEXT, angles_deg, layout_cases, lengths, planar_example, planar_pose, worked_example
 
 
 def link_space_jacobians(S: ArrayLike, theta: ArrayLike) -> Array:
@@ -52,8 +54,17 @@ def _ch08_ex1(rng: Generator) -> Exercise:
     ]
     st = (f"A planar 3R arm with $L = {vec(ls, 1)}$ is at $\\theta = {degs(th_deg)}$. Give the space Jacobian "
           "$J_{s,2}$ of link 2 ($6\\times3$: the map from all three joint rates to the spatial twist of link 2).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin, the joint points q_1, q_2; columns 1, 2 are (z, −z × q_i) = (0, 0, 1, q_iy, −q_ix, 0), column 3
+        zero."""
+        Q = planar_points(r, ls, planar_trig(r, th))
+        out = np.zeros((6, 3))
+        out[2, :2] = 1.0
+        out[3, :2], out[4, :2] = Q[:2, 1], -Q[:2, 0]
+        return out
+
     return numeric_exercise("The space Jacobian of a middle link", st, {"lengths": ls, "theta_deg": th_deg}, ref,
-                            mistakes, what="link Jacobian")
+                            mistakes, what="link Jacobian", method=method)
 
 
 def centre_jacobian(ls: Array, th: Array, link: int = 1) -> Array:
@@ -91,8 +102,20 @@ def _ch08_ex2(rng: Generator) -> Exercise:
     st = (f"A planar 3R arm with $L = {vec(ls, 1)}$ (uniform links, centre of mass at the middle of each link) is "
           f"at $\\theta = {degs(th_deg)}$. Give the geometric Jacobian of the centre of link 2: the $6\\times3$ "
           "matrix with rows $(\\omega_2, \\dot p_{c2})$, both in {s}.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos, sin, the joint points q_1, q_2, the centre c = q_2 + (L_2/2)(cos, sin) of link 2; columns 1, 2 are
+        (z, z × (c − q_i)) = (0, 0, 1, −(c − q_i)_y, (c − q_i)_x, 0), column 3 zero."""
+        trig = planar_trig(r, th)
+        Q = planar_points(r, ls, trig)
+        c = np.asarray(r(Q[1] + ls[1] / 2 * np.array([trig[0][1], trig[1][1]])))
+        d = np.asarray(r(c - Q[:2]))
+        out = np.zeros((6, 3))
+        out[2, :2] = 1.0
+        out[3, :2], out[4, :2] = -d[:, 1], d[:, 0]
+        return out
+
     return numeric_exercise("The geometric Jacobian of a link's centre of mass", st,
-                            {"lengths": ls, "theta_deg": th_deg}, ref, mistakes, what="link Jacobian")
+                            {"lengths": ls, "theta_deg": th_deg}, ref, mistakes, what="link Jacobian", method=method)
 
 
 def mass_matrix_2r(ls: Array, ms: Array, th: Array, frame: str = "body", with_rotation: bool = True) -> Array:
@@ -131,8 +154,18 @@ def _ch08_ex3(rng: Generator) -> Exercise:
           f"perpendicular to the rod). At $\\theta = {degs(th_deg)}$ give the mass matrix "
           "$M(\\theta) = \\sum_i J_{b,i}^T G_i J_{b,i}$ ($2\\times2$, kg m$^2$), with $J_{b,i}$ the body "
           "Jacobian of the frame at the centre of link $i$ and $G_i$ its spatial inertia.")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """cos θ2 written down; then M11 = m1 L1²/3 + m2 (L1² + L2²/3 + L1 L2 cos θ2), M12 = m2 (L2²/3 +
+        L1 L2 cos θ2 / 2), M22 = m2 L2²/3 (the sum of JᵀGJ over the two rods, worked out)."""
+        c2 = float(r(np.cos(th[1])))
+        (l1, l2), (m1, m2) = ls, ms
+        m12 = m2 * (l2 ** 2 / 3 + l1 * l2 * c2 / 2)
+        return np.array([[m1 * l1 ** 2 / 3 + m2 * (l1 ** 2 + l2 ** 2 / 3 + l1 * l2 * c2), m12],
+                         [m12, m2 * l2 ** 2 / 3]])
+
     return numeric_exercise("The mass matrix from link Jacobians", st,
-                            {"lengths": ls, "masses": ms, "theta_deg": th_deg}, ref, mistakes, what="mass matrix")
+                            {"lengths": ls, "masses": ms, "theta_deg": th_deg}, ref, mistakes, what="mass matrix",
+                            method=method)
 
 
 def _links_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, list[Mistake]]:
@@ -150,6 +183,16 @@ def _links_case(S: Array, M: Array, th: Array) -> tuple[tuple[Any, ...], Any, li
     return (S, th), ref, mistakes
 
 
+def _links_example(layout: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]:
+    """A planar 2R arm of the seed (lengths, angles in tenths of a radian) and the stack of link Jacobians the
+    function must return: varies the statement, so that two IDs rarely share one."""
+    def build(rng: Generator) -> tuple[dict[str, Any], Any]:
+        _, th, B, M = planar_example(rng)
+        S = np.round(adj(M) @ B, 12)
+        return {"S": S if layout == "columns" else S.T, "theta": th}, link_space_jacobians(S, th)
+    return worked_example("my_link_jacobians(S, theta)", build)
+
+
 register_code("ch08_ex4", "Code: the Jacobians of every link", [
     CodeVariant(f"Write `my_link_jacobians(S, theta)`: `S` is {LAYOUT_TEXT[layout]}, `theta` a length-$n$ array; "
                 "return an array of shape $(n, 6, n)$ whose entry `[i]` is the space Jacobian of link $i+1$ "
@@ -157,5 +200,6 @@ register_code("ch08_ex4", "Code: the Jacobians of every link", [
                 "(which wants the axes as columns), but not `link_jacobians`. Set `answer = my_link_jacobians`.",
                 link_space_jacobians if layout == "columns"
                 else (lambda S, th: link_space_jacobians(np.asarray(S).T, th)),
-                case, "my_link_jacobians", "stack of link Jacobians", {"layout": layout})
+                case, "my_link_jacobians", "stack of link Jacobians", {"layout": layout},
+                example=_links_example(layout))
     for layout, case in layout_cases(_links_case).items()])

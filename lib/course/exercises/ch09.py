@@ -42,8 +42,12 @@ def _ch09_ex1(rng: Generator) -> Exercise:
           "The tool must apply the "
           f"wrench $\\mathcal F_b = {vec(F_b)}$ (moment first, in the tool frame {{b}}). Give the joint torques "
           "$\\tau$ (3-vector).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """J_bᵀ F_b of the printed (exact) data: sums of products, nothing rounded on the way."""
+        return J_b.T @ F_b
+
     return numeric_exercise("Joint torques for a wrench", st, {"J_b": J_b, "J_s": J_s, "F_b": F_b}, ref, mistakes,
-                            what="torque vector")
+                            what="torque vector", method=method)
 
 
 def _pos_jac_planar(ls: Array, th: Array) -> Array:

@@ -8,7 +8,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.random import Generator
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from jacobians import body_jacobian, geometric_jacobian, lie, robots, space_jacobian
 from jacobians.chain import SerialChain
@@ -17,8 +17,8 @@ from jacobians.grading.feedback import verdict
 from jacobians.ik import ik
 from jacobians.velocity import dls_rates, pinv_rates
 
-from ._hand import planar_jv, planar_tip, planar_trig
-from ._kinematics import DEG, Array, adj
+from ._hand import adjoint_steps, log_se3_steps, planar_jv, planar_tip, planar_trig
+from ._kinematics import DEG, Array, adj, inv_T
 from ._latex import bmatrix, degs, num, vec
 from ._mistakes import IK_MESSAGES, degrees_mistake, ik_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
@@ -94,8 +94,14 @@ def _ch10_ex1(rng: Generator) -> Exercise:
           f"\n\n$$T_{{sd}} = {bmatrix(T_sd, 6)}$$\n\n(positions in metres). Give the {asked} error twist "
           f"${sym} = (\\omega, v)$: the twist, expressed in {frame}, that carries {{b}} onto {{d}} in unit time "
           "(angular part first, ω in rad, v in m).")
+    def method(r: Callable[[Any], Any]) -> Any:
+        """T_bd = T_sb⁻¹ T_sd written down, its log step by step (θ, sin θ, ω̂, the coefficient of [ω̂]², v); for
+        the space twist, [Ad_T_sb] with its block [p]R written down, times V_b."""
+        V = log_se3_steps(r, np.asarray(r(inv_T(T_sb) @ T_sd)))
+        return V if asked == "body" else adjoint_steps(r, T_sb) @ V
+
     return numeric_exercise(f"The {asked} error twist", st, {"T_sb": T_sb, "T_sd": T_sd, "asked": asked}, ref,
-                            mistakes, what="error twist")
+                            mistakes, what="error twist", method=method)
 
 
 # ----------------------------------------------------------------- exercise 2: one Newton step, planar 2R
@@ -218,6 +224,96 @@ def ref_ik_space(Slist: ArrayLike, M: ArrayLike, T_sd: ArrayLike, theta0: ArrayL
               max_iterations=max_iterations).theta
 
 
+class _Kin:
+    """Plain-numpy kinematics of one chain for the search of test cases (no input checks: about ten times faster
+    than the library's checked functions): the pose, the space and body Jacobians, the error twist, the Newton
+    step. Same formulas as the library; the reference itself is always the library's ``ik``, and a case is kept
+    only if its results come out the same from a start moved by 1e-11, far more than the two differ by."""
+
+    def __init__(self, chain: SerialChain) -> None:
+        self.S = np.asarray(chain.screw_axes, dtype=float)
+        self.M = np.asarray(chain.home, dtype=float)
+        w, self.v = self.S[:3].T, self.S[3:].T
+        n = w.shape[0]
+        self.K = np.zeros((n, 3, 3))   # [ω_i] of every joint, and its square
+        self.K[:, 0, 1], self.K[:, 0, 2], self.K[:, 1, 2] = -w[:, 2], w[:, 1], -w[:, 0]
+        self.K[:, 1, 0], self.K[:, 2, 0], self.K[:, 2, 1] = w[:, 2], -w[:, 1], w[:, 0]
+        self.K2 = self.K @ self.K
+        self.revolute = np.any(w != 0.0, axis=1)
+
+    @staticmethod
+    def _skew(w: Array) -> Array:
+        return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+
+    @staticmethod
+    def _adj(T: Array) -> Array:
+        R, p = T[:3, :3], T[:3, 3]
+        A = np.zeros((6, 6))
+        A[:3, :3] = A[3:, 3:] = R
+        A[3:, :3] = _Kin._skew(p) @ R
+        return A
+
+    def _exps(self, th: Array) -> Array:
+        """e^[S_i]θ_i of every joint (n, 4, 4), all at once: Rodrigues for a revolute joint, a shift for a
+        prismatic one."""
+        s, c = np.sin(th)[:, None, None], np.cos(th)[:, None, None]
+        t = th[:, None, None]
+        rev = self.revolute[:, None, None]
+        R = np.eye(3) + s * self.K + (1.0 - c) * self.K2
+        G = t * np.eye(3) + (1.0 - c) * self.K + (t - s) * self.K2
+        E = np.zeros((len(th), 4, 4))
+        E[:, :3, :3] = np.where(rev, R, np.eye(3))
+        E[:, :3, 3] = np.where(rev[:, :, 0], (G @ self.v[:, :, None])[:, :, 0], self.v * th[:, None])
+        E[:, 3, 3] = 1.0
+        return E
+
+    def pose_jacobian(self, th: Array, frame: str) -> tuple[Array, Array]:
+        """T_sb(θ) and the Jacobian of ``frame`` (J_b = [Ad_T⁻¹] J_s)."""
+        E = self._exps(np.asarray(th, dtype=float))
+        n = self.S.shape[1]
+        J = np.empty((6, n))
+        T = np.eye(4)
+        for i in range(n):
+            J[:, i] = self._adj(T) @ self.S[:, i]
+            T = T @ E[i]
+        T = T @ self.M
+        return T, (J if frame == "space" else self._adj(_Kin.inverse(T)) @ J)
+
+    @staticmethod
+    def inverse(T: Array) -> Array:
+        out = np.eye(4)
+        out[:3, :3] = T[:3, :3].T
+        out[:3, 3] = -T[:3, :3].T @ T[:3, 3]
+        return out
+
+    @staticmethod
+    def log(T: Array) -> Array:
+        """log(T)^∨ as the library computes it (its branch near θ = π is the library's own)."""
+        R, p = T[:3, :3], T[:3, 3]
+        c = 0.5 * (np.trace(R) - 1.0)
+        if c < -0.99:
+            return np.asarray(lie.log_se3(T), dtype=float)
+        a = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+        s = float(np.linalg.norm(a))
+        theta = float(np.arctan2(s, c))
+        small = theta < 1e-4  # the library's switch to the series
+        w = a * (1.0 + theta * theta / 6.0 if small else theta / s)
+        half = 0.5 * theta
+        gamma = (1.0 / 12.0 + theta * theta / 720.0 if small
+                 else (1.0 - half * np.cos(half) / np.sin(half)) / (theta * theta))
+        K = _Kin._skew(w)
+        return np.concatenate([w, (np.eye(3) - 0.5 * K + gamma * (K @ K)) @ p])
+
+    @staticmethod
+    def pinv_step(J: Array, V: Array) -> Array:
+        """J⁺V from the SVD, singular values below 1e-15 σ_max dropped (the library's ``pinv_rates``)."""
+        U, sv, Vt = np.linalg.svd(J, full_matrices=False)
+        keep = sv > 1e-15 * sv[0]
+        gain = np.where(keep, 1.0 / np.where(keep, sv, 1.0), 0.0)
+        out: Array = Vt.T @ (gain * (U.T @ V))
+        return out
+
+
 def newton_loop(chain: SerialChain, T_sd: Array, theta0: Array, eps_omega: float, eps_v: float,
                 max_iterations: int, *, jacobian: str = "body", error: str = "body", step: str = "pinv",
                 stop: str = "both") -> tuple[Array, list[tuple[float, float]]]:
@@ -228,11 +324,12 @@ def newton_loop(chain: SerialChain, T_sd: Array, theta0: Array, eps_omega: float
     Returns θ and the (‖ω‖, ‖v‖) of every iterate."""
     th = np.array(theta0, dtype=float)
     seen: list[tuple[float, float]] = []
-    log_T_sd = lie.log_se3(T_sd)
+    kin = _Kin(chain)
+    log_T_sd = kin.log(T_sd)
     for k in range(max_iterations + 1):
-        T = chain.fk(th)
-        V_b = lie.log_se3(lie.inverse_transform(T) @ T_sd)
-        V_s = adj(T) @ V_b
+        T, J = kin.pose_jacobian(th, jacobian)
+        V_b = kin.log(kin.inverse(T) @ T_sd)
+        V_s = kin._adj(T) @ V_b
         own = V_b if jacobian == "body" else V_s
         V = {"body": V_b, "space": V_s, "reversed": -own, "log_T_sd": log_T_sd}[error]
         w, v = float(np.linalg.norm(V[:3])), float(np.linalg.norm(V[3:]))
@@ -242,8 +339,7 @@ def newton_loop(chain: SerialChain, T_sd: Array, theta0: Array, eps_omega: float
                 "norm_omega": nrm <= eps_omega, "norm_v": nrm <= eps_v, "never": False}[stop]
         if done or k == max_iterations:
             break
-        J = body_jacobian(chain, th) if jacobian == "body" else space_jacobian(chain, th)
-        th = th + (pinv_rates(J, V, rcond=1e-15) if step == "pinv" else J.T @ V)
+        th = th + (kin.pinv_step(J, V) if step == "pinv" else J.T @ V)
         if not np.all(np.isfinite(th)) or np.abs(th).max() > 1e6:
             break
     return th, seen
@@ -276,7 +372,39 @@ class _Trail(NamedTuple):
     norms: list[tuple[float, float, float]]
 
 
+def _trails(chain: SerialChain, T_sd: Array, starts: Array, frame: str, steps: int = MR_STEPS) -> list[_Trail]:
+    """The trails from several starts (rows of ``starts``)."""
+    return [_trail(chain, T_sd, th0, frame, steps) for th0 in starts]
+
+
 def _trail(chain: SerialChain, T_sd: Array, th0: Array, frame: str, steps: int = MR_STEPS) -> _Trail:
+    """The iterates of the right loop from ``th0`` with no stop test, for ``steps`` steps (:class:`_Kin`); the trail
+    ends before an iterate that is not finite or beyond 1e3 rad (the loop blew up)."""
+    kin = _Kin(chain)
+    th = np.array(th0, dtype=float)
+    thetas: list[Array] = []
+    norms: list[tuple[float, float, float]] = []
+    for k in range(steps + 1):
+        T, J = kin.pose_jacobian(th, frame)
+        V = kin.log(kin.inverse(T) @ T_sd)
+        if frame == "space":
+            V = kin._adj(T) @ V
+        thetas.append(th)
+        norms.append((float(np.linalg.norm(V[:3])), float(np.linalg.norm(V[3:])), float(np.linalg.norm(V))))
+        if k == steps:
+            break
+        if norms[-1][2] < 1e-13:  # converged to rounding: the steps after it move θ by about 1e-16, far below the
+            thetas += [th] * (steps - k)   # checker's tolerance (1e-8 + 1e-6 |θ|); they are not computed
+            norms += [norms[-1]] * (steps - k)
+            break
+        th = th + kin.pinv_step(J, V)
+        if not np.all(np.isfinite(th)) or np.abs(th).max() > 1e3:
+            break
+    return _Trail(thetas, norms)
+
+
+def trail_by_library(chain: SerialChain, T_sd: Array, th0: Array, frame: str, steps: int = MR_STEPS) -> _Trail:
+    """The trail of :func:`_trail` computed with the library's checked functions (the tests compare the two)."""
     th = np.array(th0, dtype=float)
     thetas: list[Array] = []
     norms: list[tuple[float, float, float]] = []
@@ -327,7 +455,7 @@ def _mistakes_of(chain: SerialChain, T_sd: Array, th0: Array, eps_w: float, eps_
     Two mistakes may give the same result on one test: both are kept, and the checker names one only where the
     tests tell them apart. None if the reference itself is not reproducible (the test is then drawn again)."""
     nudge = 1e-11 * rng.normal(size=len(th0))
-    trail, moved = _trail(chain, T_sd, th0, frame), _trail(chain, T_sd, th0 + nudge, frame)
+    trail, moved = _trails(chain, T_sd, np.stack([th0, th0 + nudge]), frame)
     again = _stop_at(moved, "both", eps_w, eps_v, k_max)
     if again is None or not _close(again, ref, 0.01):
         return None
@@ -410,9 +538,21 @@ def _pick_eps(trail: _Trail, rng: Generator) -> tuple[float, float, int, bool] |
     norms = np.array(trail.norms)
     found: list[tuple[float, float, int]] = []
     apart: list[tuple[float, float, int]] = []  # second best: each wrong test stops elsewhere than the right one
-    for eps_w in _EPS_GRID:
-        for eps_v in _EPS_GRID:
-            stops = [_first(trail, rule, eps_w, eps_v) for rule in ("both", "either", "norm_omega", "norm_v")]
+    grid = np.array(_EPS_GRID)
+    w_ok = norms[None, :, 0] <= grid[:, None]     # (tolerance, iterate)
+    v_ok = norms[None, :, 1] <= grid[:, None]
+    n_ok = norms[None, :, 2] <= grid[:, None]
+
+    def first(passes: NDArray[np.bool_]) -> NDArray[np.int64]:
+        """The first iterate at which a test passes, along the last axis (-1 if none)."""
+        return np.where(passes.any(axis=-1), passes.argmax(axis=-1), -1)
+
+    both = first(w_ok[:, None, :] & v_ok[None, :, :])      # (eps_w, eps_v)
+    either = first(w_ok[:, None, :] | v_ok[None, :, :])
+    on_w, on_v = first(n_ok), first(n_ok)                  # ‖V‖ ≤ eps_omega, ‖V‖ ≤ eps_v
+    for a, eps_w in enumerate(_EPS_GRID):
+        for c, eps_v in enumerate(_EPS_GRID):
+            stops = [int(both[a, c]), int(either[a, c]), int(on_w[a]), int(on_v[c])]
             if -1 in stops or stops[0] in stops[1:] or not 1 <= stops[0] <= 9:
                 continue
             thetas = [trail.thetas[k] for k in stops]  # the θ each test stops at must differ, not only the step
@@ -470,11 +610,17 @@ def _short_budget_case(rng: Generator, frame: str) -> Case:
         attempt += 1
         S, M, T_sd, th0, _, _, eps_w, eps_v = _draw_start(rng, frame, eps=(1e-3, 1e-3))
         th0 = th0 + rng.uniform(0.1, 0.3) * rng.normal(size=len(th0)) / np.sqrt(len(th0))
-        stops = [k for k, (w, v, _) in enumerate(_trail(SerialChain(S, M), T_sd, th0, frame, 10).norms)
-                 if w <= eps_w and v <= eps_v]
+        trail = _trail(SerialChain(S, M), T_sd, th0, frame)
+        stops = [k for k, (w, v, _) in enumerate(trail.norms[:11]) if w <= eps_w and v <= eps_v]
         needed = stops[0] if stops else 0
         if needed < 2 or (needed < 3 and fallback is not None):
             continue
+        if needed >= 3 and fallback is not None:  # the four θ on the trail first (cheap), the whole case after
+            if len(trail.thetas) <= MR_STEPS:
+                continue
+            four = [trail.thetas[k] for k in (needed - 3, needed - 1, needed, MR_STEPS)]
+            if any(_close(four[a], four[b], 3.0) for a in range(4) for b in range(a + 1, 4)):
+                continue
         case = _reference_case(S, M, T_sd, th0, eps_w, eps_v, needed - 2 if needed >= 3 else 1, frame, rng,
                                "too few steps to converge")
         if case is None:
@@ -537,9 +683,44 @@ def _case_maker(frame: str) -> Callable[[Generator], Case]:
     return make_case
 
 
+def unseparated(cases: list[Case]) -> set[tuple[str, str]]:
+    """The pairs (A, B) of catalogued mistakes such that B gives A's result on every test where A's result is wrong:
+    a loop making mistake A is then told "either A or B" (the checker names a mistake only where the tests tell it
+    from the others). Results are compared to the tolerance code is graded to (:func:`_close`)."""
+    names = {m.name for c in cases for m in c.mistakes}
+    out: set[tuple[str, str]] = set()
+    for a in names:
+        fits = set(names) - {a}
+        for c in cases:
+            values = {m.name: np.asarray(m.value, dtype=float) for m in c.mistakes}
+            if a in values:
+                fits = {b for b in fits if b in values and _close(values[a], values[b])}
+        out |= {(a, b) for b in fits}
+    return out
+
+
+def _separates(case: Case, pairs: set[tuple[str, str]]) -> set[tuple[str, str]]:
+    """The pairs (A, B) of ``pairs`` that ``case`` tells apart: A's result is wrong there and B's differs from it."""
+    values = {m.name: np.asarray(m.value, dtype=float) for m in case.mistakes}
+    return {(a, b) for a, b in pairs if a in values and not (b in values and _close(values[a], values[b]))}
+
+
 def _more_cases(frame: str) -> Callable[[Generator], list[Case]]:
+    """The edge cases after the random ones: tolerances that separate the stop tests, an unreachable target, too
+    few steps; then, while two catalogued mistakes give the same result on every test where one of them is wrong
+    (a loop making it would be told "either"), a further case of too few steps or of the stop tests that tells
+    them apart (up to 8 draws)."""
     def more(rng: Generator) -> list[Case]:
-        return [_stop_rules_case(rng, frame), _unreachable_case(rng, frame), _short_budget_case(rng, frame)]
+        cases = [_stop_rules_case(rng, frame), _unreachable_case(rng, frame), _short_budget_case(rng, frame)]
+        pairs = unseparated(cases)
+        for k in range(8):
+            if not pairs:
+                break
+            extra = (_short_budget_case if k % 2 == 0 else _stop_rules_case)(rng, frame)
+            if _separates(extra, pairs):
+                cases.append(extra)
+                pairs = unseparated(cases)
+        return cases
     return more
 
 
@@ -579,13 +760,17 @@ def _ik_example(frame: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]
     return example
 
 
+#: Random reachable targets with enough steps, before the edge cases (the cap, an unreachable target, the stop
+#: tests): three chains of 2 to 6 joints try the loop itself; the edge cases try what the statement singles out.
+IK_RANDOM_CASES = 3
+
 NO_CAP = Mistake("no_iteration_cap", None, IK_MESSAGES["no_iteration_cap"])
 
 register_code("ch10_ex4", "Code: the Newton–Raphson loop", [
     CodeVariant(_loop_statement("body"), ref_ik_body, _case_maker("body"), "my_ik", "joint values",
                 {"frame": "body"}, more_cases=_more_cases("body"), on_timeout=NO_CAP, adapt=_adapter("body"),
-                example=_ik_example("body")),
+                example=_ik_example("body"), n_cases=IK_RANDOM_CASES),
     CodeVariant(_loop_statement("space"), ref_ik_space, _case_maker("space"), "my_ik", "joint values",
                 {"frame": "space"}, more_cases=_more_cases("space"), on_timeout=NO_CAP, adapt=_adapter("space"),
-                example=_ik_example("space")),
+                example=_ik_example("space"), n_cases=IK_RANDOM_CASES),
 ])
