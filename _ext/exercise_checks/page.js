@@ -66,10 +66,13 @@ const currentId = () => String(load(ID_KEY, "") || "");
 const isPractice = (/** @type {string} */ id) => PLACEHOLDERS.has(normaliseId(id));
 
 function typeset(/** @type {HTMLElement} */ el) {
-  const mj = /** @type {any} */ (window).MathJax;
-  if (mj && mj.startup && mj.startup.promise && mj.typesetPromise) {
-    mj.startup.promise.then(() => mj.typesetPromise([el])).catch(() => {});
-  }
+  // The book's own formulas are typeset at build time and the page loads no MathJax; a statement drawn here
+  // for the reader's ID is not, so MathJax is loaded (once, from _static, by _theme/math_menu.js) to typeset it.
+  const w = /** @type {any} */ (window);
+  const ready = w.MathJax && w.MathJax.typesetPromise ? Promise.resolve()
+    : w.courseMath && w.courseMath.load ? w.courseMath.load() : null;
+  if (!ready) return;
+  ready.then(() => w.MathJax.startup.promise).then(() => w.MathJax.typesetPromise([el])).catch(() => {});
 }
 
 function el(/** @type {string} */ tag, /** @type {Record<string, string>} */ attrs = {}, /** @type {string} */ text = "") {

@@ -109,6 +109,10 @@ def test_the_page_shows_the_variant_of_the_id(browser_context, book_url, page):
                 assert html == statement_html(exercises.load(eid, seed=sid).statement)
                 shown[(sid, eid)] = html
         assert any(shown[("s2400001", e)] != shown[("s2400002", e)] for e in ids), "two IDs, two statements"
+        # the statement drawn for the ID has its math typeset (no TeX delimiters left in what the reader sees)
+        tab.wait_for_function("""() => [...document.querySelectorAll('.course-answer-statement')]
+            .every(s => !s.textContent.includes('\\\\(') && !s.textContent.includes('\\\\['))""", timeout=60_000)
+        assert tab.locator(".course-answer-statement mjx-container").count() > 0
         assert tab.evaluate(f"Object.values(window.__courseBanks).every(b => b.variants.length === {BANK_SIZE})")
         # the page's hash of an ID is the library's, for IDs with spaces, capitals, accents, other scripts
         tricky = ["s1", " S1 ", "a\tb\n c", "Ünïcode-ß", "ǅemal", "İstanbul", "学生-17", "x" * 200, "0", "12345"]
