@@ -18,6 +18,12 @@ import shutil
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
+
+# No per-example deadline: a property test checks values, and how long an example takes depends on the machine and
+# its load (speed is measured by make bench, never asserted in a test).
+settings.register_profile("course", deadline=None)
+settings.load_profile("course")
 
 TESTS = Path(__file__).resolve().parent
 #: folders whose every test needs Chromium or the built site

@@ -38,6 +38,8 @@ _PLAIN_FENCE = re.compile(r"^(?P<f>`{3,}(?!`)|~{3,}(?!~))(?!\s*\{)[^\n]*\n.*?^(?
 _CODE_SPAN = re.compile(r"(`+)(?!`)[^`\n][^\n]*?(?<!`)\1(?!`)")  # on one line: a fence is not a span
 _DISPLAY_MATH = re.compile(
     r"\$\$|^\s*[`:]{3,}\s*\{math\}|^\s*\\begin\{(?:equation|align|alignat|gather|multline|flalign|eqnarray)\*?\}", re.M)
+# A displayed question ("V_b = {?} θ̇", the slide that opens a chapter) states nothing to verify.
+_QUESTION = re.compile(r"\$\$[^$]*\{\?\}[^$]*\$\$", re.S)
 _THEOREM = re.compile(r"\{prf:(theorem|proposition|lemma|corollary)\}")
 _BOX = re.compile(r"\bverified\.box\(")
 _RECORD = re.compile(r"\bverified\(")
@@ -108,7 +110,7 @@ def needs_box(section: Section) -> list[str]:
     """Why the section must end with a 'Verified by code' box (empty: it need not)."""
     prose = _prose(section.markdown)
     why = []
-    if _DISPLAY_MATH.search(prose):
+    if _DISPLAY_MATH.search(_QUESTION.sub('', prose)):
         why.append("display math")
     why += [f"a prf {kind}" for kind in dict.fromkeys(_THEOREM.findall(prose))]
     return why

@@ -14,7 +14,7 @@ class _Page:
     def __init__(self, log: list[str]) -> None:
         self.log, self.url = log, ""
 
-    def goto(self, url: str, wait_until: str) -> None:
+    def goto(self, url: str, wait_until: str, timeout: float | None = None) -> None:
         self.url = url
 
     def wait_for_selector(self, *args, **kwargs) -> None:

@@ -32,10 +32,16 @@ def test_book_vendors_mathjax_only_and_clears_stale_trees(tmp_path):
     assert "mathjax/es5/startup.js" in files and "mathjax/es5/tex-mml-chtml.js" not in files
     components = tuple(f"mathjax/es5/{c}.js" for c in vendor.MATHJAX_COMPONENTS)
     assert all(f in components or f.startswith(("mathjax/es5/output/chtml/fonts/woff-v2/",
-                                                "mathjax/es5/input/tex/extensions/")) for f in files), files
-    # what a page with math downloads at first: the components (the extensions load on demand)
-    assert sum((dest / f).stat().st_size for f in components) < 800_000
-    assert sum((dest / f).stat().st_size for f in files) < 2_500_000
+                                                "mathjax/es5/input/tex/extensions/", "mathjax/es5/sre/mathmaps/"))
+               for f in files), files
+    assert {f for f in files if f.startswith("mathjax/es5/sre/")} == {
+        "mathjax/es5/sre/mathmaps/base.json", "mathjax/es5/sre/mathmaps/en.json"}  # English speech rules only
+    # what a deck with math downloads at first (a book page downloads none of it: its math is typeset at build
+    # time; the menu, explorer and speech rules load when a reader asks for them)
+    first = [f"mathjax/es5/{c}.js" for c in ("startup", "core", "input/tex-base", "output/chtml",
+                                             "output/chtml/fonts/tex", "a11y/assistive-mml")]
+    assert set(first) <= set(components) and sum((dest / f).stat().st_size for f in first) < 800_000
+    assert sum((dest / f).stat().st_size for f in files) < 3_500_000
     # the old trees went, and the fresh MathJax is in the built site at once (no Sphinx build needed)
     site = _tree(static)
     assert "mathjax/es5/old.js" not in site and not any(f.startswith("html-manager/") for f in site)
@@ -66,9 +72,16 @@ def test_the_books_mathjax_loader_names_only_vendored_components():
             files.append(f"{comp}.js")
     for f in files:
         assert (root / f).is_file(), f
-    # the loader fetches core and the CommonHTML font itself (dependencies of tex-base and chtml)
-    assert set(vendor.MATHJAX_COMPONENTS) == {"startup", "core", "output/chtml/fonts/tex"} | {
-        c for c in load if not c.startswith("[tex]/")}
+    # the decks' loader (_config.yml) and the book's on-demand loader (_theme/math_menu.js) together ask for
+    # every vendored component; the loader fetches core and the CommonHTML font itself (dependencies of tex-base
+    # and chtml), and the explorer's semantic enrichment its speech engine and MathML input
+    import re
+    menu_js = (vendor.ROOT / "_theme" / "math_menu.js").read_text(encoding="utf-8")
+    on_demand = re.findall(r'"((?:input|output|ui|a11y)/[\w-]+)"', menu_js)
+    assert "ui/menu" in on_demand and "a11y/explorer" in on_demand
+    assert set(vendor.MATHJAX_COMPONENTS) == {"startup", "core", "output/chtml/fonts/tex", "a11y/semantic-enrich",
+                                              "a11y/sre", "input/mml"} | {
+        c for c in [*load, *on_demand] if not c.startswith("[tex]/")}
     packages = cfg["tex"]["packages"]["[+]"]
     assert sorted(packages) == sorted(c[6:] for c in load if c.startswith("[tex]/"))
     assert "configmacros" in packages, "the macros (Ad, ad) need the configmacros package"
