@@ -112,8 +112,10 @@ test-notebooks: setup
 
 # the built site and the decks in Chromium: tests/browser, and the tests of tests/slides that open a deck (the
 # others run in test-lib), in one run on both cores (a module stays whole in one worker, with its browser)
+# (two runs: the decks' tests start their own Playwright, and one pytest process can hold only one)
 test-browser: setup browser
-	$(BIN)/pytest tests/browser tests/slides -m browser -q -n 2 --dist loadfile
+	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadfile
+	$(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadfile
 
 # the deck tests alone (part of test-browser)
 test-slides: setup browser

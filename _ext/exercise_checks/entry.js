@@ -3,9 +3,9 @@
 // boxes once every deferred script (the banks) has run, and exposes its functions for the browser tests.
 import { decide } from "./decide.js";
 import { parseAnswer } from "./parse.js";
-import { checkText, fnv1a32, mountAll, normaliseId, variantIndex } from "./page.js";
+import { checkText, fnv1a32, mountAll, normaliseId, typesetDone, variantIndex } from "./page.js";
 
-/** @type {any} */ (window).courseExercises = { checkText, decide, parseAnswer, fnv1a32, normaliseId, variantIndex };
+/** @type {any} */ (window).courseExercises = { checkText, decide, parseAnswer, fnv1a32, normaliseId, typesetDone, variantIndex };
 
 // A deferred script runs before the deferred bank scripts after it: mount on DOMContentLoaded (after every
 // deferred script), or at once if the document is already complete.

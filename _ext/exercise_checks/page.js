@@ -72,7 +72,15 @@ function typeset(/** @type {HTMLElement} */ el) {
   const ready = w.MathJax && w.MathJax.typesetPromise ? Promise.resolve()
     : w.courseMath && w.courseMath.load ? w.courseMath.load() : null;
   if (!ready) return;
-  ready.then(() => w.MathJax.startup.promise).then(() => w.MathJax.typesetPromise([el])).catch(() => {});
+  pending.push(ready.then(() => w.MathJax.startup.promise).then(() => w.MathJax.typesetPromise([el])).catch(() => {}));
+}
+
+/** @type {Promise<unknown>[]} */
+const pending = [];
+
+/** Resolves when every statement drawn so far has been typeset (for the browser tests). */
+export function typesetDone() {
+  return Promise.all(pending);
 }
 
 function el(/** @type {string} */ tag, /** @type {Record<string, string>} */ attrs = {}, /** @type {string} */ text = "") {

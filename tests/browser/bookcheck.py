@@ -623,6 +623,13 @@ def check_page(context, base: str, root: Path, path: str, shots: Path | None = N
             page.evaluate("() => MathJax.startup.promise.then(() => true)")
         except Exception as exc:
             report.add("math", f"MathJax did not finish typesetting: {exc}")
+    # An exercise page draws each statement for the reader's ID and typesets it with MathJax loaded then
+    # (_ext/exercise_checks/page.js): the page is judged once that is done.
+    if page.evaluate("() => !!(window.courseExercises && window.courseExercises.typesetDone)"):
+        try:
+            page.evaluate("() => window.courseExercises.typesetDone().then(() => true)")
+        except Exception as exc:
+            report.add("math", f"the exercise statements were not typeset: {exc}")
     try:
         page.wait_for_load_state("networkidle", timeout=10_000)
     except Exception:
