@@ -69,9 +69,11 @@ function typeset(/** @type {HTMLElement} */ el) {
   // The book's own formulas are typeset at build time and the page loads no MathJax; a statement drawn here
   // for the reader's ID is not, so MathJax is loaded (once, from _static, by _theme/math_menu.js) to typeset it.
   const w = /** @type {any} */ (window);
-  const ready = w.MathJax && w.MathJax.typesetPromise ? Promise.resolve()
-    : w.courseMath && w.courseMath.load ? w.courseMath.load() : null;
-  if (!ready) return;
+  const loader = () => (w.MathJax && w.MathJax.typesetPromise ? Promise.resolve()
+    : w.courseMath && w.courseMath.load ? w.courseMath.load() : Promise.reject(new Error("no MathJax loader")));
+  // (the loader, _theme/math_menu.js, is a deferred script too: it may run after the boxes are drawn)
+  const ready = document.readyState === "complete" ? loader()
+    : new Promise((resolve) => window.addEventListener("load", resolve, { once: true })).then(loader);
   pending.push(ready.then(() => w.MathJax.startup.promise).then(() => w.MathJax.typesetPromise([el])).catch(() => {}));
 }
 
