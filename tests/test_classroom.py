@@ -75,10 +75,11 @@ def graded(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[Row], d
                          "except OSError:\n    pass\n"
                          f"open({str(root / 'gradebook.csv')!r}, 'w').write('forged')")
     write(outside, root / "outside.ipynb")
-    # a student who replaces the checker by one that always says correct, then gives wrong answers
+    # a student who replaces the checker by one that always says correct, then gives wrong answers: every
+    # exercise's check (the method that course.exercises.check calls) is made to accept anything
     cheat = submission(CHAPTER, _id(7), "wrong")
-    cheat = _with_cell(cheat, 1, "from jacobians.grading import Feedback\nfrom course.exercises import CATALOGUE\n"
-                                 "CATALOGUE.check = lambda i, a, seed=None: Feedback(True, 'fine', 'correct')")
+    cheat = _with_cell(cheat, 1, "from jacobians.grading import Exercise, Feedback\n"
+                                 "Exercise.check = lambda self, a: Feedback(True, 'fine', 'correct')")
     write(cheat, root / "cheat.ipynb")
     before = {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in root.rglob("*.ipynb")}
     rows = grade_class(root, workers=2, limits=Limits(cell_timeout=CELL, notebook_timeout=200))
