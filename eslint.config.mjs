@@ -1,22 +1,12 @@
-// ESLint for the course's own JavaScript: the live views (browser ES modules) and their Node tests.
+// ESLint for the course's own JavaScript: the live views and the exercise pages' checker (browser ES
+// modules; the checker is bundled by esbuild for the book), and their Node tests.
 import js from "@eslint/js";
 import globals from "globals";
 
 export default [
   js.configs.recommended,
   {
-    files: ["lib/jacobians/widgets/static/live/**/*.js"],
-    languageOptions: { ecmaVersion: 2022, sourceType: "module", globals: { ...globals.browser } },
-    rules: {
-      "no-unused-vars": ["error", { argsIgnorePattern: "^_" }],
-      eqeqeq: ["error", "always", { null: "ignore" }],
-      "prefer-const": "error",
-      "no-var": "error",
-    },
-  },
-  {
-    // the exercise pages' checker (_ext/exercise_checks, bundled by esbuild for the book)
-    files: ["_ext/exercise_checks/**/*.js"],
+    files: ["lib/jacobians/widgets/static/live/**/*.js", "_ext/exercise_checks/**/*.js"],
     languageOptions: { ecmaVersion: 2022, sourceType: "module", globals: { ...globals.browser } },
     rules: {
       "no-unused-vars": ["error", { argsIgnorePattern: "^_" }],
