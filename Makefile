@@ -17,10 +17,11 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
 
-.PHONY: help setup book test test-site lint test-lib test-js test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
+.PHONY: help setup book site test test-site lint test-lib test-js test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
 help:
 	@echo "make book       build the book into _build/html"
+	@echo "make site       the book, with a .gz and a .br copy of each text file for a static host (nginx, Netlify)"
 	@echo "make test       run every test (static checks, library, notebooks, book build, browser, decks)"
 	@echo "make lab        JupyterLab on the chapters, live widgets"
 	@echo "make slides     reveal.js decks, their PDFs and handouts into _build/html/slides (after make book)"
@@ -68,8 +69,16 @@ book: vendor browser
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
 	$(PY) -m tools.build_slides
-	node tools/precompress.cjs _build/html
+	@$(REFRESH_COMPRESSED)
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
+
+# The .gz/.br copies of the site's text files (tools/precompress.cjs, brotli at quality 11: minutes of CPU) are
+# for hosts that serve them as they are (nginx gzip_static/brotli_static, Netlify, Cloudflare); a reader of the
+# built book, GitHub Pages and the tests need none. `make site` writes them; after that, `make book` and
+# `make slides` bring them up to date (only the files they rewrote), so no copy is ever older than its original.
+REFRESH_COMPRESSED = if [ -f _build/html/index.html.gz ]; then node tools/precompress.cjs _build/html; fi
+site: book
+	node tools/precompress.cjs _build/html
 
 # ------------------------------------------------------------------ tests
 # make test runs two chains side by side (-j2: one job each on the 2 cores): the book, then the tests that
@@ -181,7 +190,7 @@ exercises: setup
 
 slides: vendor browser
 	$(PY) -m tools.build_slides
-	node tools/precompress.cjs _build/html
+	@$(REFRESH_COMPRESSED)
 
 # the decks' PDFs (a page a slide) and handouts (with the speaker notes), with Debian's Chromium, into
 # _build/html/slides/pdf (make book and make slides print them too)
