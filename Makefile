@@ -17,7 +17,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
 
-.PHONY: help setup book site test test-site lint test-lib test-js test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
+.PHONY: help setup book site test test-site lint test-lib test-js test-live test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -87,12 +87,13 @@ site: book
 # other chain fills the second core. Each stage's output is printed whole when it ends (--output-sync); a
 # failing stage fails the run.
 test: setup browser sandbox
-	$(MAKE) -j2 --output-sync=target test-site lint test-lib test-js test-install
+	$(MAKE) -j2 --output-sync=target test-site lint test-lib test-js test-live test-install
 
-# the book, the browser tests on it, the targets after it (in this order: the last rewrites the site)
+# the book, the browser tests on it (without the pages' screenshots, which are for a person: `make test-browser`
+# takes them), the targets after it (in this order: the last rewrites the site)
 test-site: setup
 	$(MAKE) book
-	$(MAKE) test-browser
+	BOOK_SHOTS=0 $(MAKE) test-browser
 	$(MAKE) test-targets
 
 lint: setup
@@ -122,9 +123,21 @@ test-notebooks: setup
 # the built site and the decks in Chromium: tests/browser, and the tests of tests/slides that open a deck (the
 # others run in test-lib), in one run on both cores (a module stays whole in one worker, with its browser)
 # (two runs: the decks' tests start their own Playwright, and one pytest process can hold only one)
+# (the browser tests that need no built book are test-live's)
 test-browser: setup browser
-	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadfile
+	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadfile $(addprefix --ignore=,$(BOOKLESS_BROWSER))
 	$(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadfile
+
+# The browser tests that need no built book: the live views on the test harness pages (numbers against the
+# library, keyboard, contrast in both modes) and in a real JupyterLab. In make test they run on the chain without
+# the book, while the book builds. BOOK_HTML points at no book, so a test of these that comes to need the built
+# site fails with "The built book is missing" instead of reading a half-built one; their screenshots and page
+# summaries go to their own folder (test-browser's are left alone).
+BOOKLESS_BROWSER := tests/browser/test_live_kinematics.py tests/browser/test_live_story.py \
+  tests/browser/test_live_theme.py tests/browser/test_live_lab.py
+test-live: setup browser
+	BOOK_HTML=_build/no-book-for-test-live BOOK_ARTIFACTS=_build/test-artifacts/live \
+	  $(BIN)/pytest $(BOOKLESS_BROWSER) -m browser -q -p no:xdist -p no:cacheprovider
 
 # the deck tests alone (part of test-browser)
 test-slides: setup browser
