@@ -17,10 +17,11 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
 
-.PHONY: help setup book test test-site lint test-lib test-js test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
+.PHONY: help setup book site test test-site lint test-lib test-js test-live test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
 help:
 	@echo "make book       build the book into _build/html"
+	@echo "make site       the book, with a .gz and a .br copy of each text file for a static host (nginx, Netlify)"
 	@echo "make test       run every test (static checks, library, notebooks, book build, browser, decks)"
 	@echo "make lab        JupyterLab on the chapters, live widgets"
 	@echo "make slides     reveal.js decks, their PDFs and handouts into _build/html/slides (after make book)"
@@ -68,8 +69,16 @@ book: vendor browser
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
 	$(PY) -m tools.build_slides
-	node tools/precompress.cjs _build/html
+	@$(REFRESH_COMPRESSED)
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
+
+# The .gz/.br copies of the site's text files (tools/precompress.cjs, brotli at quality 11: minutes of CPU) are
+# for hosts that serve them as they are (nginx gzip_static/brotli_static, Netlify, Cloudflare); a reader of the
+# built book, GitHub Pages and the tests need none. `make site` writes them; after that, `make book` and
+# `make slides` bring them up to date (only the files they rewrote), so no copy is ever older than its original.
+REFRESH_COMPRESSED = if [ -f _build/html/index.html.gz ]; then node tools/precompress.cjs _build/html; fi
+site: book
+	node tools/precompress.cjs _build/html
 
 # ------------------------------------------------------------------ tests
 # make test runs two chains side by side (-j2: one job each on the 2 cores): the book, then the tests that
@@ -78,12 +87,13 @@ book: vendor browser
 # other chain fills the second core. Each stage's output is printed whole when it ends (--output-sync); a
 # failing stage fails the run.
 test: setup browser sandbox
-	$(MAKE) -j2 --output-sync=target test-site lint test-lib test-js test-install
+	$(MAKE) -j2 --output-sync=target test-site lint test-lib test-js test-live test-install
 
-# the book, the browser tests on it, the targets after it (in this order: the last rewrites the site)
+# the book, the browser tests on it (without the pages' screenshots, which are for a person: `make test-browser`
+# takes them), the targets after it (in this order: the last rewrites the site)
 test-site: setup
 	$(MAKE) book
-	$(MAKE) test-browser
+	BOOK_SHOTS=0 $(MAKE) test-browser
 	$(MAKE) test-targets
 
 lint: setup
@@ -113,9 +123,21 @@ test-notebooks: setup
 # the built site and the decks in Chromium: tests/browser, and the tests of tests/slides that open a deck (the
 # others run in test-lib), in one run on both cores (a module stays whole in one worker, with its browser)
 # (two runs: the decks' tests start their own Playwright, and one pytest process can hold only one)
+# (the browser tests that need no built book are test-live's)
 test-browser: setup browser
-	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadfile
+	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadfile $(addprefix --ignore=,$(BOOKLESS_BROWSER))
 	$(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadfile
+
+# The browser tests that need no built book: the live views on the test harness pages (numbers against the
+# library, keyboard, contrast in both modes) and in a real JupyterLab. In make test they run on the chain without
+# the book, while the book builds. BOOK_HTML points at no book, so a test of these that comes to need the built
+# site fails with "The built book is missing" instead of reading a half-built one; their screenshots and page
+# summaries go to their own folder (test-browser's are left alone).
+BOOKLESS_BROWSER := tests/browser/test_live_kinematics.py tests/browser/test_live_story.py \
+  tests/browser/test_live_theme.py tests/browser/test_live_lab.py
+test-live: setup browser
+	BOOK_HTML=_build/no-book-for-test-live BOOK_ARTIFACTS=_build/test-artifacts/live \
+	  $(BIN)/pytest $(BOOKLESS_BROWSER) -m browser -q -p no:xdist -p no:cacheprovider
 
 # the deck tests alone (part of test-browser)
 test-slides: setup browser
@@ -181,7 +203,7 @@ exercises: setup
 
 slides: vendor browser
 	$(PY) -m tools.build_slides
-	node tools/precompress.cjs _build/html
+	@$(REFRESH_COMPRESSED)
 
 # the decks' PDFs (a page a slide) and handouts (with the speaker notes), with Debian's Chromium, into
 # _build/html/slides/pdf (make book and make slides print them too)

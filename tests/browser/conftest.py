@@ -4,6 +4,8 @@ Environment:
   BOOK_HTML   the built HTML folder (default: _build/html of the repository)
   BOOK_TOC    the table of contents naming the pages to test (default: _toc.yml)
   BOOK_ARTIFACTS  where screenshots go (default: _build/test-artifacts/browser)
+  BOOK_SHOTS  0: no full-page screenshots of the pages (make test: they are for a person to look at, no test
+              reads them, and they take about a third of each page's time); anything else or unset: take them
 """
 
 from __future__ import annotations
@@ -28,10 +30,11 @@ def _env_path(name: str, default: Path) -> Path:
 BOOK_HTML = _env_path("BOOK_HTML", ROOT / "_build" / "html")
 BOOK_TOC = _env_path("BOOK_TOC", ROOT / "_toc.yml")
 ARTIFACTS = _env_path("BOOK_ARTIFACTS", ROOT / "_build" / "test-artifacts" / "browser")
+SHOTS = os.environ.get("BOOK_SHOTS", "1") != "0"
 
 
 def pytest_report_header(config):
-    return [f"browser tests: book {BOOK_HTML}, toc {BOOK_TOC}, screenshots {ARTIFACTS}"]
+    return [f"browser tests: book {BOOK_HTML}, toc {BOOK_TOC}, screenshots {ARTIFACTS if SHOTS else 'none (BOOK_SHOTS=0)'}"]
 
 
 # ---------------------------------------------------------------- on both cores (make test-browser: -n 2)
@@ -82,7 +85,8 @@ def page_reports(book_html, book_url, browser_context, artifacts):
 
     def get(path: str) -> bookcheck.PageReport:
         if path not in cache:
-            cache[path] = bookcheck.check_page(browser_context, book_url, book_html, path, shots=artifacts)
+            cache[path] = bookcheck.check_page(browser_context, book_url, book_html, path,
+                                               shots=artifacts if SHOTS else None)
         return cache[path]
 
     yield get
@@ -118,4 +122,5 @@ def pytest_terminal_summary(terminalreporter):
             terminalreporter.write_line("Notes (not failures):")
             for line in notes:
                 terminalreporter.write_line(line)
-        terminalreporter.write_line(f"Screenshots: {ARTIFACTS}")
+        if SHOTS:
+            terminalreporter.write_line(f"Screenshots: {ARTIFACTS}")

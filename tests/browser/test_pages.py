@@ -3,7 +3,7 @@
 Each page is loaded once (see ``page_reports`` in conftest.py); each test
 below asserts one aspect of what was seen, so a failure names the page and
 the aspect. The run prints each page's weight; screenshots at 1280 px and
-390 px wide land in _build/test-artifacts/browser/.
+390 px wide land in _build/test-artifacts/browser/ (not in make test: BOOK_SHOTS=0).
 """
 
 from __future__ import annotations
