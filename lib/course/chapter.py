@@ -39,6 +39,7 @@ import jacobians as jac
 from jacobians import lie
 from jacobians.plotting import COLUMN_COLORS, PALETTE, animation_html, set_style, smallest_text_px
 from jacobians.symbolic import is_zero, is_zero_matrix
+from jacobians.testing import fd_tol
 from jacobians.verified import Verified
 
 __all__ = [
@@ -56,6 +57,7 @@ __all__ = [
     "is_zero_matrix",
     "fd_space_jacobian",
     "fd_body_jacobian",
+    "fd_jacobian_tol",
     "d_dt",
     "random_chain",
     "legend_clear",
@@ -353,6 +355,18 @@ def fd_body_jacobian(chain: jac.SerialChain, theta: ArrayLike) -> NDArray[np.flo
     r"""Body Jacobian by finite differences of the forward kinematics, columns
     :math:`T^{-1}\partial T/\partial\theta_i`."""
     return _fd_twists(chain, theta, "body")
+
+
+def fd_jacobian_tol(chain: jac.SerialChain, theta: ArrayLike) -> float:
+    """Bound on each entry's error of :func:`fd_space_jacobian` and :func:`fd_body_jacobian`.
+
+    ``jacobians.testing.fd_tol`` bounds each entry of ``dT/dθ_i`` (truncation
+    and rounding of the central difference). A twist entry of
+    ``dT/dθ_i T⁻¹`` (or ``T⁻¹ dT/dθ_i``) is a sum over a column (row) of T⁻¹,
+    so its error is at most ``sum |T⁻¹|`` times that bound.
+    """
+    th = np.asarray(theta, dtype=float)
+    return fd_tol(chain.fk, th) * float(np.abs(lie.inverse_transform(chain.fk(th))).sum())
 
 
 def d_dt(f: Callable[[float], ArrayLike], t0: float = 0.0) -> NDArray[np.float64]:
