@@ -59,6 +59,7 @@ __all__ = [
     "fd_body_jacobian",
     "fd_jacobian_tol",
     "d_dt",
+    "d_dt_tol",
     "random_chain",
     "legend_clear",
 ]
@@ -372,6 +373,11 @@ def fd_jacobian_tol(chain: jac.SerialChain, theta: ArrayLike) -> float:
 def d_dt(f: Callable[[float], ArrayLike], t0: float = 0.0) -> NDArray[np.float64]:
     """Central finite difference of ``f`` (a function of one number returning an array) at ``t0``."""
     return jac.numerical_jacobian(lambda t: np.asarray(f(t[0])), np.array([t0]))[..., 0]
+
+
+def d_dt_tol(f: Callable[[float], ArrayLike], t0: float = 0.0) -> float:
+    """Bound on each entry's error of :func:`d_dt` (``jacobians.testing.fd_tol`` of the same difference)."""
+    return fd_tol(lambda t: np.asarray(f(t[0])), np.array([t0]))
 
 
 def random_chain(n: int, rng: np.random.Generator) -> jac.SerialChain:
