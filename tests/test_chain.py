@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 import jacobians as jac
 from jacobians import lie
-from jacobians.testing import random_chain, random_theta
+from jacobians.testing import close, random_chain, random_theta
 
 seeds = st.integers(0, 2**32 - 1)
 
@@ -126,10 +126,10 @@ def test_roboticstoolbox_dh_agrees():
     robot = rtb.DHRobot([rtb.RevoluteDH(a=a[i], alpha=alpha[i], d=d[i]) for i in range(3)])
     chain = jac.SerialChain.from_dh(a, alpha, d)
     for q in np.random.default_rng(2).uniform(-3, 3, (5, 3)):
-        assert np.allclose(chain.fk(q), robot.fkine(q).A, atol=1e-10)
+        assert close(chain.fk(q), robot.fkine(q).A)   # well-conditioned: 1e-12 relative (jacobians.testing.close)
         J0 = robot.jacob0(q)  # rows (v, omega) of the tool origin in the base frame
         J = jac.geometric_jacobian(chain, q)
-        assert np.allclose(J0[:3], J[3:], atol=1e-10) and np.allclose(J0[3:], J[:3], atol=1e-10)
+        assert close(J0[:3], J[3:]) and close(J0[3:], J[:3])
 
 
 
@@ -154,8 +154,8 @@ def test_from_dh_prismatic_keeps_its_constant_theta_as_in_the_toolbox():
                          rtb.PrismaticDH(theta=2, qlim=[-9, 9]), rtb.RevoluteDH()])
     plain = jac.SerialChain.from_dh([0, 2, 0, 0], [0] * 4, [0] * 4, joint_types="PRPR")
     for q in np.random.default_rng(7).uniform(-2, 2, (20, 4)):
-        # entries of T are at most |a| + |q| sums of order 10, so 1e-12 is many times double rounding
-        assert np.allclose(chain.fk(q), robot.fkine(q).A, atol=1e-12)
+        # entries of T are at most |a| + |q| sums of order 10: 1e-12 relative to that scale (close)
+        assert close(chain.fk(q), robot.fkine(q).A)
     # the old reading (constant angles dropped) is a different chain: the check above fails on it
     q = np.array([0.5, 0.3, -0.7, 0.2])
     assert np.abs(plain.fk(q) - robot.fkine(q).A).max() > 0.5
@@ -166,7 +166,6 @@ def test_from_dh_matches_the_toolbox_on_random_tables(modified):
     """Random DH tables with random joint types (both conventions): forward kinematics and Jacobians agree."""
     rtb = pytest.importorskip("roboticstoolbox")
     rng = np.random.default_rng(11 + modified)
-    worst = 0.0
     for _ in range(40):
         n = int(rng.integers(1, 8))
         types = "".join(rng.choice(["R", "P"], n, p=[0.6, 0.4]))
@@ -180,12 +179,10 @@ def test_from_dh_matches_the_toolbox_on_random_tables(modified):
             T = robot.fkine(q).A
             J0 = robot.jacob0(q)  # rows (v, omega) of the tool origin, in the base frame
             J = jac.geometric_jacobian(chain, q)
-            # n <= 7 links of length <= 2.6 (|a| + |d| + |q|): entries <= 20, products of 2n matrices,
-            # so rounding stays below 1e-13; 1e-11 leaves room and still catches any wrong constant
-            assert np.allclose(chain.fk(q), T, atol=1e-11)
-            assert np.allclose(J[3:], J0[:3], atol=1e-11) and np.allclose(J[:3], J0[3:], atol=1e-11)
-            worst = max(worst, np.abs(chain.fk(q) - T).max(), np.abs(np.vstack([J[3:], J[:3]]) - J0).max())
-    assert worst < 1e-11
+            # n <= 7 links of length <= 2.6 (|a| + |d| + |q|): entries <= 20, products of 2n matrices:
+            # well-conditioned, 1e-12 relative to max(1, max |entry|) (jacobians.testing.close)
+            assert close(chain.fk(q), T)
+            assert close(J[3:], J0[:3]) and close(J[:3], J0[3:])
 
 
 # ---------------------------------------------------------------- bad input

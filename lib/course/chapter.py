@@ -39,6 +39,7 @@ import jacobians as jac
 from jacobians import lie
 from jacobians.plotting import COLUMN_COLORS, PALETTE, animation_html, set_style, smallest_text_px
 from jacobians.symbolic import is_zero, is_zero_matrix
+from jacobians.testing import fd_tol
 from jacobians.verified import Verified
 
 __all__ = [
@@ -56,7 +57,9 @@ __all__ = [
     "is_zero_matrix",
     "fd_space_jacobian",
     "fd_body_jacobian",
+    "fd_jacobian_tol",
     "d_dt",
+    "d_dt_tol",
     "random_chain",
     "legend_clear",
 ]
@@ -355,9 +358,26 @@ def fd_body_jacobian(chain: jac.SerialChain, theta: ArrayLike) -> NDArray[np.flo
     return _fd_twists(chain, theta, "body")
 
 
+def fd_jacobian_tol(chain: jac.SerialChain, theta: ArrayLike) -> float:
+    """Bound on each entry's error of :func:`fd_space_jacobian` and :func:`fd_body_jacobian`.
+
+    ``jacobians.testing.fd_tol`` bounds each entry of ``dT/dθ_i`` (truncation
+    and rounding of the central difference). A twist entry of
+    ``dT/dθ_i T⁻¹`` (or ``T⁻¹ dT/dθ_i``) is a sum over a column (row) of T⁻¹,
+    so its error is at most ``sum |T⁻¹|`` times that bound.
+    """
+    th = np.asarray(theta, dtype=float)
+    return fd_tol(chain.fk, th) * float(np.abs(lie.inverse_transform(chain.fk(th))).sum())
+
+
 def d_dt(f: Callable[[float], ArrayLike], t0: float = 0.0) -> NDArray[np.float64]:
     """Central finite difference of ``f`` (a function of one number returning an array) at ``t0``."""
     return jac.numerical_jacobian(lambda t: np.asarray(f(t[0])), np.array([t0]))[..., 0]
+
+
+def d_dt_tol(f: Callable[[float], ArrayLike], t0: float = 0.0) -> float:
+    """Bound on each entry's error of :func:`d_dt` (``jacobians.testing.fd_tol`` of the same difference)."""
+    return fd_tol(lambda t: np.asarray(f(t[0])), np.array([t0]))
 
 
 def random_chain(n: int, rng: np.random.Generator) -> jac.SerialChain:

@@ -8,16 +8,18 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TypeAlias
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from ._validation import positive_int
 from .chain import SerialChain
 from .lie import _exp_se3, _exp_so3
 
-__all__ = ["random_rotation", "random_transform", "random_chain", "random_theta"]
+__all__ = ["random_rotation", "random_transform", "random_chain", "random_theta",
+           "EPS", "TOL", "close", "within", "fd_tol"]
 
 #: What the ``rng`` arguments accept: a generator, a seed, or None for a fresh one.
 RngLike: TypeAlias = "np.random.Generator | int | None"
@@ -75,3 +77,122 @@ def random_theta(chain: SerialChain, rng: RngLike = None, size: Size = ()) -> ND
     size = (size,) if isinstance(size, int) else tuple(size)
     scale: NDArray[np.float64] = np.array([np.pi if t == "R" else 1.0 for t in chain.joint_types])
     return rng.uniform(-1, 1, size=size + (chain.dof,)) * scale
+
+
+# ---------------------------------------------------------------- tolerances derived from the computation
+
+#: Unit roundoff of IEEE-754 double precision (2**-52, the gap from 1 to the next double).
+EPS: float = float(np.finfo(float).eps)
+#: Relative tolerance of a well-conditioned quantity computed two ways (see :func:`close`).
+TOL: float = 1e-12
+
+
+def close(a: ArrayLike, b: ArrayLike, tol: float = TOL, scale: float | None = None) -> bool:
+    """True if ``max |a - b| <= tol * max(1, scale)``, ``scale = max(|a|, |b|)`` unless given.
+
+    For two computations of the same well-conditioned quantity by exact
+    algebra (a product of exponentials against its closed form, an adjoint
+    against a matrix product, a symbolic formula evaluated in floats). Each
+    side is the exact value for inputs perturbed by a relative amount of a
+    few hundred units of roundoff at most: the chapters' quantities come from
+    at most ~10 matrix exponentials and products of 6×6 (or smaller)
+    matrices, and each step adds a few roundings relative to the largest
+    entry (Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed.,
+    §3.1: a length-k inner product is off by ``k EPS / (1 - k EPS)`` of
+    ``|a||b|``). With a condition number of order 1, the two sides differ by
+    a few hundred EPS (~1e-13) of their scale. ``TOL = 1e-12`` holds with a
+    margin on any IEEE-754 machine, BLAS kernel and summation order, and is
+    still ten orders of magnitude below any error of a formula.
+
+    Entries up to 1 are compared absolutely, larger ones relative to the
+    largest (``max(1, scale)``). Pass ``scale`` when the compared values are
+    small differences of large terms (a residual ``w · v`` of vectors of size
+    10 has the scale 10, not its own size); a zero ``b`` is compared this way
+    too.
+
+    >>> close(np.sin(np.pi / 6), 0.5)
+    True
+    >>> close([1.0, 2.0], [1.0, 2.0 + 1e-9])
+    False
+    """
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    diff = float(np.max(np.abs(a - b), initial=0.0))
+    if scale is None:
+        scale = max(float(np.max(np.abs(a), initial=0.0)), float(np.max(np.abs(b), initial=0.0)))
+    return bool(diff <= tol * max(1.0, float(scale)))
+
+
+def within(a: ArrayLike, b: ArrayLike, bound: float) -> bool:
+    """True if ``max |a - b| <= bound``: for a bound derived elsewhere (e.g. :func:`fd_tol`)."""
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    return bool(float(np.max(np.abs(a - b), initial=0.0)) <= float(bound))
+
+
+def fd_tol(f: Callable[[NDArray[np.float64]], ArrayLike], x: ArrayLike, h: float = 1e-6,
+           scale: float = 1.0, ops: float = 512.0) -> float:
+    """Bound on ``max |numerical_jacobian(f, x, h) - Df(x)|``: truncation plus rounding.
+
+    ``numerical_jacobian`` takes central differences ``(f(x + h e_i) - f(x - h e_i)) / 2h``.
+    Its error in each entry is at most (Taylor's theorem with remainder; the
+    second-order terms cancel)
+
+    * truncation ``h² / 6 · M3``, ``M3 = max |∂³f / ∂x_i³|`` near x;
+    * rounding of f: each value is off by at most ``δ = ops · EPS · F``,
+      ``F = max(scale, max |f|)`` on the stencil, so their difference over 2h
+      by ``δ / h``. Rounding is relative to the terms f is computed from:
+      ``scale`` (default 1, as in :func:`close`) must be their size when f is
+      a small difference of large terms (``q - R q`` near R = I is tiny, its
+      rounding is that of ``|q|``);
+    * rounding of the step: ``x ± h`` is stored to within ``EPS |x ± h| / 2``, so
+      the actual step is ``2h (1 + e)``, ``|e| <= EPS (|x| + h) / 2h``: an error
+      ``|e| · M1``, ``M1 = max |∂f/∂x_i|``; and the final subtraction and
+      division, ``2 EPS M1``;
+    * the closed form it is compared with, computed by exact algebra, is
+      accurate to ``ops · EPS · M1`` (as in :func:`close`).
+
+    ``ops = 512`` (relative accuracy of f about 1.1e-13 of its largest entry)
+    covers a product of up to ~10 matrix exponentials, their inverses and
+    4×4 or 6×6 products, as in the chapters (the model of
+    ``tests/browser/fp_bounds.py``: 32 roundings per unit of size, size 16).
+
+    The constants come from the quantity, not from an observed error: F from
+    the stencil's values, M1 from the difference quotient itself, M3 from
+    the third central difference with the wider step ``H = 0.05``,
+    ``(f(x+2H) - 2f(x+H) + 2f(x-H) - f(x-2H)) / 2H³``, taken twice (its own
+    error is ``H²/4 · M5``, under 1 % of M3 for the chapters' motions, whose
+    rates are a few rad per unit of x; the third derivative varies by
+    ``h M4`` within the stencil). f must be smooth on ``[x - 2H, x + 2H]``:
+    across a jump (an angle wrapped at ±π) M3 only becomes larger, so the
+    bound stays a bound.
+
+    >>> from jacobians.jacobian import numerical_jacobian
+    >>> x = np.array([0.3])
+    >>> bound = fd_tol(np.sin, x, ops=4)     # sin: a few roundings
+    >>> round(bound / 1e-10)                 # 4 EPS / h: 8.9e-10, the truncation 1.5e-14
+    9
+    >>> within(numerical_jacobian(np.sin, x), np.cos(x), bound)
+    True
+    """
+    x = np.asarray(x, dtype=float)
+    h = float(h)
+    H = 0.05
+
+    def val(y: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.asarray(f(y), dtype=float)
+
+    F = max(float(scale), float(np.max(np.abs(val(x)), initial=0.0)))
+    M1 = M3 = 0.0
+    for i in range(x.shape[-1]):
+        e = np.zeros_like(x)
+        e[..., i] = 1.0
+        lo, hi = val(x - h * e), val(x + h * e)
+        F = max(F, float(np.max(np.abs(lo), initial=0.0)), float(np.max(np.abs(hi), initial=0.0)))
+        M1 = max(M1, float(np.max(np.abs(hi - lo), initial=0.0)) / (2 * h))
+        d3 = (val(x + 2 * H * e) - 2 * val(x + H * e) + 2 * val(x - H * e) - val(x - 2 * H * e)) / (2 * H**3)
+        M3 = max(M3, 2.0 * float(np.max(np.abs(d3), initial=0.0)))
+    xmax = float(np.max(np.abs(x), initial=0.0))
+    truncation = h * h / 6.0 * M3
+    rounding = ops * EPS * F / h + EPS * (xmax + h) / (2 * h) * M1 + (2 + ops) * EPS * M1
+    return truncation + rounding
