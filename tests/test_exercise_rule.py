@@ -14,6 +14,8 @@ The number of (exercise, ID) pairs covered is printed by ``test_pairs_covered``.
 
 from __future__ import annotations
 
+from collections import Counter
+
 import numpy as np
 import pytest
 
@@ -43,6 +45,45 @@ def _pose_keys(given):
     return [k for k, v in given.items() if isinstance(v, np.ndarray) and v.shape == (4, 4)]
 
 
+#: The generic names of an answer in the wrong order (jacobians.grading.compare), beside the catalogued ones.
+ORDER_MISTAKES = {"wrong_order", "transposed", "column_order", "row_order", "block_order"}
+
+
+def _reorderings(ref):
+    """The answer's own values in a wrong order, each with what was done: a vector reversed, each pair of
+    neighbouring entries swapped, a twist's halves swapped; a matrix transposed, each pair of neighbouring columns
+    and of neighbouring rows swapped, the halves of 6 rows swapped; a stack of matrices in reverse order, and each
+    of its matrices reordered as a matrix is."""
+    ref = np.asarray(ref, dtype=float)
+    out = []
+    if ref.ndim == 1 and ref.size > 1:
+        out.append(("reversed", ref[::-1]))
+        out += [(f"entries {i + 1}, {i + 2} swapped", ref[_swap(ref.size, i)]) for i in range(ref.size - 1)]
+        if ref.size == 6:
+            out.append(("halves swapped", np.r_[ref[3:], ref[:3]]))
+    elif ref.ndim == 2:
+        out.append(("transposed", ref.T))
+        out += [(f"columns {j + 1}, {j + 2} swapped", ref[:, _swap(ref.shape[1], j)]) for j in range(ref.shape[1] - 1)]
+        out += [(f"rows {i + 1}, {i + 2} swapped", ref[_swap(ref.shape[0], i)]) for i in range(ref.shape[0] - 1)]
+        if ref.shape[0] == 6:
+            out.append(("row halves swapped", np.vstack([ref[3:], ref[:3]])))
+    elif ref.ndim == 3:
+        out.append(("blocks reversed", ref[::-1]))
+        for how, _ in _reorderings(ref[0]):
+            out.append((f"each block: {how}", np.stack([dict(_reorderings(b))[how] for b in ref])))
+    return out
+
+
+def _swap(n, i):
+    order = list(range(n))
+    order[i], order[i + 1] = i + 1, i
+    return order
+
+
+#: How many reorderings of each kind the tests checked (printed by test_pairs_covered).
+reordered: Counter[str] = Counter()
+
+
 @pytest.mark.parametrize("eid", NUMERIC)
 def test_numeric_exercise_accepts_right_work_and_names_every_wrong_answer(eid):
     for seed in IDS:
@@ -69,11 +110,15 @@ def test_numeric_exercise_accepts_right_work_and_names_every_wrong_answer(eid):
         for m in ex.mistakes:
             fb = ex.check(np.asarray(m.value, dtype=float))
             assert not fb.correct and fb.mistake == m.name, (seed, m.name, fb)
-        # Values in the wrong order, where the order matters.
-        if ref.ndim == 1 and ref.size > 1 and np.max(np.abs(ref - ref[::-1])) > (1 + NEAR) * ex.tol:
-            fb = ex.check(ref[::-1])
-            named = {"wrong_order"} | {m.name for m in ex.mistakes}
-            assert not fb.correct and fb.mistake in named, (seed, fb)
+        # Values in the wrong order, where the order matters: each reordering that is not the answer within the rule
+        # is named as an order mistake (or as the catalogued mistake it is, such as (v, ω) rows or ascending).
+        named = ORDER_MISTAKES | {m.name for m in ex.mistakes}
+        for how, wrong in _reorderings(ref):
+            if wrong.shape == ref.shape and np.max(np.abs(wrong - ref)) <= 2 * (1 + NEAR) * ex.tol:
+                continue  # (a reordering that changes nothing the rule sees, such as swapping two equal entries)
+            fb = ex.check(wrong)
+            assert not fb.correct and fb.mistake in named, (seed, how, fb)
+            reordered[how] += 1
         # Printed data is the data: poses are poses to the last bit, and what is printed is what is given.
         for key in _pose_keys(ex.given):
             R = ex.given[key][:3, :3]
@@ -95,6 +140,55 @@ def test_scalar_exercise_states_its_rule_and_accepts_the_reference(eid):
         assert ex.check(ex.solution()).correct
         for m in ex.mistakes:
             assert ex.check(float(m.value)).mistake == m.name, (seed, m.name)
+
+
+CODE = [e for e in ALL if exercises.load(e, seed=IDS[0]).kind == "function"]
+
+
+#: The reorderings a code answer is tried with, by the number of indices of its output.
+CODE_REORDERINGS = {1: ("reversed", "entries 1, 2 swapped"),
+                    2: ("transposed", "columns 1, 2 swapped", "rows 1, 2 swapped", "row halves swapped"),
+                    3: ("blocks reversed", "each block: transposed", "each block: rows 1, 2 swapped")}
+
+
+def _reordering_function(ref_fn, how, seen_ndim=None):
+    """A student's function that computes the right values and returns them reordered as ``how`` says (``None``:
+    unchanged; a function of the IK exercise may return (θ, success): θ is reordered); ``seen_ndim`` collects the
+    number of indices of the outputs."""
+    def reorder(out):
+        if seen_ndim is not None:
+            seen_ndim.add(out.ndim)
+        return out if how is None else dict(_reorderings(out)).get(how, out)
+
+    def fn(*args):
+        out = ref_fn(*args)
+        if isinstance(out, tuple):
+            return (reorder(np.asarray(out[0], dtype=float)), *out[1:])
+        return reorder(np.asarray(out, dtype=float))
+    return fn
+
+
+@pytest.mark.parametrize("eid", CODE)
+def test_a_code_answer_in_the_wrong_order_is_named_as_such(eid):
+    """A function that returns the right values in a wrong order (as :func:`_reorderings` makes them) is named as
+    an order mistake, or as the catalogued mistake it is, on 3 IDs (each check runs the function on several
+    tests; the numeric exercises take 50; 1 ID for the inverse kinematics loop, whose checker runs a search per
+    ID); some reordering applies to every code exercise."""
+    seen = set()
+    for seed in IK_IDS[:1] if eid == "ch10_ex4" else IDS[:3]:
+        ex = exercises.load(eid, seed=seed)
+        catalogued = {m.name for c in (ex.cases() if hasattr(ex, "cases") else []) for m in c.mistakes}
+        ndim: set[int] = set()
+        assert ex.check(_reordering_function(ex.reference, None, ndim)).correct, seed
+        (k,) = ndim
+        for how in CODE_REORDERINGS[k]:
+            fb = ex.check(_reordering_function(ex.reference, how))
+            if fb.correct:  # (this reordering changes none of the values of any test)
+                continue
+            assert fb.mistake in ORDER_MISTAKES | catalogued | {"v_omega_swapped", "unchanged"}, (seed, how, fb)
+            seen.add(how)
+            reordered[f"code: {how}"] += 1
+    assert seen, "some reordering applies to every code exercise"
 
 
 def test_issue_cases_are_accepted():
@@ -220,10 +314,15 @@ def test_ik_loop_reference_accepted_and_every_catalogued_mistake_named_alone_ove
 
 
 def test_pairs_covered(capsys):
-    pairs = len(NUMERIC) * len(IDS) + len(SCALAR) * len(IDS) + len(IDS)
+    code = 3 * (len(CODE) - 1) + 1  # (the code exercises in the wrong order; the IK loop's 50 IDs are counted below)
+    pairs = len(NUMERIC) * len(IDS) + len(SCALAR) * len(IDS) + len(IDS) + code
     with capsys.disabled():
+        if reordered:  # (when the tests above ran in this process)
+            print(f"\nwrong orders named: {sum(reordered.values())} answers: " +
+                  ", ".join(f"{how} {n}" for how, n in sorted(reordered.items())))
         print(f"\n(exercise, ID) pairs covered: {len(NUMERIC)} numeric and {len(SCALAR)} scalar exercises x "
-              f"{len(IDS)} IDs + {len(IDS)} IDs of the IK code exercise = {pairs}")
+              f"{len(IDS)} IDs + {len(IDS)} IDs of the IK code exercise + {code} (code exercise, ID) pairs in the "
+              f"wrong order = {pairs}")
     assert pairs >= 50 * 30
 
 

@@ -94,3 +94,35 @@ def test_make_grade_reads_answers_files_beside_notebooks(tmp_path: Path, monkeyp
     mine = [r for r in rows if r.exercise == "ch01_ex1"]
     assert len(mine) == 1 and mine[0].correct == "1" and mine[0].student == SID
     assert (tmp_path / "gradebook.csv").is_file()
+
+
+def test_a_student_with_a_notebook_and_a_page_file_gets_one_answer_counted_per_exercise():
+    """The rule of grade.one_answer_each: the notebook's answer counts where the notebook checked the exercise (its
+    page answer is listed, not counted, with its verdict); the page's answer counts where the notebook did not
+    attempt it or has no such exercise; other students, and IDs written differently, are matched as the gradebook
+    matches them (normalised)."""
+    from course.classroom.grade import NOT_ATTEMPTED, Row, grades_table, one_answer_each
+
+    nb = [Row("s1", "s1/ch01.ipynb", "ch01_ex1", "S1", "0", "wrong", "sign"),       # notebook wrong, page right
+          Row("s1", "s1/ch01.ipynb", "ch01_ex2", "S1", "0", NOT_ATTEMPTED),         # notebook blank, page right
+          Row("s1", "s1/ch01.ipynb", "ch01_ex3", "S1", "1", "right"),               # notebook right, page wrong
+          Row("s2", "s2/ch01.ipynb", "ch01_ex1", "s2", "1", "right")]
+    page = [Row("s1", "answers-s1.json", "ch01_ex1", "s1", "1", "right"),
+            Row("s1", "answers-s1.json", "ch01_ex2", "s1", "1", "right"),
+            Row("s1", "answers-s1.json", "ch01_ex3", "s1", "0", "wrong", "sign"),
+            Row("s1", "answers-s1.json", "ch02_ex1", "s1", "1", "right"),           # no notebook of chapter 2
+            Row("s1", "answers-s1.json", "(notebook)", "s1", "", "answers an unknown exercise")]
+    rows = one_answer_each(nb, page)
+    assert len(rows) == len(nb) + len(page)  # nothing dropped: the answer that does not count is listed
+    counted = {(r.notebook, r.exercise): r.correct for r in rows if r.correct in ("0", "1")}
+    assert counted == {("s1/ch01.ipynb", "ch01_ex1"): "0", ("s1/ch01.ipynb", "ch01_ex3"): "1",
+                       ("answers-s1.json", "ch01_ex2"): "1", ("answers-s1.json", "ch02_ex1"): "1",
+                       ("s2/ch01.ipynb", "ch01_ex1"): "1"}
+    listed = {(r.notebook, r.exercise): r.message for r in rows if r.correct == "" and r.exercise != "(notebook)"}
+    assert "the notebook's answer to ch01_ex1 counts" in listed[("answers-s1.json", "ch01_ex1")]
+    assert "this one was right" in listed[("answers-s1.json", "ch01_ex1")]
+    assert "this one was wrong" in listed[("answers-s1.json", "ch01_ex3")]
+    assert "answers-s1.json" in listed[("s1/ch01.ipynb", "ch01_ex2")]
+    worth = {"ch01_ex1": 1.0, "ch01_ex2": 1.0, "ch01_ex3": 1.0, "ch02_ex1": 1.0}
+    head, table = grades_table(rows, {}, worth, frozenset())
+    assert {r[0]: r[-1] for r in table} == {"s1": "3", "s2": "1"}  # both counting once would have given s1 4

@@ -10,6 +10,12 @@ zeros; ``half``: the first half right, the rest untouched; ``blank``: nothing).
 ``python -m tools.bench_grade [N] [N_OLD]`` grades N (default 200) such notebooks,
 every chapter and all four ways, with isolation on, and the first N_OLD (default 40) of them the previous
 way (a Jupyter kernel per sandbox), in the same run; it prints both figures and their ratio.
+
+Beside the notebooks per second (wall clock, which other work on the machine slows down), it prints the CPU
+seconds the grading spends per notebook: the CPU time of the grader and every process it starts (its pool
+workers, their warm workers, the sandboxes and what runs in them), from a cpuacct cgroup the bench puts itself
+in (:class:`CpuMeter`). That figure does not depend on the load: c cores grade at most c / (CPU seconds per
+notebook) notebooks per second, so 2 notebooks/s on 2 cores needs at most 1 CPU second per notebook.
 """
 
 from __future__ import annotations
@@ -132,14 +138,82 @@ def make_class(folder: Path, n: int, chapters: list[str] | None = None) -> list[
     return out
 
 
+class CpuMeter:
+    """CPU seconds used by this process and all its descendants while the meter is open.
+
+    As root with a writable cgroup v1 ``cpuacct`` hierarchy, the process moves itself into a cgroup of its own
+    (its children inherit it; the sandboxes move only into memory, pids and freezer cgroups, so they stay), and
+    ``cpuacct.usage`` counts every process of the tree, waited for or not. Otherwise it falls back to
+    ``getrusage``: this process and the children it waited for (a descendant whose parent did not wait for it,
+    such as a pool worker's warm worker killed with its parent, is missed), a lower bound; ``exact`` says
+    which."""
+
+    ROOT = Path("/sys/fs/cgroup/cpuacct")
+
+    def __init__(self) -> None:
+        self.group: Path | None = None
+        self.home: Path | None = None
+        self.exact = False
+        try:
+            line = next(ln for ln in Path("/proc/self/cgroup").read_text().splitlines()
+                        if "cpuacct" in ln.split(":")[1].split(","))
+            self.home = self.ROOT / line.split(":", 2)[2].lstrip("/")
+            group = self.ROOT / f"jacobians-bench-{os.getpid()}"
+            group.mkdir()
+            (group / "cgroup.procs").write_text(str(os.getpid()))
+            self.group, self.exact = group, True
+        except (OSError, StopIteration, IndexError):
+            self.group = None
+
+    def seconds(self) -> float:
+        if self.group is not None:
+            return int((self.group / "cpuacct.usage").read_text()) / 1e9
+        import resource
+
+        me, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+        return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
+
+    def close(self) -> None:
+        """Move back to where this process was, and remove the cgroup once its last process has ended."""
+        if self.group is None or self.home is None:
+            return
+        (self.home / "cgroup.procs").write_text(str(os.getpid()))
+        for _ in range(500):
+            try:
+                self.group.rmdir()
+                break
+            except OSError:
+                time.sleep(0.02)
+        self.group = None
+
+
 def main(n: int = 200, n_old: int = 40) -> None:
     """Grade ``n`` notebooks the current way (a warm worker forking into a bubblewrap sandbox per notebook),
     and the first ``n_old`` of them the previous way (a fresh interpreter, nbclient and a Jupyter kernel in each
-    sandbox), in the same run; print both figures and their ratio."""
+    sandbox), in the same run; print both figures, the CPU seconds per notebook of each, and their ratios."""
+    cores = os.cpu_count() or 1
+    figures: dict[str, float] = {}
+    cpu: dict[str, float] = {}
+    meter = CpuMeter()
+    try:
+        _grade_both(n, n_old, cores, figures, cpu, meter)
+    finally:
+        meter.close()
+    how = ("cpuacct cgroup: the grader and every process it started" if meter.exact else
+           "getrusage: the grader and the children it waited for, a lower bound")
+    for engine, per in cpu.items():
+        print(f"grading, {engine} engine: {per:.2f} CPU seconds per notebook ({how}); at most "
+              f"{cores / per:.2f} notebooks/s on {cores} cores, however quiet the machine", flush=True)
+    if len(figures) == 2:
+        print(f"grading: the current design grades {figures['warm'] / figures['kernel']:.1f} times as many notebooks "
+              "per second as the previous one (same run, same machine load), and spends "
+              f"{cpu['kernel'] / cpu['warm']:.1f} times less CPU per notebook")
+
+
+def _grade_both(n: int, n_old: int, cores: int, figures: dict[str, float], cpu: dict[str, float],
+                meter: CpuMeter) -> None:
     from course.classroom.grade import grade_class
 
-    cores = os.cpu_count() or 1
-    figures = {}
     with tempfile.TemporaryDirectory(prefix="bench-grade-") as tmp:
         folder = Path(tmp) / "submissions"
         made = make_class(folder, n)
@@ -151,9 +225,11 @@ def main(n: int = 200, n_old: int = 40) -> None:
             if count == 0:
                 continue
             load = os.getloadavg()[0]
-            t0 = time.perf_counter()
+            c0, t0 = meter.seconds(), time.perf_counter()
             rows = grade_class(where, workers=cores, engine=engine)
             dt = time.perf_counter() - t0
+            time.sleep(0.5)  # (the pool's warm workers end with their parents: let them finish being counted)
+            cpu[engine] = (meter.seconds() - c0) / count
             right = sum(r.correct == "1" for r in rows)
             notes = [r for r in rows if r.exercise == "(notebook)"]
             figures[engine] = count / dt
@@ -162,10 +238,6 @@ def main(n: int = 200, n_old: int = 40) -> None:
             print(f"grading, {label}: {count} notebooks on {cores} cores in {dt:.1f} s: {count / dt:.2f} notebooks/s, "
                   f"{count / dt / cores:.2f} per core (load average at start {load:.1f}; {right} answers right, "
                   f"{len(notes)} notes on notebooks)", flush=True)
-    if len(figures) == 2:
-        print(f"grading: the current design grades {figures['warm'] / figures['kernel']:.1f} times as many notebooks "
-              "per second as the previous one (same run, same machine load)")
-
 
 
 if __name__ == "__main__":

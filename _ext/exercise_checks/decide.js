@@ -153,6 +153,20 @@ function shapeFeedback(/** @type {any} */ ans, /** @type {any} */ ref, /** @type
         "order of the columns (column i belongs to joint i).", "column_order");
     }
   }
+  if (ref.shape.length === 2 && ref.shape[0] > 1) {
+    const [rows, cols] = ref.shape;
+    const row = (/** @type {any} */ a, /** @type {number} */ i) => ({ shape: [cols], data: a.data.slice(i * cols, (i + 1) * cols) });
+    const perm = [];
+    for (let i = 0; i < rows; i++) {
+      const hits = [];
+      for (let k = 0; k < rows; k++) if (within(row(ans, i), row(ref, k), tol.slice(k * cols, (k + 1) * cols))) hits.push(k);
+      perm.push(hits);
+    }
+    if (perm.every((h) => h.length) && !perm.every((h, i) => h.includes(i))) {
+      return verdict(false, "Every row you gave is a right row, but in the wrong place: check the order of " +
+        "the rows" + (rows === 6 ? " (ω in rows 1-3, then v in rows 4-6)." : "."), "row_order");
+    }
+  }
   return null;
 }
 

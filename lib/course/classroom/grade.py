@@ -348,7 +348,7 @@ def _run_and_regrade(path: Path, raw: bytes, nb: Any, sid: str | int, wanted: li
     for eid in wanted:
         entry = checks.get(eid)
         if entry is None:
-            rows.append(Row(student, rel, eid, seed, "0", "not attempted: no check of this exercise ran"))
+            rows.append(Row(student, rel, eid, seed, "0", NOT_ATTEMPTED))
             continue
         correct, message, mistake, tests = _regrade(exercises, eid, entry, sid, scratch, limits)
         rows.append(Row(student, rel, eid, seed, correct, message, mistake, tests))
@@ -583,12 +583,14 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
     rows = [r for rs in _supersede(results, mtimes) for r in rs]
     if not how.ok:
         rows = [replace(r, message=UNSAFE_NOTE + r.message) for r in rows]
+    page_rows: list[Row] = []
     for f in find_answer_files(root):  # answers saved from the book's exercise pages (page_answers.py)
         sid, marks = read_answers_file(f)
         who, rel = student_key(sid, str(f.relative_to(root))) if sid else "", str(f.relative_to(root))
         if student is None or who == normalise_id(student):
-            rows += [Row(who, rel, m.exercise or NOTEBOOK, sid or "", m.correct, m.message, m.mistake) for m in marks]
-    rows = kept + rows
+            page_rows += [Row(who, rel, m.exercise or NOTEBOOK, sid or "", m.correct, m.message, m.mistake)
+                          for m in marks]
+    rows = one_answer_each(kept + rows, page_rows)
     if names is not None:
         rows += _roster_rows(rows, names)
     after = _tree_digest(root, skip)
@@ -602,6 +604,53 @@ def grade_class(root: Path, *, workers: int | None = None, limits: Limits | None
     write_reports(reports, rows)
     (root / CLASS_PAGE).write_text(class_page(rows), encoding="utf-8")
     return rows
+
+
+#: The message of a notebook's row for an exercise no check of the notebook ran (see :func:`_run_and_regrade`).
+NOT_ATTEMPTED = "not attempted: no check of this exercise ran"
+
+
+def one_answer_each(notebook_rows: list[Row], page_rows: list[Row]) -> list[Row]:
+    """The gradebook rows when a student hands in notebooks and answers files from the exercise pages: one answer
+    counts for each (student, exercise), the other is listed.
+
+    The rule: a notebook's answer counts for every exercise its notebook checked (the notebook is the assignment,
+    its code ran in the sandbox, and a code exercise can only be answered there); the page's answer to that
+    exercise becomes a note (correct left empty) that says it was not counted, with its verdict. For an exercise
+    the student's notebook did not attempt (its row says "not attempted"), or that no notebook of theirs loads,
+    the page's answer counts, and the notebook's "not attempted" row becomes the note. Students are matched by
+    :func:`normalise_id` (through their rows' ``student``); a placeholder ID is never matched with anyone.
+
+    >>> nb = [Row("s1", "ch01.ipynb", "ch01_ex1", "s1", "0", "wrong"),
+    ...       Row("s1", "ch01.ipynb", "ch01_ex2", "s1", "0", NOT_ATTEMPTED)]
+    >>> page = [Row("s1", "answers-s1.json", "ch01_ex1", "s1", "1", "right"),
+    ...         Row("s1", "answers-s1.json", "ch01_ex2", "s1", "1", "right")]
+    >>> for r in one_answer_each(nb, page):
+    ...     print(r.notebook, r.exercise, repr(r.correct))
+    ch01.ipynb ch01_ex1 '0'
+    ch01.ipynb ch01_ex2 ''
+    answers-s1.json ch01_ex1 ''
+    answers-s1.json ch01_ex2 '1'
+    """
+    def answered(r: Row) -> bool:
+        return bool(r.student) and r.correct in ("0", "1") and r.exercise not in (NOTEBOOK, ROSTER)
+
+    in_notebook = {(r.student, r.exercise) for r in notebook_rows if answered(r) and r.message != NOT_ATTEMPTED}
+    on_page = {(r.student, r.exercise): r.notebook for r in page_rows if answered(r)}
+    out: list[Row] = []
+    for r in notebook_rows:
+        key = (r.student, r.exercise)
+        if answered(r) and r.message == NOT_ATTEMPTED and key in on_page and key not in in_notebook:
+            r = replace(r, correct="", message=f"not attempted in this notebook; the answer saved from the "
+                        f"exercise page ({on_page[key]}) counts instead")
+        out.append(r)
+    for r in page_rows:
+        if answered(r) and (r.student, r.exercise) in in_notebook:
+            was = "right" if r.correct == "1" else "wrong"
+            r = replace(r, correct="", message=f"not counted: the notebook's answer to {r.exercise} counts, not the "
+                        f"exercise page's (this one was {was}: {r.message})"[:400])
+        out.append(r)
+    return out
 
 
 def _quick_key(path: Path, root: Path) -> str | None:

@@ -14,7 +14,9 @@ the variant is the one of the ID (``exercises.load``), and every answer is regra
 (:func:`course.exercises.check` without the session's log: ``Exercise.check``). Each problem gets a row that
 says what is wrong; a file never stops the grading of the class.
 
-The grader (:func:`course.classroom.grade.grade_class`) turns the marks into gradebook rows.
+The grader (:func:`course.classroom.grade.grade_class`) turns the marks into gradebook rows. When the same
+student also hands in a notebook, one answer counts per exercise (:func:`course.classroom.grade.one_answer_each`:
+the notebook's where it checked the exercise, else the page's); the other is listed, not counted.
 
 >>> sid, marks = read_answers_text(b'{"format": "jacobians-course-answers", "version": 1, "id": "s1", "answers": {}}')
 >>> sid, [m.message for m in marks]

@@ -3,9 +3,8 @@
 :func:`compare` grades a float array against the reference and a catalogue of
 :class:`Mistake` s (wrong answers computed from the same variant, each with the
 message that says what to look at). If none matches, the generic mistakes are
-tried: wrong shape, transposed, columns in the wrong order, the entries of a vector in the wrong order, one
-wrong entry
-(located by row and column), several wrong entries (named by column).
+tried: wrong shape, transposed, columns in the wrong order, rows in the wrong order, the entries of a vector in
+the wrong order, one wrong entry (located by row and column), several wrong entries (named by column).
 
 >>> ref = np.array([[1.0, 2.0], [3.0, 4.0]])
 >>> compare(ref.T, ref, [], 1e-6, 1e-8, "matrix").mistake
@@ -49,15 +48,21 @@ _TRANSPOSED = "Your matrix is the transpose of the right one: rows and columns a
 
 def _shape_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], tol: NDArray[np.float64],
                     what: str) -> Feedback | None:
-    """Wrong shape, transposed or columns in the wrong order; None if none of these."""
+    """Wrong shape, transposed, entries, columns or rows in the wrong order; None if none of these."""
     if ans.shape != ref.shape:
         if ref.ndim == 2 and ans.shape == ref.shape[::-1] and _close_tol(ans.T, ref, tol):
             return verdict(False, _TRANSPOSED, mistake="transposed")
+        if ref.ndim == 3 and ans.shape == (ref.shape[0], *ref.shape[:0:-1]) and _close_tol(
+                np.swapaxes(ans, 1, 2), ref, tol):
+            return verdict(False, "Each matrix of your stack is the transpose of the right one: rows and columns "
+                           "are swapped.", mistake="transposed")
         jacobian = ref.ndim == 2 and ref.shape[0] == 6 and "Jacobian" in what
         layout = (" (6 rows (ω, v), one column per joint)." if jacobian
                   else ": check how many rows and columns the statement asks for.")
         return verdict(False, f"Your answer has shape {ans.shape}, but this {what} has shape {ref.shape}" + layout,
                        mistake="wrong_shape")
+    if ref.ndim == 3:
+        return _blocks_feedback(ans, ref, tol, what)
     if ref.ndim == 1 and ref.size > 1:
         # Entries in the wrong order: the sorted answer matches the sorted reference, the answer does not.
         order = np.argsort(ref)
@@ -74,6 +79,39 @@ def _shape_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], tol: NDA
         if all(perm) and not all(j in h for j, h in enumerate(perm)):
             return verdict(False, "Every column you gave is a right column, but in the wrong place: check the "
                            "order of the columns (column i belongs to joint i).", mistake="column_order")
+    if ref.ndim == 2 and ref.shape[0] > 1:
+        # Rows in the wrong order: every row matches some other row (a twist's halves swapped, (v, ω) for (ω, v)).
+        perm = [[k for k in range(ref.shape[0]) if _close_tol(ans[i], ref[k], tol[k] if tol.ndim else tol)]
+                for i in range(ref.shape[0])]
+        if all(perm) and not all(i in h for i, h in enumerate(perm)):
+            return verdict(False, "Every row you gave is a right row, but in the wrong place: check the order of "
+                           "the rows" + (" (ω in rows 1-3, then v in rows 4-6)." if ref.shape[0] == 6 else "."),
+                           mistake="row_order")
+    return None
+
+
+_ORDER = ("transposed", "column_order", "row_order")
+
+
+def _blocks_feedback(ans: NDArray[np.float64], ref: NDArray[np.float64], tol: NDArray[np.float64],
+                     what: str) -> Feedback | None:
+    """For a stack of matrices (one per link, say; same shape as the reference): the blocks in the wrong order,
+    or every wrong block in the same wrong order (transposed, columns or rows); None if neither."""
+    n = ref.shape[0]
+    right = [_close_tol(ans[b], ref[b], tol[b]) for b in range(n)]
+    if all(right):
+        return None
+    perm = [[k for k in range(n) if _close_tol(ans[b], ref[k], tol[k])] for b in range(n)]
+    if all(perm) and not all(b in h for b, h in enumerate(perm)):
+        return verdict(False, "Every matrix you gave is a right one, but in the wrong place: check the order of the "
+                       "blocks (the first index, counting from 1, is the link or joint the statement names).",
+                       mistake="block_order")
+    named = [_shape_feedback(ans[b], ref[b], tol[b], what) for b in range(n) if not right[b]]
+    names = {fb.mistake if fb is not None else None for fb in named}
+    if len(names) == 1 and (name := names.pop()) in _ORDER:
+        wrong = ", ".join(str(b + 1) for b in range(n) if not right[b])
+        first = next(fb for fb in named if fb is not None)
+        return verdict(False, f"In block(s) {wrong} (first index, counting from 1): {first.message}", mistake=name)
     return None
 
 
