@@ -37,7 +37,7 @@ IDS = [f"s{2400000 + 37 * i}" for i in range(17)] + ["  Jane DOE ", "Ünïcode-�
 
 #: The statement shown in an exercise's box with each typeset formula back to its TeX (data-tex) in the delimiters
 #: of :func:`~jacobians.grading.feedback.statement_html`
-_SHOWN_TEX = """(eid) => {
+_SHOWN_TEX = r"""(eid) => {
     const s = document.querySelector(`.course-answer[data-exercise="${eid}"] .course-answer-statement`).cloneNode(true);
     s.querySelectorAll('[data-tex]').forEach(m => m.replaceWith(document.createTextNode(
         m.tagName === 'DIV' ? '\\[' + m.dataset.tex + '\\]' : '\\(' + m.dataset.tex + '\\)')));
