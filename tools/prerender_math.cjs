@@ -80,6 +80,7 @@ function untypeset(html) {
   });
 }
 
+const PROCESS = /(<div class="(?:[^"]*\s)?mathjax_process(?:\s[^"]*)?"[^>]*>)((?:(?!<div)[\s\S])*?)(<\/div>)/g;
 const DELIMITED = /\\\[([\s\S]*?)\\\]|\\\(([\s\S]*?)\\\)/g;
 
 /** An HTML fragment with its \( \) and \[ \] math typeset in `doc` (as the page's math is). */
@@ -136,6 +137,13 @@ function render(page, staticDir, macros, fragments) {
     if (/<mjx-merror|data-mjx-error/.test(out)) errors.push(tex);
     count += 1;
     return `<${tag}${attrs} data-tex="${escapeAttr(tex)}">${eqno[0]}${out}</${tag}>`;
+  });
+  // HTML outputs that ask MathJax to process their text (class mathjax_process: the checker's feedback box in a
+  // solution shows the statement with its math in \( \) and \[ \]); their math is typeset here too
+  html = html.replace(PROCESS, (whole, open, body, close) => {
+    const [out, n] = typesetFragment(body, doc, errors);
+    count += n;
+    return open + out + close;
   });
   count += renderFragments(fragments || [], doc, errors);
   if (errors.length) {
