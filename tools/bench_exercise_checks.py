@@ -50,7 +50,7 @@ def main() -> None:
         for page in sorted((ROOT / "exercises").glob("*.md")):
             tab = context.new_page()
             responses: list = []
-            tab.on("response", responses.append)
+            tab.on("response", lambda r, seen=responses: seen.append(r))
             tab.route("**/*", lambda r: r.continue_())  # (routing turns the HTTP cache off: a first visit)
             tab.goto(f"{server.base}/exercises/{page.stem}.html", wait_until="load")
             tab.wait_for_function("window.courseExercises !== undefined")
