@@ -13,6 +13,12 @@ MathJax with its menu and explorer (speech, zoom, copy as TeX) only when a
 reader asks for them (focus on a formula, or a right-click), and typesets that
 formula again from its TeX.
 
+Fragments: another extension may leave, in ``app.course_math_fragments``, HTML typeset with a page but shown
+later by its scripts (``{pagename: [{"src": <JSON list of HTML strings>, "out": <folder>, "key": <name>}]}``;
+the exercise pages' statements, ``_ext/exercise_checks``). Each string k is typeset with the page's own MathJax
+document, so the page's CSS covers its characters, and written to ``<out>/<k>.js`` as
+``window.__courseStatements["<key>/<k>"] = "<html>"``.
+
 Only the book (the ``html`` builder): the decks (``revealjs``) keep MathJax in
 the page. A TeX error stops the build with the page and the formula.
 """
@@ -22,6 +28,7 @@ from __future__ import annotations
 import json
 import shutil
 import subprocess
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -50,21 +57,27 @@ def prerender(app: Sphinx, exception: Exception | None) -> None:
     if exception is not None or app.builder.name != "html":
         return
     out = Path(app.outdir)
-    pages = [str(p) for p in (out / app.builder.get_target_uri(name) for name in sorted(_WRITTEN))
-             if p.suffix == ".html" and p.is_file() and 'math notranslate nohighlight' in p.read_text(encoding="utf-8")]
+    wanted: dict[str, list[dict[str, str]]] = getattr(app, "course_math_fragments", {}) or {}
+    fragments = {str(out / app.builder.get_target_uri(name)): f for name, f in wanted.items()}
+    def has_math(p: Path) -> bool:
+        return str(p) in fragments or 'math notranslate nohighlight' in p.read_text(encoding="utf-8")
+    pages = [str(p) for p in (out / app.builder.get_target_uri(name) for name in sorted(_WRITTEN | set(wanted)))
+             if p.suffix == ".html" and p.is_file() and has_math(p)]
     _WRITTEN.clear()
     if not pages:
         return
     start = time.monotonic()
-    counts = typeset(out / "_static", pages, macros(app.config))
+    counts = typeset(out / "_static", pages, macros(app.config), {p: fragments[p] for p in pages if p in fragments})
     logger.info(f"math_prerender: {sum(c['math'] for c in counts)} formulas on {len(counts)} pages typeset "
                 f"in {time.monotonic() - start:.1f} s")
 
 
-def typeset(static: Path, pages: list[str] | list[Path], tex_macros: dict[str, Any]) -> list[dict[str, Any]]:
-    """Typeset the math of ``pages`` in place (``static``: the site's ``_static``, where the fonts are).
+def typeset(static: Path, pages: list[str] | list[Path], tex_macros: dict[str, Any],
+            fragments: dict[str, list[dict[str, str]]] | None = None) -> list[dict[str, Any]]:
+    """Typeset the math of ``pages`` in place (``static``: the site's ``_static``, where the fonts are), and the
+    ``fragments`` of each page (keyed by the page's path as given; see the module's docstring).
 
-    Returns one ``{"page", "math", "css"}`` per page (formulas typeset, bytes of CSS added).
+    Returns one ``{"page", "math", "css"}`` per page (formulas typeset, fragments' included; bytes of CSS added).
     """
     node = shutil.which("node")
     if node is None:
@@ -73,8 +86,13 @@ def typeset(static: Path, pages: list[str] | list[Path], tex_macros: dict[str, A
         raise ExtensionError("math_prerender: node_modules/mathjax-full is missing: run `npm ci` (make setup does it)")
     if not pages:
         return []
-    run = subprocess.run([node, str(SCRIPT), str(static), json.dumps(tex_macros), *map(str, pages)],
-                         capture_output=True, text=True, cwd=ROOT, check=False)
+    args = [node, str(SCRIPT), str(static), json.dumps(tex_macros), *map(str, pages)]
+    with tempfile.TemporaryDirectory() as tmp:
+        if fragments:
+            spec = Path(tmp) / "fragments.json"
+            spec.write_text(json.dumps(fragments), encoding="utf-8")
+            args[2:2] = ["--fragments", str(spec)]
+        run = subprocess.run(args, capture_output=True, text=True, cwd=ROOT, check=False)
     if run.returncode != 0:
         raise ExtensionError(f"math_prerender: {run.stderr.strip()[-4000:]}")
     return [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]

@@ -126,3 +126,39 @@ def test_a_student_with_a_notebook_and_a_page_file_gets_one_answer_counted_per_e
     worth = {"ch01_ex1": 1.0, "ch01_ex2": 1.0, "ch01_ex3": 1.0, "ch02_ex1": 1.0}
     head, table = grades_table(rows, {}, worth, frozenset())
     assert {r[0]: r[-1] for r in table} == {"s1": "3", "s2": "1"}  # both counting once would have given s1 4
+
+
+def _saved_formulas(eid: str, shape: list[int], formulas: list[object]) -> bytes:
+    """A file with one symbolic answer, as the page writes it (math.js's printing of each typed entry)."""
+    return json.dumps({"format": "jacobians-course-answers", "version": 1, "id": SID,
+                       "answers": {eid: {"text": "typed", "value": {"shape": shape, "formulas": formulas},
+                                         "variant": 0, "correct": True}}}).encode()
+
+
+def test_saved_formulas_get_the_notebooks_verdicts():
+    """A formula answer is rebuilt from Python's parse tree and graded by the checker: the reference, a catalogued
+    mistake and an unknown symbol, as math.js prints them (spaces around *, ^ for powers)."""
+    ex = exercises.load("ch06_ex1", seed=SID)
+    shape = list(ex.reference.shape)
+
+    def printed(matrix):
+        return [str(e).replace("**", "^").replace("*", " * ") for e in matrix]
+
+    for value, formulas in [(ex.reference, printed(ex.reference)), (ex.mistakes[0].value, printed(ex.mistakes[0].value)),
+                            (None, ["q + " + printed(ex.reference)[0], *printed(ex.reference)[1:]])]:
+        (mark,) = read_answers_text(_saved_formulas("ch06_ex1", shape, formulas))[1]
+        if value is None:
+            assert mark.correct == "0" and "q" in mark.message and "does not define" in mark.message
+            continue
+        fb = ex.check(value)
+        assert (mark.correct, mark.mistake, mark.message) == ("1" if fb.correct else "0", fb.mistake or "", fb.message)
+
+
+@pytest.mark.parametrize("formula", [
+    "__import__('os').system('true')", "().__class__.__bases__[0].__subclasses__()", "l1.__class__",
+    "lambda: 1", "[x for x in (1,)]", "9**9**9", "10**(10**10)", "(" * 500 + "1" + ")" * 500, "'text'", "x" * 3000,
+    "open('/etc/passwd')", "l1 if l1 else l2", "sin(l1, l2, theta1)", "cos(x=1)", 7, None])
+def test_hostile_formulas_are_refused_without_evaluation(formula):
+    (mark,) = read_answers_text(_saved_formulas("ch06_ex1", [], [formula]))[1]
+    assert mark.correct == "0" and mark.exercise == "ch06_ex1"
+    assert "cannot be graded" in mark.message or "does not define" in mark.message or mark.mistake

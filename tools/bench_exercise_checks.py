@@ -4,8 +4,9 @@ On the built book (``make book`` first), in headless Chromium: every exercise pa
 exercise it checks, 200 answers (the reference, mistakes, wrong shapes, text: the answers of the agreement
 test, for a few IDs) are checked one at a time with the page's ``courseExercises.checkText`` (reading the text
 with math.js and comparing), each timed with ``performance.now()``. Prints the median and the worst per page,
-the size of each exercise's bank file, and the size of the checker script. Budgets (the issue's): a check
-<= 50 ms median, a bank <= 100 KB.
+the size of each exercise's bank file, and the size of the checker script; and each exercise page's weight on a
+first visit (every byte its requests brought, with the HTTP cache off, once the statements of its variants are on
+the page). Budgets (the issue's): a check <= 50 ms median, a bank <= 100 KB, a first visit <= 2 MB.
 
     .venv/bin/python -m tools.bench_exercise_checks
 """
@@ -35,17 +36,28 @@ def main() -> None:
         raise SystemExit("Build the book first (make book)")
     banks = HTML / "_static" / "exercise-checks" / "banks"
     sizes = {p.stem: p.stat().st_size for p in sorted(banks.glob("*.js"))}
+    statements = [p.stat().st_size for p in (HTML / "_static" / "exercise-checks" / "statements").glob("*/*.js")]
     checker = HTML / "_static" / "exercise-checks" / "checker.js"
     print(f"checker.js (math.js included, minified): {checker.stat().st_size / 1024:.1f} KB")
     print(f"banks: {len(sizes)}, largest {max(sizes.values()) / 1024:.1f} KB ({max(sizes, key=sizes.__getitem__)}), "
           f"median {statistics.median(sizes.values()) / 1024:.1f} KB")
+    print(f"typeset statements: {len(statements)}, largest {max(statements) / 1024:.1f} KB, "
+          f"median {statistics.median(statements) / 1024:.1f} KB (one a variant; the page loads the reader's)")
     all_times: list[float] = []
+    weights: dict[str, tuple[int, int]] = {}
     with bookcheck.BookServer(HTML) as server, sync_playwright() as p:
         context, _profile = bookcheck.launch_browser(p)
         for page in sorted((ROOT / "exercises").glob("*.md")):
             tab = context.new_page()
+            responses: list = []
+            tab.on("response", lambda r, seen=responses: seen.append(r))
+            tab.route("**/*", lambda r: r.continue_())  # (routing turns the HTTP cache off: a first visit)
             tab.goto(f"{server.base}/exercises/{page.stem}.html", wait_until="load")
             tab.wait_for_function("window.courseExercises !== undefined")
+            tab.evaluate("window.courseExercises.typesetDone().then(() => true)")
+            tab.wait_for_load_state("networkidle")
+            weight = sum(r.request.sizes()["responseBodySize"] for r in responses)
+            weights[page.stem] = (weight, len(responses))
             ids = tab.eval_on_selector_all(".course-answer[data-exercise]", "els => els.map(e => e.dataset.exercise)")
             times: list[float] = []
             for eid in ids:
@@ -68,6 +80,9 @@ def main() -> None:
         context.close()
     print(f"all pages: {len(all_times)} checks, median {statistics.median(all_times):.3f} ms "
           f"(budget 50 ms), worst {max(all_times):.2f} ms")
+    print("first visit of each exercise page (budget 2 MB = 2,000,000 bytes):")
+    for stem, (weight, n) in weights.items():
+        print(f"  {stem:28s} {weight:>10,d} bytes ({weight / 2**20:.2f} MiB) over {n} requests")
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 // (npm mathjax-full, the same MathJax 3.2.2 as the browser copy), so that no page
 // waits for MathJax on the reader's phone.
 //
-// Usage: node tools/prerender_math.cjs <static-dir> <page.html>...
+// Usage: node tools/prerender_math.cjs [--fragments <spec.json>] <static-dir> <macros-json> <page.html>...
 //
 // In each page, every Sphinx math element (<span class="math">\(..\)</span>,
 // <div class="math">\[..\]</div> or a bare \begin{env}..\end{env}) gets the
@@ -15,7 +15,12 @@
 // page's MathJax configuration and startup.js are removed. A TeX error stops
 // the run with the page and the formula.
 //
-// Prints one JSON line per page: {"page", "math", "css"} (formulas, CSS bytes).
+// Fragments (--fragments): {"<page.html>": [{"src", "out", "key"}]}. For each entry, src is a JSON list of HTML
+// strings with math in \( \) and \[ \] (HTML-escaped TeX, as the library's statement_html writes it, for the
+// exercise pages' statements); string k is typeset with that page's MathJax document, so that the page's CSS
+// covers its characters, and written to <out>/<k>.js as window.__courseStatements["<key>/<k>"] = "<html>".
+//
+// Prints one JSON line per page: {"page", "math", "css"} (formulas, fragments' included; CSS bytes).
 "use strict";
 
 const fs = require("fs");
@@ -75,7 +80,43 @@ function untypeset(html) {
   });
 }
 
-function render(page, staticDir, macros) {
+const PROCESS = /(<div class="(?:[^"]*\s)?mathjax_process(?:\s[^"]*)?"[^>]*>)((?:(?!<div)[\s\S])*?)(<\/div>)/g;
+const DELIMITED = /\\\[([\s\S]*?)\\\]|\\\(([\s\S]*?)\\\)/g;
+
+/** An HTML fragment with its \( \) and \[ \] math typeset in `doc` (as the page's math is). */
+function typesetFragment(html, doc, errors) {
+  let count = 0;
+  const out = html.replace(DELIMITED, (whole, display, inline) => {
+    const isDisplay = display !== undefined;
+    const tex = unescapeHtml(isDisplay ? display : inline);
+    const node = adaptor.outerHTML(doc.convert(tex, { display: isDisplay }));
+    if (/<mjx-merror|data-mjx-error/.test(node)) errors.push(tex);
+    count += 1;
+    const tag = isDisplay ? "div" : "span";
+    return `<${tag} class="math notranslate nohighlight" data-tex="${escapeAttr(tex)}">${node}</${tag}>`;
+  });
+  return [out, count];
+}
+
+/** Typeset the fragments of a page (see the header) in `doc`; the number of formulas. */
+function renderFragments(list, doc, errors) {
+  let count = 0;
+  for (const { src, out, key } of list) {
+    const items = JSON.parse(fs.readFileSync(src, "utf8"));
+    fs.mkdirSync(out, { recursive: true });
+    items.forEach((html, k) => {
+      const [typeset, n] = typesetFragment(html, doc, errors);
+      count += n;
+      // "</" cannot end a script early: JSON allows "<\/"
+      const text = JSON.stringify(typeset).replace(/<\//g, "<\\/");
+      fs.writeFileSync(path.join(out, `${k}.js`),
+        `(window.__courseStatements=window.__courseStatements||{})[${JSON.stringify(key + "/" + k)}]=${text};\n`);
+    });
+  }
+  return count;
+}
+
+function render(page, staticDir, macros, fragments) {
   let html = untypeset(fs.readFileSync(page, "utf8"));
   const fontURL = path.relative(path.dirname(page), path.join(staticDir, "mathjax/es5/output/chtml/fonts/woff-v2"))
     .split(path.sep).join("/");
@@ -97,6 +138,14 @@ function render(page, staticDir, macros) {
     count += 1;
     return `<${tag}${attrs} data-tex="${escapeAttr(tex)}">${eqno[0]}${out}</${tag}>`;
   });
+  // HTML outputs that ask MathJax to process their text (class mathjax_process: the checker's feedback box in a
+  // solution shows the statement with its math in \( \) and \[ \]); their math is typeset here too
+  html = html.replace(PROCESS, (whole, open, body, close) => {
+    const [out, n] = typesetFragment(body, doc, errors);
+    count += n;
+    return open + out + close;
+  });
+  count += renderFragments(fragments || [], doc, errors);
   if (errors.length) {
     throw new Error(`${page}: MathJax could not typeset ${errors.length} formula(s):\n  ` + errors.join("\n  "));
   }
@@ -115,13 +164,18 @@ function render(page, staticDir, macros) {
 }
 
 function main(argv) {
+  let fragments = {};
+  if (argv[0] === "--fragments") {
+    fragments = JSON.parse(fs.readFileSync(argv[1], "utf8"));
+    argv = argv.slice(2);
+  }
   const [staticDir, macrosJson, ...pages] = argv;
   if (!staticDir || !macrosJson) {
     process.stderr.write("usage: node tools/prerender_math.cjs <static-dir> <macros-json> <page.html>...\n");
     return 2;
   }
   const macros = JSON.parse(macrosJson);
-  for (const page of pages) process.stdout.write(JSON.stringify(render(page, staticDir, macros)) + "\n");
+  for (const page of pages) process.stdout.write(JSON.stringify(render(page, staticDir, macros, fragments[page])) + "\n");
   return 0;
 }
 

@@ -5,19 +5,23 @@ An exercise page writes, in a ``book-only`` Markdown cell after the exercise's `
     ```{answer-box} ch01_ex1
     ```
 
-For an exercise the page checks (numbers, vectors, matrices, one number in a range: kinds
+For an exercise the page checks (numbers, vectors, matrices, one number in a range, formulas: kinds
 :data:`course.exercises._bank.PAGE_KINDS`), this writes a host ``<div class="course-answer"
 data-exercise=...>`` and a deferred ``<script>`` loading that exercise's bank,
-``_static/exercise-checks/banks/<id>.js`` (``window.__courseBanks[id] = {...}``: every variant's statement,
-reference, tolerance rule, catalogued mistakes with their messages, and hint, computed by the library,
+``_static/exercise-checks/banks/<id>.js`` (``window.__courseBanks[id] = {...}``: every variant's reference,
+tolerance rule, catalogued mistakes with their messages, and hint, computed by the library,
 :func:`course.exercises._bank.bank`). Banks are written when the build finishes, for the exercises that have a
-box, and kept while no Python file under ``lib/`` changes (a stamp of their hash). The page's script,
+box, and kept while no Python file under ``lib/`` changes (a stamp of their hash). The statements of the variants
+(:func:`course.exercises._bank.statements`) are typeset at build time by the pages' own MathJax in Node
+(``_ext/math_prerender.py``, with the page they belong to, so that the page's CSS has their characters) into
+``_static/exercise-checks/statements/<id>/<k>.js``, one small script per variant: the page adds the script of the
+reader's variant only, and never needs MathJax to show it. The page's script,
 ``_static/exercise-checks/checker.js``, is bundled by npm's esbuild from ``_ext/exercise_checks/*.js`` (math.js
 included) into one classic script, added to the pages with a box only: it mounts the boxes, the ID panel and
 progress (localStorage), and compares as :func:`jacobians.grading.compare.compare` does. Classic scripts, no
 fetch: the page works from ``file://`` as well as served.
 
-Exercises of other kinds (code, symbolic formulas) get a sentence saying they are checked in the notebook,
+Exercises of other kinds (code) get a sentence saying they are checked in the notebook,
 with a link to the page's student notebook (``student/<page>.ipynb``).
 """
 
@@ -42,6 +46,8 @@ __all__ = ["AnswerBox", "box_html", "setup", "write_banks"]
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
 OUT_DIR = "_static/exercise-checks"
+#: Where the statements' sources wait for the math typesetting (under the doctree folder: not shipped)
+SOURCES = "exercise-statements"
 LOG = logging.getLogger(__name__)
 
 
@@ -61,12 +67,14 @@ def box_html(exercise_id: str, kind: str, docname: str) -> str:
     notebook = "student/" + docname.rsplit("/", 1)[-1] + ".ipynb"
     link = f'<a href="{html.escape(notebook)}" download>the student notebook</a>'
     if kind not in PAGE_KINDS:
-        what = "a function you write" if kind == "function" else "a formula"
+        what = "a function you write" if kind == "function" else "code"
         return (f'<div class="course-answer course-answer-elsewhere" data-exercise-elsewhere="{exercise_id}">'
                 f"<p>The answer to this exercise is {what}: it is checked in the notebook, not on this page. "
                 f"Download {link}, write your answer in its answer cell and run the check cell.</p></div>")
     src = ("../" * depth) + f"{OUT_DIR}/banks/{exercise_id}.js"
-    return (f'<div class="course-answer" data-exercise="{exercise_id}" data-kind="{kind}">'
+    statements = ("../" * depth) + f"{OUT_DIR}/statements/{exercise_id}/"
+    return (f'<div class="course-answer" data-exercise="{exercise_id}" data-kind="{kind}" '
+            f'data-statements="{html.escape(statements)}">'
             f"<noscript>Checking your answer on this page needs JavaScript; {link} checks it in Jupyter."
             f"</noscript></div>\n<script defer src=\"{html.escape(src)}\"></script>")
 
@@ -116,16 +124,22 @@ def _lib_stamp() -> str:
     return h.hexdigest()
 
 
-def write_banks(out: Path, exercise_ids: list[str]) -> list[str]:
-    """Write the bank script of each exercise the page checks into ``out`` (a folder); returns those written.
+def write_banks(out: Path, exercise_ids: list[str], sources: Path | None = None) -> list[str]:
+    """Write the bank script of each exercise the page checks into ``out`` (a folder), and the sources of its
+    statements (``<id>.json``, a list of HTML strings) into ``sources``; returns those written.
     Skipped when the stamp of lib/ and the list of exercises are those of the banks already there."""
-    from course.exercises._bank import PAGE_KINDS, bank
+    from course.exercises._bank import PAGE_KINDS, bank, statements
     wanted = sorted(e for e in set(exercise_ids) if exercise_kind(e) in PAGE_KINDS)
     stamp = _lib_stamp() + "\n" + ",".join(wanted)
     stamp_file = out / ".stamp"
-    if stamp_file.is_file() and stamp_file.read_text() == stamp and all((out / f"{e}.js").is_file() for e in wanted):
+    if (stamp_file.is_file() and stamp_file.read_text() == stamp and all((out / f"{e}.js").is_file() for e in wanted)
+            and (sources is None or all((sources / f"{e}.json").is_file() for e in wanted))):
         return []
     out.mkdir(parents=True, exist_ok=True)
+    if sources is not None:
+        sources.mkdir(parents=True, exist_ok=True)
+        for e in wanted:
+            (sources / f"{e}.json").write_text(json.dumps(statements(e), ensure_ascii=False), encoding="utf-8")
     for e in wanted:
         data = json.dumps(bank(e), separators=(",", ":"), ensure_ascii=False, allow_nan=False)
         # "</" cannot end the script early: JSON allows "<\/"
@@ -158,9 +172,19 @@ def _finished(app: Sphinx, exception: Exception | None) -> None:
     out.mkdir(parents=True, exist_ok=True)
     bundle(out / "checker.js")
     shutil.copyfile(HERE / "answers.css", out / "answers.css")
-    written = write_banks(out / "banks", ids)
+    sources = Path(app.doctreedir) / SOURCES
+    written = write_banks(out / "banks", ids, sources)
     if written:
         LOG.info(f"exercise checks: wrote {len(written)} banks into {out / 'banks'}")
+    # the statements go to the math typesetting, with their page (_ext/math_prerender.py reads this)
+    from course.exercises._bank import PAGE_KINDS
+    fragments: dict[str, list[dict[str, str]]] = {}
+    for page, page_ids in getattr(app.env, "course_answer_boxes", {}).items():
+        for e in page_ids:
+            if exercise_kind(e) in PAGE_KINDS:
+                fragments.setdefault(page, []).append(
+                    {"src": str(sources / f"{e}.json"), "out": str(out / "statements" / e), "key": e})
+    app.course_math_fragments = fragments  # type: ignore[attr-defined]
 
 
 def setup(app: Sphinx) -> dict[str, Any]:

@@ -70,6 +70,17 @@ function decimalTol(/** @type {any} */ ref, /** @type {number} */ decimals) {
   return ref.data.map((/** @type {number} */ v) => half + 1e-5 * Math.abs(v));
 }
 
+/** compare.tolerance without decimals: atol + rtol |ref| (symbolic answers, compared tightly). */
+function relTol(/** @type {any} */ ref, /** @type {number} */ rtol, /** @type {number} */ atol) {
+  return ref.data.map((/** @type {number} */ v) => atol + rtol * Math.abs(v));
+}
+
+/** The entry-wise tolerance around `ref`: the stated one, half a unit of the decimals asked, or rtol/atol. */
+function tolAround(/** @type {any} */ ref, /** @type {any} */ v) {
+  if (v.tol != null) return statedTol(v.tol, ref);
+  return v.decimals == null ? relTol(ref, v.rtol, v.atol) : decimalTol(ref, v.decimals);
+}
+
 /** compare._stated: the stated tolerance with room for binary noise. */
 function statedTol(/** @type {number} */ tol, /** @type {any} */ ref) {
   let m = 0;
@@ -268,14 +279,14 @@ export function compareNumeric(answer, v, bank) {
   }
   const decimals = v.decimals;
   const stated = v.tol;
-  const tolv = stated == null ? decimalTol(ref, decimals) : statedTol(stated, ref);
+  const tolv = tolAround(ref, v);
   if (within(ans, ref, tolv)) {
     return verdict(true, `Your ${what} ${agrees(what, "matches", "match")} the reference` +
       (stated != null ? ` (within ±${formatG(stated, 6)}).` : "."));
   }
   const values = v.mistakes.map((/** @type {any[]} */ m) => [m[0], fromNested(m[1]), bank.messages[m[2]]]);
   for (const [name, mv, message] of values) {
-    const mtol = stated == null ? decimalTol(mv, decimals) : statedTol(stated, mv);
+    const mtol = tolAround(mv, v);
     if (sameShape(mv.shape, ans.shape) && within(ans, mv, mtol)) return verdict(false, message, name);
   }
   const k = decimals != null && sameShape(ans.shape, ref.shape) ? givenDecimals(ans.data, decimals) : null;
@@ -336,7 +347,8 @@ export function compareScalar(/** @type {{shape: number[], data: number[]}} */ a
   return verdict(false, `Your ${what} ${agrees(what, "is", "are")} not right. ${hint}`.trim(), "wrong_value");
 }
 
-/** The verdict on an answer already read into numbers ({shape, data}) for variant `v` of `bank`. */
+/** The verdict on an answer already read into numbers ({shape, data}) for variant `v` of `bank` (numbers and one
+ * number; a formula is decided by symbolic.js, through compareNumeric at each sample point). */
 export function decide(/** @type {{shape: number[], data: number[]}} */ answer, /** @type {any} */ v,
   /** @type {any} */ bank) {
   return bank.kind === "scalar" ? compareScalar(answer, v, bank) : compareNumeric(answer, v, bank);

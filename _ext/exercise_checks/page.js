@@ -3,8 +3,9 @@
 // its bank (window.__courseBanks[id], one small script per exercise, on its page only); the verdict is
 // decide.js's, the reading of the answer parse.js's.
 
-import { decide } from "./decide.js";
-import { parseAnswer } from "./parse.js";
+import { decide, fromNested } from "./decide.js";
+import { layout, parseAnswer } from "./parse.js";
+import { decideSymbolic, parseFormulas, preview } from "./symbolic.js";
 
 const BASIS = 2166136261;
 const PRIME = 16777619;
@@ -40,6 +41,12 @@ function banks() {
 export function checkText(/** @type {string} */ exerciseId, /** @type {number} */ k, /** @type {string} */ text) {
   const bank = banks()[exerciseId];
   if (!bank) return { correct: false, kind: "invalid", mistake: null, message: `No checking data for ${exerciseId}.` };
+  if (bank.kind === "symbolic") {
+    const formulas = parseFormulas(text);
+    if (formulas.kind) return { correct: false, kind: formulas.kind, mistake: null, message: formulas.message, value: null };
+    return { ...decideSymbolic(formulas, bank.variants[k], bank),
+      value: { shape: formulas.shape, formulas: formulas.nodes.map((/** @type {any} */ n) => n.toString()) } };
+  }
   const parsed = /** @type {any} */ (parseAnswer(text));
   if (parsed.kind) return { correct: false, kind: parsed.kind, mistake: null, message: parsed.message, value: null };
   return { ...decide(parsed, bank.variants[k], bank), value: parsed };
@@ -65,22 +72,34 @@ function save(/** @type {string} */ key, /** @type {any} */ value) {
 const currentId = () => String(load(ID_KEY, "") || "");
 const isPractice = (/** @type {string} */ id) => PLACEHOLDERS.has(normaliseId(id));
 
-function typeset(/** @type {HTMLElement} */ el) {
-  // The book's own formulas are typeset at build time and the page loads no MathJax; a statement drawn here
-  // for the reader's ID is not, so MathJax is loaded (once, from _static, by _theme/math_menu.js) to typeset it.
+/** @type {Map<string, Promise<string>>} */
+const statementLoads = new Map();
+
+/** The typeset statement of variant `k` (its small script, written at build time with the page's MathJax
+ * output: _ext/math_prerender.py), loaded once, on demand. */
+function loadStatement(/** @type {HTMLElement} */ host, /** @type {string} */ exerciseId, /** @type {number} */ k) {
+  const key = `${exerciseId}/${k}`;
   const w = /** @type {any} */ (window);
-  const loader = () => (w.MathJax && w.MathJax.typesetPromise ? Promise.resolve()
-    : w.courseMath && w.courseMath.load ? w.courseMath.load() : Promise.reject(new Error("no MathJax loader")));
-  // (the loader, _theme/math_menu.js, is a deferred script too: it may run after the boxes are drawn)
-  const ready = document.readyState === "complete" ? loader()
-    : new Promise((resolve) => window.addEventListener("load", resolve, { once: true })).then(loader);
-  pending.push(ready.then(() => w.MathJax.startup.promise).then(() => w.MathJax.typesetPromise([el])).catch(() => {}));
+  const have = () => (w.__courseStatements || {})[key];
+  if (typeof have() === "string") return Promise.resolve(/** @type {string} */ (have()));
+  let p = statementLoads.get(key);
+  if (!p) {
+    p = new Promise((resolve, reject) => {
+      const s = document.createElement("script");
+      s.src = `${host.dataset.statements || ""}${k}.js`;
+      s.onload = () => (typeof have() === "string" ? resolve(have()) : reject(new Error(`no statement in ${s.src}`)));
+      s.onerror = () => { statementLoads.delete(key); reject(new Error(`could not load ${s.src}`)); };
+      document.head.append(s);
+    });
+    statementLoads.set(key, p);
+  }
+  return p;
 }
 
 /** @type {Promise<unknown>[]} */
 const pending = [];
 
-/** Resolves when every statement drawn so far has been typeset (for the browser tests). */
+/** Resolves when every statement asked for so far is on the page (for the browser tests). */
 export function typesetDone() {
   return Promise.all(pending);
 }
@@ -168,6 +187,88 @@ function idPanel() {
 
 let uid = 0;
 
+/**
+ * A grid of one input per entry, beside the text box (which stays the answer: the grid writes it as
+ * [[a, b], [c, d]]). Tab and Shift+Tab go from cell to cell, the arrow keys move up and down (and left and
+ * right at a cell's ends), Ctrl+Enter checks. Shown by its toggle button, for vectors and matrices only.
+ */
+function answerGrid(/** @type {HTMLTextAreaElement} */ box, /** @type {number} */ n, /** @type {() => void} */ onInput,
+  /** @type {() => void} */ onCheck) {
+  const toggle = el("button", { type: "button", class: "course-answer-grid-toggle", "aria-expanded": "false",
+    "aria-controls": `course-answer-grid-${n}` }, "Enter in a grid");
+  const wrap = el("div", { class: "course-answer-grid", id: `course-answer-grid-${n}`, hidden: "" });
+  /** @type {number[]} */
+  let shape = [];
+  /** @type {HTMLInputElement[]} */
+  let cells = [];
+  const dims = () => (shape.length === 2 ? shape : [1, shape[0] || 1]);
+  const write = () => {
+    const [r, c] = dims();
+    const rows = [];
+    for (let i = 0; i < r; i++) rows.push("[" + cells.slice(i * c, (i + 1) * c).map((x) => x.value.trim()).join(", ") + "]");
+    box.value = shape.length === 2 ? "[" + rows.join(",\n ") + "]" : rows[0];
+    onInput();
+  };
+  const fill = () => {  // the cells from the text box, when its layout has the grid's shape
+    const lay = /** @type {any} */ (layout(box.value));
+    const flat = lay.rows ? lay.rows.flat() : [];
+    const [r, c] = dims();
+    const fits = lay.rows && flat.length === r * c && (shape.length !== 2 || lay.rows.length === r);
+    cells.forEach((x, i) => { x.value = fits ? flat[i] : ""; });
+  };
+  const build = () => {
+    wrap.textContent = "";
+    const [r, c] = dims();
+    const table = el("table", { role: "grid", "aria-label": shape.length === 2 ? `Your answer, ${r} rows by ${c} columns` :
+      `Your answer, ${c} entries` });
+    cells = [];
+    for (let i = 0; i < r; i++) {
+      const tr = el("tr");
+      for (let j = 0; j < c; j++) {
+        const td = el("td");
+        const input = /** @type {HTMLInputElement} */ (el("input", {
+          type: "text", inputmode: "text", spellcheck: "false", autocomplete: "off", size: "6",
+          "aria-label": shape.length === 2 ? `row ${i + 1}, column ${j + 1}` : `entry ${j + 1}`,
+        }));
+        const at = i * c + j;
+        input.addEventListener("input", write);
+        input.addEventListener("keydown", (e) => {
+          const move = (/** @type {number} */ to) => { if (to >= 0 && to < cells.length) { e.preventDefault(); cells[to].focus(); } };
+          if (e.key === "Enter" && (e.ctrlKey || e.metaKey)) { e.preventDefault(); onCheck(); }
+          else if (e.key === "ArrowDown" || e.key === "Enter") move(at + c);
+          else if (e.key === "ArrowUp") move(at - c);
+          else if (e.key === "ArrowRight" && input.selectionStart === input.value.length) move(at + 1);
+          else if (e.key === "ArrowLeft" && input.selectionEnd === 0) move(at - 1);
+        });
+        td.append(input);
+        tr.append(td);
+        cells.push(input);
+      }
+      table.append(tr);
+    }
+    wrap.append(table);
+    fill();
+  };
+  toggle.addEventListener("click", () => {
+    const open = wrap.hidden;
+    wrap.hidden = !open;
+    toggle.setAttribute("aria-expanded", String(open));
+    toggle.textContent = open ? "Hide the grid" : "Enter in a grid";
+    if (open) { fill(); if (cells[0]) cells[0].focus(); }
+  });
+  box.addEventListener("input", () => { if (!wrap.hidden) fill(); });
+  return {
+    toggle, el: wrap,
+    reshape(/** @type {number[]} */ s) {
+      const same = s.length === shape.length && s.every((x, i) => x === shape[i]);
+      shape = s;
+      toggle.hidden = s.length === 0;
+      if (s.length === 0) wrap.hidden = true;
+      if (!same || !cells.length) build(); else fill();
+    },
+  };
+}
+
 function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onChange) {
   const exerciseId = host.dataset.exercise || "";
   const bank = banks()[exerciseId];
@@ -176,17 +277,59 @@ function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onC
   const n = ++uid;
   const head = el("p", { class: "course-answer-variant" });
   const newVariant = el("button", { type: "button", class: "course-answer-new" }, "New variant");
-  const statement = el("div", { class: "course-answer-statement mathjax_process" });
+  const statement = el("div", { class: "course-answer-statement" });
   const label = el("label", { for: `course-answer-${n}` }, "Your answer");
+  const symbolic = bank.kind === "symbolic";
   const help = el("span", { class: "course-answer-help", id: `course-answer-help-${n}` },
     bank.kind === "scalar" ? " (one number; fractions and pi are accepted)" :
-      " (numbers separated by commas or spaces, a matrix one row a line, or pasted from NumPy or MATLAB; " +
-      "fractions and pi are accepted; Ctrl+Enter checks)");
+      symbolic ? ` (formulas in ${bank.variants[0].symbols.join(", ")} as in Python, such as l1*cos(theta1); a ` +
+        "matrix as [[row 1], [row 2], ...], one row a line, or sympy's Matrix([...]); Ctrl+Enter checks)" :
+        " (numbers separated by commas or spaces, a matrix one row a line, or pasted from NumPy or MATLAB; " +
+        "fractions and pi are accepted; Ctrl+Enter checks)");
   const box = /** @type {HTMLTextAreaElement} */ (el("textarea", {
     id: `course-answer-${n}`, rows: bank.kind === "scalar" ? "1" : "3", spellcheck: "false", autocomplete: "off",
     "aria-describedby": `course-answer-help-${n}`,
   }));
+  // a formula's preview, as math.js reads it (plain text; typeset only if the page's MathJax is already loaded)
+  const shown = el("div", { class: "course-answer-preview", "aria-live": "off" });
+  const showPreview = () => {
+    if (!symbolic) return;
+    shown.textContent = "";
+    const parsed = box.value.trim() ? parseFormulas(box.value) : null;
+    if (!parsed || parsed.kind) return;
+    const p = preview(parsed);
+    const w = /** @type {any} */ (window);
+    if (w.MathJax && typeof w.MathJax.tex2chtml === "function") {
+      try {
+        shown.append(el("span", {}, "Read as: "), w.MathJax.tex2chtml(p.tex, { display: false }));
+        w.MathJax.startup.document.clear();
+        w.MathJax.startup.document.updateDocument();
+        return;
+      } catch {
+        shown.textContent = "";
+      }
+    }
+    const table = el("table", { class: "course-answer-preview-table" });
+    for (const row of p.rows) {
+      const tr = el("tr");
+      for (const cell of row) tr.append(el("td", {}, cell));
+      table.append(tr);
+    }
+    shown.append(el("span", {}, "Read as: "), table);
+  };
+  let previewTimer = 0;
+  box.addEventListener("input", () => {
+    window.clearTimeout(previewTimer);
+    previewTimer = window.setTimeout(showPreview, 150);
+  });
   const check = el("button", { type: "button", class: "course-answer-check" }, "Check");
+  /** The shape of variant k's answer (the grid's rows and columns); [] for one number. */
+  const gridShape = (/** @type {number} */ k) => {
+    const v = bank.variants[k];
+    if (bank.kind === "scalar") return [];
+    return fromNested(symbolic ? v.ref[0] : v.ref).shape;
+  };
+  const grid = answerGrid(box, n, () => { showPreview(); }, () => run());
   const out = el("div", { class: "course-answer-verdict", role: "status", "aria-live": "polite" });
   const size = bank.variants.length;
   let practice = Math.floor(Math.random() * size);
@@ -202,10 +345,22 @@ function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onC
     } else {
       head.textContent = `Your variant, for ID “${id}”:`;
     }
-    statement.innerHTML = bank.variants[k].statement;  // the library's HTML of the statement (build time)
-    typeset(statement);
+    if (statement.dataset.variant !== String(k)) statement.textContent = "";  // (no other variant's numbers)
+    statement.dataset.variant = String(k);
+    statement.setAttribute("aria-busy", "true");
+    pending.push(loadStatement(host, exerciseId, k).then((html) => {
+      if (host.dataset.variant !== String(k)) return;  // another variant was asked for meanwhile
+      statement.innerHTML = html;  // the library's statement, typeset at build time
+      statement.removeAttribute("aria-busy");
+    }, () => {
+      if (host.dataset.variant !== String(k)) return;
+      statement.textContent = `The statement of variant ${k + 1} could not be loaded; the notebook shows it.`;
+      statement.removeAttribute("aria-busy");
+    }));
     const last = isPractice(id) ? null : answersOf(id)[exerciseId];
     box.value = last && last.variant === k ? last.text : "";
+    grid.reshape(gridShape(k));
+    showPreview();
     out.textContent = "";
     out.className = "course-answer-verdict";
   };
@@ -240,7 +395,7 @@ function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onC
   box.addEventListener("keydown", (e) => { if (e.key === "Enter" && (e.ctrlKey || e.metaKey)) { e.preventDefault(); run(); } });
   const field = el("div", { class: "course-answer-field" });
   field.append(box, check);
-  host.append(head, statement, label, help, field, out);
+  host.append(head, statement, label, help, grid.toggle, grid.el, field, shown, out);
   host.dataset.checked = "page";
   boxes.push({ refresh });
   refresh();

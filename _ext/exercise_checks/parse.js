@@ -13,7 +13,7 @@ import {
   divideDependencies, powDependencies, unaryMinusDependencies, unaryPlusDependencies, sqrtDependencies,
   cosDependencies, sinDependencies, tanDependencies, acosDependencies, asinDependencies, atanDependencies,
   atan2Dependencies, expDependencies, logDependencies, absDependencies, piDependencies, tauDependencies,
-  eDependencies, NaNDependencies, InfinityDependencies,
+  eDependencies, NaNDependencies, InfinityDependencies, parseDependencies,
 } from "mathjs/number";
 
 const math = create({
@@ -21,8 +21,15 @@ const math = create({
   powDependencies, unaryMinusDependencies, unaryPlusDependencies, sqrtDependencies, cosDependencies,
   sinDependencies, tanDependencies, acosDependencies, asinDependencies, atanDependencies, atan2Dependencies,
   expDependencies, logDependencies, absDependencies, piDependencies, tauDependencies, eDependencies,
-  NaNDependencies, InfinityDependencies,
+  NaNDependencies, InfinityDependencies, parseDependencies,
 });
+
+/** The math.js instance the page reads answers with (numbers only; the functions listed above). */
+export { math };
+
+/** An entry's text as math.js reads it: nan, inf and Python's ** spelled its way. */
+export const mathText = (/** @type {string} */ text) =>
+  text.replace(/\bnan\b/gi, "NaN").replace(/\binf\b/gi, "Infinity").replace(/\*\*/g, "^");
 
 /** Longest answer read, in characters (a 6 x 6 matrix with 10 digits an entry is about 600). */
 export const MAX_CHARS = 20000;
@@ -33,7 +40,7 @@ const invalid = (/** @type {string} */ message) => ({ kind: "invalid", message }
 
 /** One entry's text to a number with math.js. */
 function entry(/** @type {string} */ text) {
-  const t = text.replace(/\bnan\b/gi, "NaN").replace(/\binf\b/gi, "Infinity").replace(/\*\*/g, "^");
+  const t = mathText(text);
   let value;
   try {
     value = math.evaluate(t, {});
@@ -77,20 +84,25 @@ function rowEntries(/** @type {string} */ row) {
   return joined.split(/\s+/);
 }
 
-/** Read a typed answer. */
-export function parseAnswer(/** @type {string} */ raw) {
+/**
+ * The layout of a typed answer: its entries' texts, row by row, and whether it was written in brackets; or
+ * {kind: "empty"|"invalid", message}.
+ * @returns {{rows: string[][], bracketed: boolean, nested: boolean} | {kind: string, message: string}}
+ */
+export function layout(/** @type {string} */ raw) {
   if (typeof raw !== "string") return invalid("The answer is not text.");
   if (raw.length > MAX_CHARS) return invalid(`Your answer has ${raw.length} characters, far more than this exercise needs.`);
   let text = raw.trim();
   if (!text) return { kind: "empty", message: "Type your answer in the box, then press Check." };
-  // NumPy's repr: array([...]) or matrix([...]), maybe with dtype=...; np. in front
-  const wrapped = /^(np\.|numpy\.)?(array|matrix|asarray)\s*\(/.exec(text);
+  // NumPy's repr: array([...]) or matrix([...]), maybe with dtype=...; np. in front; sympy's Matrix([...])
+  const wrapped = /^(np\.|numpy\.|sp\.|sympy\.)?(array|matrix|asarray|Matrix)\s*\(/.exec(text);
   if (wrapped) {
     text = text.slice(wrapped[0].length).replace(/,\s*dtype\s*=\s*[\w.]+\s*/, "").replace(/\)\s*$/, "").trim();
   }
   // a tuple (1, 2, 3) reads as a list
   if (/^\(.*,.*\)$/s.test(text) && !/^\([^()]*\)\s*[-+*/^]/.test(text)) text = "[" + text.slice(1, -1) + "]";
   const bracketed = text.startsWith("[");
+  const nested = /^\[\s*\[/.test(text);  // [[...]]: a matrix, even of one row
   let rows;
   if (/\]\s*[,;]?\s*\[/.test(text)) {
     // nested brackets: a row ends at "]" before the next "["
@@ -116,13 +128,28 @@ export function parseAnswer(/** @type {string} */ raw) {
     return invalid("Your rows have different lengths: every row of a matrix needs the same number of entries.");
   }
   if (entries.some((r) => r.some((e) => !e))) return invalid("One entry of your answer is empty (two commas in a row?).");
+  return { rows: entries, bracketed, nested };
+}
+
+/** The shape of a layout: () for one entry typed without brackets, (n,) for one row, (rows, columns) for several
+ * rows or rows in brackets ([[1, 2]] is (1, 2), as numpy reads it). */
+export function layoutShape(/** @type {{rows: string[][], bracketed: boolean, nested: boolean}} */ lay) {
+  const entries = lay.rows;
+  if (entries.length > 1 || lay.nested) return [entries.length, entries[0].length];
+  if (entries[0].length === 1 && !lay.bracketed) return [];
+  return [entries[0].length];
+}
+
+/** Read a typed answer. */
+export function parseAnswer(/** @type {string} */ raw) {
+  const lay = layout(raw);
+  if ("kind" in lay) return lay;
+  const entries = lay.rows;
   let data;
   try {
     data = entries.flat().map(entry);
   } catch (err) {
     return invalid(String(/** @type {any} */ (err).message));
   }
-  if (entries.length > 1) return { shape: [entries.length, entries[0].length], data };
-  if (entries[0].length === 1 && !bracketed) return { shape: [], data };
-  return { shape: [entries[0].length], data };
+  return { shape: layoutShape(lay), data };
 }

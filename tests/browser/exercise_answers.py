@@ -33,8 +33,67 @@ def text_of(value: Any, style: int = 0) -> str:
     return "[" + ", ".join("[" + ", ".join(r) + "]" for r in rows) + "]"
 
 
+def formula_text(value: Any) -> str:
+    """The text a reader types for a sympy expression, or a matrix of them (rows in brackets, sympy's printing)."""
+    import sympy as sp
+    if isinstance(value, sp.MatrixBase):
+        return "[" + ",\n ".join("[" + ", ".join(str(e) for e in row) + "]" for row in value.tolist()) + "]"
+    if isinstance(value, list):
+        return "[" + ", ".join(str(e) for e in value) + "]"
+    return str(value)
+
+
+def symbolic_answers_for(ex: Exercise) -> list[tuple[str, Any]]:
+    """(text for the page, value for the notebook: a sympy Matrix, a list of expressions or one expression) pairs
+    to try on a symbolic variant: the reference (as printed, expanded, and written with ^ and spaces), every
+    catalogued mistake, the transpose, the columns swapped, a wrong shape (a row dropped, one row only, one
+    entry), one entry changed, a symbol set to a number (the answer then misses it), numbers only, NaN, a
+    formula with an unknown symbol, garbage and an empty box."""
+    import sympy as sp
+    ref = ex.reference
+    syms = {str(s): s for s in ex.symbols.values()}
+    out: list[tuple[str, Any]] = []
+
+    def add(value: Any, text: str | None = None) -> None:
+        out.append((formula_text(value) if text is None else text, value))
+
+    add(ref)
+    expanded = ref.applyfunc(lambda e: sp.expand(sp.expand_trig(e)))
+    add(expanded)
+    add(ref, formula_text(ref).replace("**", "^").replace("*", " * "))
+    add(ref, "Matrix(" + formula_text(ref) + ")")
+    for m in ex.mistakes:
+        add(m.value)
+    add(ref.T)
+    add(ref[:, ::-1])
+    add(ref[:-1, :])
+    add(list(ref[0, :]))
+    add(ref[0, 0])
+    changed = ref.copy()
+    changed[0, 0] = changed[0, 0] + 1
+    add(changed)
+    changed = ref.copy()
+    changed[-1, -1] = changed[-1, -1] + syms["l1"]
+    add(changed)
+    add(ref.xreplace({syms["l2"]: sp.Integer(1)}))
+    add(ref.xreplace({s: sp.Float(0.5 + 0.1 * i) for i, s in enumerate(syms.values())}))
+    nan = ref.copy()
+    nan[0, 0] = sp.nan
+    add(nan, formula_text(nan))
+    q = sp.Symbol("q")
+    unknown = ref.copy()
+    unknown[1, 0] = unknown[1, 0] + q
+    add(unknown)
+    out.append(("", None))
+    out.append(("hello world", "hello world"))
+    out.append(("l1*cos(theta1", "l1*cos(theta1"))
+    return out
+
+
 def answers_for(ex: Exercise) -> list[tuple[str, Any]]:
     """(text for the page, value for the notebook) pairs to try on the variant ``ex``."""
+    if ex.kind == "symbolic":
+        return symbolic_answers_for(ex)
     ref = np.asarray(ex.reference, dtype=float)
     d = ex.decimals if ex.decimals is not None else 3
     out: list[tuple[str, Any]] = []

@@ -35,6 +35,15 @@ PAGES = sorted(p.stem for p in (ROOT / "exercises").glob("*.md"))
 IDS = [f"s{2400000 + 37 * i}" for i in range(17)] + ["  Jane DOE ", "Ünïcode-ß 7", "42", "student-id"]
 
 
+#: The statement shown in an exercise's box with each typeset formula back to its TeX (data-tex) in the delimiters
+#: of :func:`~jacobians.grading.feedback.statement_html`
+_SHOWN_TEX = r"""(eid) => {
+    const s = document.querySelector(`.course-answer[data-exercise="${eid}"] .course-answer-statement`).cloneNode(true);
+    s.querySelectorAll('[data-tex]').forEach(m => m.replaceWith(document.createTextNode(
+        m.tagName === 'DIV' ? '\\[' + m.dataset.tex + '\\]' : '\\(' + m.dataset.tex + '\\)')));
+    return s.innerHTML; }"""
+
+
 def _page_exercises(page: str) -> list[str]:
     text = (ROOT / "exercises" / f"{page}.md").read_text(encoding="utf-8")
     return re.findall(r"```\{answer-box\} (ch\d+_ex\d+)", text)
@@ -105,14 +114,16 @@ def test_the_page_shows_the_variant_of_the_id(browser_context, book_url, page):
             for eid in ids:
                 k = int(tab.get_attribute(f'.course-answer[data-exercise="{eid}"]', "data-variant") or -1)
                 assert k == variant_index(eid, sid)
-                html = tab.evaluate("([eid, k]) => window.__courseBanks[eid].variants[k].statement", [eid, k])
+                tab.evaluate("window.courseExercises.typesetDone().then(() => true)")
+                html = tab.evaluate(_SHOWN_TEX, eid)
                 assert html == statement_html(exercises.load(eid, seed=sid).statement)
                 shown[(sid, eid)] = html
         assert any(shown[("s2400001", e)] != shown[("s2400002", e)] for e in ids), "two IDs, two statements"
-        # the statement drawn for the ID has its math typeset (no TeX delimiters left in what the reader sees)
-        tab.wait_for_function("""() => [...document.querySelectorAll('.course-answer-statement')]
-            .every(s => !s.textContent.includes('\\\\(') && !s.textContent.includes('\\\\['))""", timeout=60_000)
+        # the statement drawn for the ID was typeset at build time: no TeX left, and no MathJax loaded to show it
+        assert tab.evaluate("""() => [...document.querySelectorAll('.course-answer-statement')]
+            .every(s => !s.textContent.includes('\\\\(') && !s.textContent.includes('\\\\['))""")
         assert tab.locator(".course-answer-statement mjx-container").count() > 0
+        assert tab.evaluate("window.MathJax === undefined"), "MathJax was loaded to show a statement"
         assert tab.evaluate(f"Object.values(window.__courseBanks).every(b => b.variants.length === {BANK_SIZE})")
         # the page's hash of an ID is the library's, for IDs with spaces, capitals, accents, other scripts
         tricky = ["s1", " S1 ", "a\tb\n c", "Ünïcode-ß", "ǅemal", "İstanbul", "学生-17", "x" * 200, "0", "12345"]
@@ -198,3 +209,54 @@ def test_code_exercises_link_to_the_notebook(book_html):
     box = re.search(r'data-exercise-elsewhere="ch01_ex4".*?</div>', text, re.S)
     assert box and 'href="student/01_twists.ipynb"' in box.group(0) and "checked in the notebook" in box.group(0)
     assert (book_html / "exercises" / "student" / "01_twists.ipynb").is_file()
+
+
+@pytest.mark.parametrize("mode", ["light", "dark"])
+def test_a_formula_and_a_grid_with_the_keyboard(browser_context, book_url, artifacts, mode):
+    """A symbolic answer typed in the box gets the notebook's verdict and a preview of how it was read; the same
+    matrix entered cell by cell in the grid (Tab from cell to cell, Ctrl+Enter checks) too; at 390 px the grid
+    scrolls in its own box and the page does not."""
+    from exercise_answers import formula_text
+    problems: list[str] = []
+    tab = _open(browser_context, book_url, "06_analytic_jacobian", problems, color_scheme=mode)
+    try:
+        sid, eid = "s2401012", "ch06_ex1"
+        tab.focus("#course-student-id")
+        tab.keyboard.type(sid)
+        tab.keyboard.press("Enter")
+        ex = exercises.load(eid, seed=sid)
+        box = f'.course-answer[data-exercise="{eid}"]'
+        kind, text = _verdict(tab, eid, formula_text(ex.reference))
+        fb = ex.check(ex.reference)
+        assert "course-answer-correct" in kind and fb.message in text
+        tab.wait_for_selector(f"{box} .course-answer-preview table")
+        preview = tab.inner_text(f"{box} .course-answer-preview")
+        assert "cos" in preview or "sin" in preview
+        tab.locator(box).scroll_into_view_if_needed()
+        tab.screenshot(path=str(artifacts / f"exercise-formula-desktop-{mode}.png"))
+        # a catalogued mistake, typed in the grid with the keyboard
+        m = ex.mistakes[0]
+        tab.fill(f"{box} textarea", "")
+        tab.focus(f"{box} .course-answer-grid-toggle")
+        tab.keyboard.press("Enter")
+        cells = tab.locator(f"{box} .course-answer-grid input")
+        assert cells.count() == len(ex.reference)
+        assert tab.evaluate("document.activeElement.closest('.course-answer-grid') !== null")
+        for i, entry in enumerate(m.value):
+            tab.keyboard.type(str(entry))
+            if i < len(m.value) - 1:
+                tab.keyboard.press("Tab")
+        tab.keyboard.press("Control+Enter")
+        out = tab.locator(f"{box} .course-answer-verdict")
+        assert m.name in out.inner_text() and ex.check(m.value).message in out.inner_text()
+        tab.set_viewport_size({"width": 390, "height": 844})
+        overflow = tab.evaluate("""() => [...document.querySelectorAll('.course-answer, .course-id-panel')]
+            .filter(e => e.getBoundingClientRect().right > document.documentElement.clientWidth + 1).length""")
+        assert overflow == 0
+        tab.locator(f"{box} .course-answer-grid").scroll_into_view_if_needed()
+        tab.screenshot(path=str(artifacts / f"exercise-grid-phone-{mode}.png"))
+        assert not problems, problems
+    finally:
+        tab.evaluate("localStorage.clear()")
+        tab.set_viewport_size({"width": 1280, "height": 900})
+        tab.close()

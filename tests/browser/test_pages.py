@@ -41,16 +41,7 @@ def test_nothing_loads_from_another_host(page_reports, path):
     _assert_clean(page_reports(path), "offline")
 
 
-# Known gaps of the exercise pages: the statement drawn for the reader's ID is typeset by MathJax loaded on
-# demand, with its menu and explorer (about 2 MB): the page then weighs just over 3 MiB, and this check still
-# finds TeX in some statement, though a reader's page is typeset within seconds (checked by hand, and by
-# test_exercise_page.py for a set ID). The cure is to typeset the banks' statements at build time.
-_EXERCISE_PAGES = [p for p in PAGES if p.startswith("exercises/")]
-_WEIGHT_GAP = pytest.mark.xfail(strict=True, reason="known gap: MathJax with its menu loaded for the statements")
-_TEX_GAP = pytest.mark.xfail(strict=False, reason="known gap: statements typeset on demand, after the check")
-
-
-@pytest.mark.parametrize("path", [pytest.param(p, marks=_TEX_GAP) if p in _EXERCISE_PAGES else p for p in PAGES])
+@pytest.mark.parametrize("path", PAGES)
 def test_math_is_typeset(page_reports, path):
     _assert_clean(page_reports(path), "math")
 
@@ -87,7 +78,7 @@ def test_no_error_output_shown(page_reports, path):
     _assert_clean(page_reports(path), "errors")
 
 
-@pytest.mark.parametrize("path", [pytest.param(p, marks=_WEIGHT_GAP) if p in _EXERCISE_PAGES else p for p in PAGES])
+@pytest.mark.parametrize("path", PAGES)
 def test_page_weight_under_3_mb(page_reports, path):
     report = page_reports(path)
     assert report.total_bytes > 0, f"{path}: no bytes were recorded, the weight check saw nothing"

@@ -9,7 +9,9 @@ The page writes one JSON file per reader, ``answers-<id>.json``::
 A file is data from a student, so it is read with bounds: at most :data:`MAX_BYTES`, JSON only (no
 evaluation of the typed text), an ID of at most 200 characters, at most :data:`MAX_ANSWERS` answers, each a
 known exercise id with a value of at most two indices and :data:`~jacobians.grading.answers.MAX_ENTRIES`
-finite-or-NaN numbers whose count matches its shape. Nothing the file claims is trusted: no verdict is read,
+finite-or-NaN numbers whose count matches its shape; for a formula (``{"shape", "formulas"}``), each formula is
+read from Python's parse tree node by node (numbers, symbols, + - * / **, a few functions: :func:`_formula`),
+never evaluated. Nothing the file claims is trusted: no verdict is read,
 the variant is the one of the ID (``exercises.load``), and every answer is regraded with the course's checker
 (:func:`course.exercises.check` without the session's log: ``Exercise.check``). Each problem gets a row that
 says what is wrong; a file never stops the grading of the class.
@@ -91,6 +93,86 @@ def _value(entry: Any) -> list[Any] | float | None | str:
     return [nums[i * shape[1]:(i + 1) * shape[1]] for i in range(shape[0])]
 
 
+#: Longest formula read from an answers file, in characters.
+MAX_FORMULA = 2000
+#: The functions a saved formula may call (those the page's math.js reads), as sympy names.
+_FUNCTIONS = {"sin": "sin", "cos": "cos", "tan": "tan", "asin": "asin", "acos": "acos", "atan": "atan",
+              "atan2": "atan2", "sqrt": "sqrt", "exp": "exp", "log": "log", "abs": "Abs"}
+#: Largest exponent written in a saved formula (a formula of the course needs squares; 9**9**9 is refused).
+_MAX_POWER = 64
+
+
+def _formula(text: Any, symbols: dict[str, Any]) -> Any:
+    """A saved formula (math.js's printing of what the reader typed) as a sympy expression, built node by node from
+    Python's own parse tree with only numbers, the exercise's symbols (other names become symbols the checker
+    then names as unknown), + - * / **, and the functions of :data:`_FUNCTIONS`; a text saying what is wrong
+    otherwise. Nothing is evaluated."""
+    import ast
+
+    import sympy as sp
+    if not isinstance(text, str) or len(text) > MAX_FORMULA:
+        return "has a formula that is not text of at most 2000 characters"
+    consts = {"pi": sp.pi, "e": sp.E, "E": sp.E, "NaN": sp.nan, "nan": sp.nan, "Infinity": sp.oo, "inf": sp.oo}
+    binary = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b, ast.Mult: lambda a, b: a * b,
+              ast.Div: lambda a, b: a / b}
+
+    def conv(node: ast.AST, depth: int) -> Any:
+        if depth > 200:
+            raise ValueError("nested too deeply")
+        if isinstance(node, ast.Constant) and type(node.value) in (int, float):
+            return sp.Integer(node.value) if isinstance(node.value, int) else sp.Float(node.value)
+        if isinstance(node, ast.Name):
+            if node.id in consts:
+                return consts[node.id]
+            return symbols[node.id] if node.id in symbols else sp.Symbol(node.id)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+            x = conv(node.operand, depth + 1)
+            return -x if isinstance(node.op, ast.USub) else x
+        if isinstance(node, ast.BinOp) and type(node.op) in binary:
+            return binary[type(node.op)](conv(node.left, depth + 1), conv(node.right, depth + 1))
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow):
+            base, power = conv(node.left, depth + 1), conv(node.right, depth + 1)
+            if not (power.is_number and power.is_finite and abs(float(power)) <= _MAX_POWER):
+                raise ValueError("an exponent that is not a number of at most 64")
+            return base ** power
+        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS
+                and not node.keywords and 1 <= len(node.args) <= 2):
+            return getattr(sp, _FUNCTIONS[node.func.id])(*(conv(a, depth + 1) for a in node.args))
+        raise ValueError(f"{type(node).__name__}")
+
+    try:
+        tree = ast.parse(text.replace("^", "**"), mode="eval")
+        return conv(tree.body, 0)
+    except (SyntaxError, ValueError, TypeError, RecursionError, MemoryError, OverflowError):
+        return "has a formula that is not one the page reads"
+
+
+def _formulas(entry: Any, symbols: dict[str, Any]) -> Any:
+    """The formulas of one saved symbolic answer (``{"shape", "formulas"}``) as the notebook would give them: a
+    sympy Matrix, a list of expressions or one expression (None for no value); a text saying what is wrong."""
+    import sympy as sp
+    if not isinstance(entry, dict) or not isinstance(entry.get("value"), dict):
+        return None if isinstance(entry, dict) and entry.get("value") is None else "is not an answer record"
+    shape, formulas = entry["value"].get("shape"), entry["value"].get("formulas")
+    if not (isinstance(shape, list) and len(shape) <= 2 and all(isinstance(n, int) and not isinstance(n, bool)
+                                                                 and 0 < n <= 100 for n in shape)):
+        return "has a shape that is not a list of at most two whole numbers up to 100"
+    size = math.prod(shape)
+    if not isinstance(formulas, list) or len(formulas) != size:
+        return f"has {len(formulas) if isinstance(formulas, list) else 'no list of'} formulas for the shape {shape}"
+    exprs = []
+    for f in formulas:
+        x = _formula(f, symbols)
+        if isinstance(x, str):
+            return x
+        exprs.append(x)
+    if not shape:
+        return exprs[0]
+    if len(shape) == 1:
+        return exprs
+    return sp.Matrix(shape[0], shape[1], exprs)
+
+
 def read_answers_text(raw: bytes) -> tuple[str | None, list[Mark]]:
     """The student ID of one answers file's bytes (None if it has none) and its marks."""
     from course import exercises
@@ -124,11 +206,13 @@ def read_answers_text(raw: bytes) -> tuple[str | None, list[Mark]]:
         if eid not in known:
             marks.append(note(f"answers an unknown exercise {str(eid)[:40]!r}; that answer is ignored"))
             continue
-        value = _value(entry)
+        ex = exercises.load(eid, seed=sid)
+        value = (_formulas(entry, {str(x): x for x in ex.symbols.values()}) if ex.kind == "symbolic"
+                 else _value(entry))
         if isinstance(value, str):
             marks.append(Mark(eid, "0", f"The saved answer {value}: it cannot be graded."))
             continue
-        fb = exercises.load(eid, seed=sid).check(value)
+        fb = ex.check(value)
         marks.append(Mark(eid, "1" if fb.correct else "0", fb.message[:400], fb.mistake or ""))
     return sid, marks
 

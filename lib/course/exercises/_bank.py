@@ -6,11 +6,13 @@ variant for the seed text ``"variant-k"`` (:func:`variant_seed`). A student ID p
 modulo the bank size. The book page's script computes the same hash (``_ext/exercise_checks/checker.js``), so
 the notebook (:func:`course.exercises.load`) and the page show the same numbers for an ID.
 
-:func:`bank` writes what the page needs for one exercise, computed by the library at build time: per variant the
-statement (as HTML, math left for MathJax), the reference, the tolerance rule (stated margin, decimals asked,
-decimals carried), every catalogued mistake's answer and message, and the hint. The page only reads the answer
-and compares it the way :func:`jacobians.grading.compare.compare` does (``checker.js`` mirrors it; the browser
-tests check that the two agree answer by answer).
+:func:`bank` writes what the page needs to check one exercise, computed by the library at build time: per variant
+the reference, the tolerance rule (stated margin, decimals asked, decimals carried), every catalogued mistake's
+answer and message, and the hint. :func:`statements` gives each variant's statement as HTML with its math in
+``\\( \\)`` and ``\\[ \\]``; the book build typesets them with the pages' MathJax (``tools/prerender_math.cjs``)
+into one small script per variant, so the page loads only the statement of the reader's variant and no MathJax.
+The page only reads the answer and compares it the way :func:`jacobians.grading.compare.compare` does
+(``checker.js`` mirrors it; the browser tests check that the two agree answer by answer).
 
 >>> variant_index("ch01_ex1", "  S2401012 ") == variant_index("ch01_ex1", "s2401012")
 True
@@ -27,18 +29,20 @@ import numpy as np
 
 from jacobians.grading import Exercise
 from jacobians.grading.catalogue import seed_value
+from jacobians.grading.exercise import _eval_sym
 from jacobians.grading.feedback import statement_html
 
 from ._registry import CATALOGUE
 
-__all__ = ["BANK_SIZE", "PAGE_KINDS", "bank", "fnv1a32", "normalise_id", "variant_index", "variant_seed"]
+__all__ = ["BANK_SIZE", "PAGE_KINDS", "bank", "fnv1a32", "normalise_id", "statements", "variant_index",
+           "variant_seed"]
 
 #: Variants per exercise: 32 keeps the largest bank (a 6 x 5 Jacobian with eight mistakes) near 80 KB, under the
 #: 100 KB a page may load for one exercise (64 would take it to 160 KB).
 BANK_SIZE = 32
 
-#: The kinds the page checks itself (the others are checked in the notebook).
-PAGE_KINDS = ("numeric", "scalar")
+#: The kinds the page checks itself (the others, code, are checked in the notebook).
+PAGE_KINDS = ("numeric", "scalar", "symbolic")
 
 #: Whitespace as JavaScript's ``\s`` reads it (ECMAScript WhiteSpace and LineTerminator), so that both sides
 #: collapse the same characters.
@@ -87,12 +91,24 @@ def _variant(ex: Exercise, messages: dict[str, int]) -> dict[str, Any]:
     def msg(text: str) -> int:
         return messages.setdefault(text, len(messages))
 
+    if ex.kind == "symbolic":
+        # the page evaluates the typed formula at the points the checker uses (Exercise.sample_points) and compares
+        # with the reference's and each mistake's values there, as Exercise._check_symbolic does
+        points = ex.sample_points()
+        return {
+            "symbols": sorted(points[0]),
+            "wanted": sorted(str(s) for s in ex.reference.free_symbols),
+            "points": points,
+            "ref": [_num(_eval_sym(ex.reference, p)) for p in points],
+            "mistakes": [[m.name, [_num(_eval_sym(m.value, p)) for p in points], msg(m.message)] for m in ex.mistakes],
+            "hint": msg(ex.hint or ""),
+            "what": ex.what,
+        }
     ref = np.asarray(ex.reference, dtype=float)
     if ref.ndim > 2:
         raise ValueError(f"{ex.id}: the page reads numbers, vectors and matrices, not a reference of shape "
                          f"{ref.shape}")
     out: dict[str, Any] = {
-        "statement": statement_html(ex.statement),
         "ref": _num(ref),
         "mistakes": [[m.name, _num(m.value), msg(m.message)] for m in ex.mistakes],
         "hint": msg(ex.hint or ""),
@@ -110,7 +126,7 @@ def _variant(ex: Exercise, messages: dict[str, int]) -> dict[str, Any]:
 
 def bank(exercise_id: str) -> dict[str, Any]:
     """The page's checking data of ``exercise_id`` (JSON-ready): kind, title, what is asked, and for a kind the
-    page checks (:data:`PAGE_KINDS`), every variant's data; for the other kinds, only the statements."""
+    page checks (:data:`PAGE_KINDS`), every variant's data (statements apart: :func:`statements`)."""
     messages: dict[str, int] = {}
     variants = []
     first = CATALOGUE.load(exercise_id, seed=variant_seed(0))
@@ -121,7 +137,14 @@ def bank(exercise_id: str) -> dict[str, Any]:
         if ex.kind in PAGE_KINDS:
             variants.append(_variant(ex, messages))
         else:
-            variants.append({"statement": statement_html(ex.statement)})
+            variants.append({})
     return {"id": exercise_id, "kind": first.kind, "title": first.title, "what": first.what, "size": BANK_SIZE,
             "messages": [m for m, _ in sorted(messages.items(), key=lambda kv: kv[1])], "variants": variants}
 
+
+
+def statements(exercise_id: str) -> list[str]:
+    """The statement of every variant of ``exercise_id`` (variant k at index k), as the notebook's feedback box
+    shows it (:func:`~jacobians.grading.feedback.statement_html`: escaped HTML, math in ``\\( \\)`` and
+    ``\\[ \\]``)."""
+    return [statement_html(CATALOGUE.load(exercise_id, seed=variant_seed(k)).statement) for k in range(BANK_SIZE)]
