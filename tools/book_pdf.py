@@ -133,7 +133,7 @@ def build(site: Path, toc: Path, out: Path) -> dict[str, Any]:
                 context = browser.new_context(viewport={"width": 1000, "height": 1400})
                 page = context.new_page()
                 for path in pages:
-                    page.goto(base + path, wait_until="load", timeout=60_000)
+                    page.goto(base + path, wait_until="load", timeout=300_000)  # (minutes on a loaded machine)
                     try:
                         page.wait_for_function(READY_JS, timeout=20_000)
                     except Exception:
