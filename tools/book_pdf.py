@@ -9,10 +9,11 @@ browser download), printed to A4 with the theme's print style (no sidebars,
 no buttons), and the pages are joined into one PDF with a bookmark per page
 (pypdf). The math is already typeset in the pages (``_ext/math_prerender.py``);
 live views are printed once they have drawn, and
-each animation as its first frame (its still). Figures are printed at about
-150 dots per inch (``PRINT_SCALE``): a figure's full-size PNG would make the
-book several times heavier for no visible gain. ``make book`` runs it, and the
-book's introduction links the PDF.
+each animation as its first frame (its still). The theme's blurred shadows
+are left out (Chromium stored each as a page-wide bitmap: 23 MB of PDF became
+8.4 MB), and a raster figure more than ``PRINT_SCALE`` times its printed width
+(none today) is redrawn at that size. ``make book`` runs it, and the book's
+introduction links the PDF.
 """
 
 from __future__ import annotations
