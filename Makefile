@@ -69,6 +69,7 @@ book: vendor browser
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
 	$(PY) -m tools.build_slides
+	$(PY) -m tools.book_pdf _build/html
 	@$(REFRESH_COMPRESSED)
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
 

@@ -8,9 +8,12 @@ server (the live views are ES modules, which Chromium does not load from
 browser download), printed to A4 with the theme's print style (no sidebars,
 no buttons), and the pages are joined into one PDF with a bookmark per page
 (pypdf). The math is already typeset in the pages (``_ext/math_prerender.py``);
-live views are printed once they have drawn. Not yet run by ``make book``: the
-PDF is 23 MB (368 pages; the figures are printed at full size), too big for
-the site's budget until the figures are downsampled.
+live views are printed once they have drawn, and
+each animation as its first frame (its still). The theme's blurred shadows
+are left out (Chromium stored each as a page-wide bitmap: 23 MB of PDF became
+8.4 MB), and a raster figure more than ``PRINT_SCALE`` times its printed width
+(none today) is redrawn at that size. ``make book`` runs it, and the book's
+introduction links the PDF.
 """
 
 from __future__ import annotations
@@ -54,6 +57,56 @@ class _Quiet(http.server.SimpleHTTPRequestHandler):
         pass
 
 
+#: the printed text width of an A4 page with the margins below, in CSS pixels (96 per inch): 182 mm
+PRINT_WIDTH_PX = 688
+#: pixels per CSS pixel kept in a printed figure: 1.6 is about 150 dots per inch on paper, sharp on screen and
+#: in print at reading distance, and a quarter of the pixels of the figures' full size
+PRINT_SCALE = 1.6
+#: JPEG quality of a redrawn figure (Chromium's PDF keeps a JPEG as it is, and stores any other image as
+#: uncompressed pixels under Flate)
+JPEG_QUALITY = 0.88
+
+#: every lazily loaded image (the animations' stills, _ext/lazy_frames.py) loaded before printing
+EAGER_JS = """() => {
+  document.querySelectorAll('img[loading=lazy]').forEach(i => { i.loading = 'eager'; });
+  return Promise.allSettled(Array.from(document.images).map(i => i.complete ? null : i.decode()));
+}"""
+
+#: raster figures larger than they print are redrawn at PRINT_SCALE times their printed width, on white, in the
+#: same place and size; returns how many it redrew
+SHRINK_JS = r"""async ([printWidth, scale, quality]) => {
+  let shrunk = 0;
+  for (const img of Array.from(document.images)) {
+    if (!img.complete || !img.naturalWidth || /\.svg($|[?#])|^data:image\/svg/.test(img.currentSrc)) continue;
+    const shown = Math.min(img.getBoundingClientRect().width || img.naturalWidth, printWidth);
+    const want = Math.ceil(shown * scale);
+    if (img.naturalWidth <= want * 1.15) continue;
+    const h = Math.max(1, Math.round(img.naturalHeight * want / img.naturalWidth));
+    const canvas = document.createElement('canvas');
+    canvas.width = want;
+    canvas.height = h;
+    const g = canvas.getContext('2d');
+    g.fillStyle = '#ffffff';
+    g.fillRect(0, 0, want, h);
+    g.imageSmoothingQuality = 'high';
+    g.drawImage(img, 0, 0, want, h);
+    const w0 = img.naturalWidth, h0 = img.naturalHeight;
+    img.removeAttribute('srcset');
+    img.src = canvas.toDataURL('image/jpeg', quality);
+    img.setAttribute('width', String(w0));
+    img.setAttribute('height', String(h0));
+    try { await img.decode(); } catch (e) { /* printed as it is */ }
+    shrunk += 1;
+  }
+  return shrunk;
+}"""
+
+#: effects that Chromium's PDF cannot draw as vectors (blurred shadows, filters) are printed as page-wide bitmaps,
+#: tens of kilobytes each, tens per chapter; on paper they are a faint grey edge, so the print goes without them
+#: (":not(#none)" gives the rule an id's weight, above the theme's own "!important" shadows of admonitions)
+NO_RASTER_CSS = ":not(#none), :not(#none)::before, :not(#none)::after { box-shadow: none !important; " \
+                "text-shadow: none !important; filter: none !important; backdrop-filter: none !important; }"
+
 #: a page is ready to print when its fonts are loaded and every live view has mounted (or 20 s passed)
 READY_JS = """() => document.fonts.status === 'loaded'
   && Array.from(document.querySelectorAll('[data-model]')).every(v => v.dataset.ready === '1')"""
@@ -72,6 +125,7 @@ def build(site: Path, toc: Path, out: Path) -> dict[str, Any]:
     threading.Thread(target=server.serve_forever, daemon=True).start()
     base = f"http://127.0.0.1:{server.server_address[1]}/"
     writer = PdfWriter()
+    shrunk = 0
     start = time.monotonic()
     try:
         with sync_playwright() as pw:
@@ -80,12 +134,16 @@ def build(site: Path, toc: Path, out: Path) -> dict[str, Any]:
                 context = browser.new_context(viewport={"width": 1000, "height": 1400})
                 page = context.new_page()
                 for path in pages:
-                    page.goto(base + path, wait_until="load", timeout=60_000)
+                    page.goto(base + path, wait_until="load", timeout=300_000)  # (minutes on a loaded machine)
                     try:
                         page.wait_for_function(READY_JS, timeout=20_000)
                     except Exception:
                         print(f"book_pdf: {path}: live views not ready after 20 s, printed as they are",
                               file=sys.stderr)
+                    page.add_style_tag(content=NO_RASTER_CSS)
+                    page.evaluate(EAGER_JS)
+                    page.emulate_media(media="print")
+                    shrunk += page.evaluate(SHRINK_JS, [PRINT_WIDTH_PX, PRINT_SCALE, JPEG_QUALITY])
                     title = page.title().split("—")[0].split(" | ")[0].strip() or path
                     data = page.pdf(format="A4", print_background=True, display_header_footer=False,
                                     margin={"top": "15mm", "bottom": "15mm", "left": "14mm", "right": "14mm"})
@@ -104,7 +162,7 @@ def build(site: Path, toc: Path, out: Path) -> dict[str, Any]:
     with out.open("wb") as f:
         writer.write(f)
     return {"pages": len(pages), "pdf_pages": len(writer.pages), "bytes": out.stat().st_size,
-            "seconds": time.monotonic() - start}
+            "seconds": time.monotonic() - start, "shrunk": shrunk}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -120,7 +178,7 @@ def main(argv: list[str] | None = None) -> int:
         print(exc, file=sys.stderr)
         return 2
     print(f"book_pdf: {r['pages']} pages of the book -> {out} ({r['pdf_pages']} PDF pages, "
-          f"{r['bytes'] / 1e6:.1f} MB, {r['seconds']:.0f} s)")
+          f"{r['bytes'] / 1e6:.1f} MB, {r['shrunk']} figures printed smaller, {r['seconds']:.0f} s)")
     return 0
 
 
