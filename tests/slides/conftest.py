@@ -57,15 +57,6 @@ for _deck in ("01_twists", "02_space_jacobian", "03_body_jacobian", "04_space_vs
     KNOWN_DECK_GAPS[f"test_live_view_text_at_projection_size[{_deck}]"] = (
         "the live view's smallest labels are 17 px at 1280x720, 14 px at 1024x768")
 
-# Found when the chapters' new slides met the slide rules (measured in the browser at 1280x720 and 1024x768).
-KNOWN_DECK_GAPS.update({
-    "test_slides_are_legible_and_inside[03_body_jacobian]":
-        "slide 10 (3.6, the prismatic arm): its two matrices ([B1 B2 B3] and J_b, 6x3 each) run below the slide",
-    "test_every_slide_shows_its_content_at_both_sizes[03_body_jacobian]":
-        "slide 10 (3.6, the prismatic arm): J_b overlaps the book link and the deck's buttons at 1280x720",
-})
-
-
 def pytest_collection_modifyitems(config, items):
     for item in items:
         reason = KNOWN_DECK_GAPS.get(item.name)
