@@ -57,6 +57,7 @@ for _deck in ("01_twists", "02_space_jacobian", "03_body_jacobian", "04_space_vs
     KNOWN_DECK_GAPS[f"test_live_view_text_at_projection_size[{_deck}]"] = (
         "the live view's smallest labels are 17 px at 1280x720, 14 px at 1024x768")
 
+
 def pytest_collection_modifyitems(config, items):
     for item in items:
         reason = KNOWN_DECK_GAPS.get(item.name)
