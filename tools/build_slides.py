@@ -14,13 +14,15 @@ Usage: python -m tools.build_slides [DEST] [--no-build] [--no-pdf]
    notes plugins, the slide menu (reveal.js-menu) and the chalkboard
    (reveal.js-plugins) come from npm (package-lock.json); the live views are
    one classic script bundled by esbuild (:func:`bundle_live`);
-3. every deck is printed to a PDF and a handout with the speaker notes
-   (``tools/slides_pdf.py``, into ``DEST/pdf``; ``--no-pdf`` skips it);
-4. the lectures (``decks_lectures`` in ``_config.yml``: the decks cut and
+3. the lectures (``decks_lectures`` in ``_config.yml``: the decks cut and
    joined into lectures of 45-55 minutes, :func:`assemble_lectures`) into
    ``DEST/lectures/``, ``DEST/lectures.json`` for the tests;
+4. every deck is printed to a PDF and a handout with the speaker notes
+   (``tools/slides_pdf.py``, into ``DEST/pdf``; ``--no-pdf`` skips it), and
+   each lecture's PDF and handout are put together from its decks' pages
+   (:func:`lecture_pdfs`: only a lecture's own title and summary are printed);
 5. ``DEST/index.html`` lists each lecture with its minutes (the sum of its
-   speaker notes' minutes) and its parts, then each chapter's deck with its
+   speaker notes' minutes), PDFs and parts, then each chapter's deck with its
    minutes, PDFs and chapter; ``DEST/decks.json`` the same for the tests.
 
 Exit status 1 if the Sphinx build failed.
@@ -288,13 +290,14 @@ def _slide_minutes(slide: str) -> float:
     return sum(float(m) for m in _MINUTES.findall(slide))
 
 
-def _select(slides: list[str], start: str, stop: str) -> list[str]:
-    """The content slides of a deck (not its title slide) from section ``start`` up to section ``stop``."""
+def _select(slides: list[str], start: str, stop: str) -> list[int]:
+    """The content slides of a deck (not its title slide) from section ``start`` up to section ``stop``: their
+    places in ``slides``."""
     def within(number: str, section: str) -> bool:
         return number == section or number.startswith(section + ".")
 
     out, number, on = [], "", not start
-    for slide in slides[1:]:
+    for k, slide in enumerate(slides[1:], start=1):
         m = _NUMBER.search(slide)
         number = m.group(1) if m else number
         if start and within(number, start):
@@ -302,7 +305,7 @@ def _select(slides: list[str], start: str, stop: str) -> list[str]:
         if stop and within(number, stop):
             break
         if on:
-            out.append(slide)
+            out.append(k)
     return out
 
 
@@ -336,6 +339,11 @@ def assemble_lectures(dest: Path, decks: list[dict[str, str]], root: Path = ROOT
     chapter). Its files sit beside the chapters' decks, at the same depth, so
     it loads the same files. Every content slide of every deck is in exactly
     one lecture (``tests/slides``).
+
+    Each lecture's ``sources`` say where each of its slides comes from, for its
+    PDFs (:func:`lecture_pdfs`): ``[deck, place in the deck, notes kept]``, or
+    ``["", 0, true]`` for a slide of the lecture's own (its title, a summary
+    it adds).
     """
     by_name = {d["name"]: d for d in decks}
     out_dir = dest / LECTURES
@@ -343,6 +351,7 @@ def assemble_lectures(dest: Path, decks: list[dict[str, str]], root: Path = ROOT
     lectures = []
     for number, parts in enumerate(lecture_plan(root), start=1):
         body: list[str] = []
+        sources: list[list[Any]] = [["", 0, True]]   # the title slide: the lecture's own
         covered = []
         head = tail = title_slide = ""
         titles = []
@@ -362,13 +371,16 @@ def assemble_lectures(dest: Path, decks: list[dict[str, str]], root: Path = ROOT
                 raise ValueError(f"decks_lectures: {part!r} selects no slide of {name}")
             if k > 0:   # a chapter that starts inside the lecture opens with its own title slide
                 body.append(re.sub(r'<aside class="notes">.*?</aside>', "", slides[0], flags=re.S))
+                sources.append([name, 0, False])
             # ids unique within the lecture (two chapters may both have a section "summary")
-            body.extend(re.sub(r'(<section\b[^>]*\bid=")', rf"\g<1>{name}--", s) for s in chosen)
+            body.extend(re.sub(r'(<section\b[^>]*\bid=")', rf"\g<1>{name}--", slides[i]) for i in chosen)
+            sources.extend([name, i, True] for i in chosen)
             covered.append({"deck": name, "from": m.group("start") or "", "to": m.group("stop") or "",
                             "slides": len(chosen)})
             titles.append(_heading(slides[0]))
         if not _is_summary_slide(body[-1]):
             body.append(_summary_of_part([s for s in body if 'class="title-slide"' not in s]))
+            sources.append(["", 0, True])
         minutes = round(sum(_slide_minutes(s) for s in body))
         names = "; ".join(dict.fromkeys(titles))
         plan = "; ".join(dict.fromkeys(_heading(s) for s in body if _heading(s)))
@@ -383,15 +395,80 @@ def assemble_lectures(dest: Path, decks: list[dict[str, str]], root: Path = ROOT
                 + "\n" + title + "\n" + "\n".join(body) + "\n" + tail)
         rel = f"{LECTURES}/lecture-{number:02d}.html"
         (dest / rel).write_text(page, encoding="utf-8")
-        lectures.append({"number": number, "file": rel, "title": names, "minutes": minutes, "parts": covered,
-                         "slides": len(body) + 1})
+        lectures.append({"number": number, "name": f"lecture-{number:02d}", "file": rel, "title": names,
+                         "minutes": minutes, "parts": covered, "slides": len(body) + 1,
+                         "pdf": f"pdf/lecture-{number:02d}.pdf", "handout": f"pdf/lecture-{number:02d}-notes.pdf",
+                         "sources": sources})
     return lectures
+
+
+def lecture_pdfs(dest: Path, lectures: list[dict[str, Any]], printed: dict[str, dict[str, Any]],
+                 browser: Any = None) -> float:
+    """Each lecture's PDF and handout (``dest/pdf/lecture-NN.pdf``, ``-notes.pdf``), put together from the
+    pages of its decks' prints (``printed``: :func:`tools.slides_pdf.print_decks`'s rows, by deck), so no
+    slide is printed twice. Only the lecture's own slides (its title, and a summary it adds) are printed, as
+    a small deck of their own beside the lecture (removed afterwards). Returns the seconds spent printing."""
+    from pypdf import PdfReader, PdfWriter
+
+    from tools import slides_pdf
+
+    own_decks: list[dict[str, str]] = []
+    for lec in lectures:
+        head, slides, tail = split_slides((dest / lec["file"]).read_text(encoding="utf-8"))
+        own_slides = [slide for slide, (deck, _, _) in zip(slides, lec["sources"], strict=True) if not deck]
+        own_file = f"{LECTURES}/.{lec['name']}-own.html"
+        (dest / own_file).write_text(head + "\n" + "\n".join(own_slides) + "\n" + tail, encoding="utf-8")
+        own_decks.append({"name": f"{lec['name']}-own", "file": own_file, "pdf": f"pdf/.{lec['name']}-own.pdf",
+                          "handout": f"pdf/.{lec['name']}-own-notes.pdf"})
+    t0 = time.perf_counter()
+    try:
+        rows = {row["name"]: row for row in slides_pdf.print_decks(dest, browser=browser, decks=own_decks)}
+    finally:
+        for d in own_decks:
+            (dest / d["file"]).unlink()
+    seconds = time.perf_counter() - t0
+
+    def pages_of(kinds: list[str]) -> list[list[int]]:
+        """The pages of each slide of a print: its slide page, then its notes page if it has one."""
+        out: list[list[int]] = []
+        for page, kind in enumerate(kinds):
+            if kind == "s":
+                out.append([page])
+            else:
+                out[-1].append(page)
+        return out
+
+    readers: dict[str, PdfReader] = {}
+
+    def reader(path: Path) -> PdfReader:
+        if str(path) not in readers:
+            readers[str(path)] = PdfReader(path)
+        return readers[str(path)]
+
+    for lec, own in zip(lectures, own_decks, strict=True):
+        for key in ("pdf", "handout"):
+            writer = PdfWriter()
+            next_own = 0
+            for deck, place, notes in lec["sources"]:
+                if deck:
+                    row, path = printed[deck], dest / "pdf" / Path(printed[deck][key]).name
+                else:
+                    row, path, place = rows[own["name"]], dest / own[key], next_own
+                    next_own += 1
+                pages = pages_of(row["pages"][key])[place]
+                for page in pages if notes else pages[:1]:
+                    writer.add_page(reader(path).pages[page])
+            with open(dest / lec[key], "wb") as fh:
+                writer.write(fh)
+        for key in ("pdf", "handout"):
+            (dest / own[key]).unlink()
+    return seconds
 
 
 def write_index(dest: Path, decks: list[dict[str, str]], lectures: list[dict[str, Any]] | None = None) -> None:
     """The slides index: each lecture with its minutes and the chapters it covers; then each chapter's deck
     with its minutes, its PDF and handout (when printed) and its chapter in the book."""
-    def paper(d: dict[str, str]) -> str:
+    def paper(d: dict[str, Any]) -> str:
         links = [f'<a href="{html.escape(d[k])}">{label}</a>'
                  for k, label in (("pdf", "PDF"), ("handout", "handout with notes")) if (dest / d[k]).is_file()]
         return " · ".join(links) if links else "PDFs: <code>make book</code>"
@@ -406,7 +483,7 @@ def write_index(dest: Path, decks: list[dict[str, str]], lectures: list[dict[str
 
     lecture_rows = "\n".join(
         f'<li><a href="{html.escape(lec["file"])}">Lecture {lec["number"]}</a> '
-        f'<span class="minutes">({lec["minutes"]} min)</span>: '
+        f'<span class="minutes">({lec["minutes"]} min)</span> · {paper(lec)}: '
         + "; ".join(part(p) for p in lec["parts"]) + "</li>"
         for lec in lectures or [])
     rows = "\n".join(
@@ -457,16 +534,19 @@ def main(argv: list[str] | None = None) -> int:
     dest = args.dest.resolve()
     decks = assemble(dest)
     (dest / "decks.json").write_text(json.dumps(decks, indent=1))
+    lectures = assemble_lectures(dest, decks)
     if not args.no_pdf:
         from tools import slides_pdf
 
         t1 = time.perf_counter()
-        printed = {row["name"]: row["slides"] for row in slides_pdf.print_decks(dest)}
+        printed = {row["name"]: row for row in slides_pdf.print_decks(dest)}
         for d in decks:   # the number of slides reveal.js counted: the PDF's number of pages
-            d["slides"] = str(printed[d["name"]])
+            d["slides"] = str(printed[d["name"]]["slides"])
         (dest / "decks.json").write_text(json.dumps(decks, indent=1))
         print(f"build_slides: {2 * len(decks)} PDFs (decks and handouts) in {time.perf_counter() - t1:.1f} s")
-    lectures = assemble_lectures(dest, decks)
+        own = lecture_pdfs(dest, lectures, printed)
+        print(f"build_slides: {2 * len(lectures)} PDFs of the lectures, from the decks' pages "
+              f"(their own slides printed in {own:.1f} s)")
     (dest / "lectures.json").write_text(json.dumps(lectures, indent=1))
     write_index(dest, decks, lectures)
     size = sum(p.stat().st_size for p in dest.rglob("*") if p.is_file())

@@ -40,6 +40,11 @@ ROOT = Path(__file__).resolve().parent.parent
 CHROMIUM = "/usr/bin/chromium"
 #: the two prints of a deck: its decks.json key and the query reveal.js reads
 PRINTS = (("pdf", "?print-pdf"), ("handout", "?print-pdf&showNotes=separate-page"))
+#: what each page of a print is, in order: "s" a slide (reveal.js's ``.pdf-page``), "n" the page of speaker
+#: notes reveal.js puts after its slide (``showNotes=separate-page``)
+PAGE_KINDS = """() => [...document.querySelectorAll(
+  '.reveal .slides > .pdf-page, .reveal .slides > .speaker-notes-pdf')].map(
+  (el) => el.classList.contains('pdf-page') ? 's' : 'n')"""
 #: earlier prints, by key (see the module's docstring); ``make clean`` empties it with the rest of _build
 CACHE = ROOT / "_build" / ".slides_pdf_cache"
 
@@ -52,14 +57,14 @@ def _chromium_version() -> str:
 
 
 def print_keys(slides: Path, decks: list[dict[str, Any]]) -> dict[tuple[str, str], str]:
-    """The cache key of each (deck, print): a hash of what the print depends on."""
-    deck_files = {d["file"] for d in json.loads((slides / "decks.json").read_text(encoding="utf-8"))}
+    """The cache key of each (deck, print): a hash of what the print depends on (the deck's own page, and
+    every file of the folder a deck may load: not the pages of the decks and lectures, nor the listings)."""
     shared = hashlib.sha256()
     shared.update(Path(__file__).read_bytes())
     shared.update(_chromium_version().encode())
     for path in sorted(slides.rglob("*")):
         rel = path.relative_to(slides).as_posix()
-        if path.is_file() and not rel.startswith("pdf/") and rel not in deck_files | {"decks.json", "index.html"}:
+        if path.is_file() and not rel.startswith("pdf/") and not rel.endswith((".html", ".json")):
             shared.update(f"\0{rel}\0".encode())
             shared.update(path.read_bytes())
     keys = {}
@@ -72,10 +77,14 @@ def print_keys(slides: Path, decks: list[dict[str, Any]]) -> dict[tuple[str, str
 
 
 def print_decks(slides: Path, only: list[str] | None = None, browser: Any = None,
-                force: bool = False) -> list[dict[str, Any]]:
-    """Print every deck (or those named in ``only``) and its handout into ``slides/pdf``; a print whose key is
-    in :data:`CACHE` is copied from there unless ``force``."""
-    decks = json.loads((slides / "decks.json").read_text(encoding="utf-8"))
+                force: bool = False, decks: list[dict[str, Any]] | None = None) -> list[dict[str, Any]]:
+    """Print every deck of ``slides/decks.json`` (or of ``decks``; those named in ``only``) and its handout
+    into ``slides/pdf``; a print whose key is in :data:`CACHE` is copied from there unless ``force``.
+
+    Each row gives the deck's number of slides and, for each print, what each page is (:data:`PAGE_KINDS`):
+    ``"s"`` a slide, ``"n"`` the speaker notes of the slide before it."""
+    if decks is None:
+        decks = json.loads((slides / "decks.json").read_text(encoding="utf-8"))
     if only:
         decks = [d for d in decks if d["name"] in only]
     (slides / "pdf").mkdir(parents=True, exist_ok=True)
@@ -105,8 +114,9 @@ def _from_cache(slides: Path, deck: dict[str, Any], keys: dict[tuple[str, str], 
     meta = CACHE / f"{keys[(deck['name'], 'pdf')]}.json"
     if not (meta.is_file() and all(c.is_file() for c in cached)):
         return None
-    row: dict[str, Any] = {"name": deck["name"], "slides": json.loads(meta.read_text())["slides"], "seconds": 0.0,
-                           "cached": True}
+    stored = json.loads(meta.read_text())
+    row: dict[str, Any] = {"name": deck["name"], "slides": stored["slides"], "pages": stored["pages"],
+                           "seconds": 0.0, "cached": True}
     for (key, _), src in zip(PRINTS, cached, strict=True):
         shutil.copy2(src, slides / deck[key])
         row[key] = str(slides / deck[key])
@@ -118,7 +128,8 @@ def _store(rows: list[dict[str, Any]], keys: dict[tuple[str, str], str]) -> list
     for row in rows:
         for key, _ in PRINTS:
             shutil.copy2(row[key], CACHE / f"{keys[(row['name'], key)]}.pdf")
-        (CACHE / f"{keys[(row['name'], 'pdf')]}.json").write_text(json.dumps({"slides": row["slides"]}))
+        (CACHE / f"{keys[(row['name'], 'pdf')]}.json").write_text(
+            json.dumps({"slides": row["slides"], "pages": row["pages"]}))
     return rows
 
 
@@ -126,7 +137,7 @@ def _print(browser: Any, slides: Path, decks: list[dict[str, Any]]) -> list[dict
     done = []
     for deck in decks:
         t0 = time.perf_counter()
-        row: dict[str, Any] = {"name": deck["name"]}
+        row: dict[str, Any] = {"name": deck["name"], "pages": {}}
         for key, query in PRINTS:
             page = browser.new_page(viewport={"width": 1280, "height": 720})
             page.goto((slides / deck["file"]).as_uri() + query, wait_until="load", timeout=120_000)
@@ -135,6 +146,7 @@ def _print(browser: Any, slides: Path, decks: list[dict[str, Any]]) -> list[dict
             page.evaluate("document.fonts.ready")
             page.wait_for_timeout(300)
             row["slides"] = page.evaluate("Reveal.getTotalSlides()")
+            row["pages"][key] = page.evaluate(PAGE_KINDS)
             out = slides / deck[key]
             page.pdf(path=str(out), width="1280px", height="720px", print_background=True, prefer_css_page_size=True)
             page.close()

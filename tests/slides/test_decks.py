@@ -589,7 +589,8 @@ def test_lectures_last_45_to_55_minutes_and_cover_every_slide(usb):
         unprefixed = re.sub(r'(<section\b[^>]*\bid=")[\w-]+?--', r"\1", page)
         for part in lec["parts"]:
             deck_page = (usb / decks[part["deck"]]["file"]).read_text(encoding="utf-8")
-            chosen = build_slides._select(build_slides.split_slides(deck_page)[1], part["from"], part["to"])
+            deck_slides = build_slides.split_slides(deck_page)[1]
+            chosen = [deck_slides[k] for k in build_slides._select(deck_slides, part["from"], part["to"])]
             taken[part["deck"]].extend(chosen)
             missing = [build_slides._heading(s) for s in chosen if s not in unprefixed]
             if missing:

@@ -79,3 +79,45 @@ def test_math_is_printed_in_mathjax_fonts(decks, source):
             described = font.get("/FontDescriptor")   # Chromium embeds web fonts as Type 3, named there
             fonts.add(str(font.get("/BaseFont") or (described.get_object().get("/FontName") if described else "")))
     assert any("MathJax_" in f for f in fonts), sorted(fonts)
+
+
+def _lectures() -> list[dict]:
+    path = SLIDES / "lectures.json"
+    return json.loads(path.read_text()) if path.is_file() else []
+
+
+def test_every_lecture_has_its_pdf_and_handout_linked_from_the_index(decks, deck_browser):
+    """Each lecture's PDF is its slides in order, a page each (its own title first, its summary last, every
+    other page the slide of its deck at that place: the page's text holds the slide's heading), and its
+    handout adds the speaker notes; the slides index links both."""
+    import pypdf
+
+    lectures = _lectures()
+    if not lectures or not (SLIDES / lectures[0]["pdf"]).is_file():   # a site built with --no-pdf
+        printed = {row["name"]: row for row in slides_pdf.print_decks(SLIDES, browser=deck_browser)}
+        build_slides.lecture_pdfs(SLIDES, lectures, printed, browser=deck_browser)
+        build_slides.write_index(SLIDES, json.loads((SLIDES / "decks.json").read_text()), lectures)
+    index = (SLIDES / "index.html").read_text(encoding="utf-8")
+    words = re.compile(r"[A-Za-z]{4,}")
+    bad = []
+    for lec in lectures:
+        _, slides, _ = build_slides.split_slides((SLIDES / lec["file"]).read_text(encoding="utf-8"))
+        pages = [(p.extract_text() or "") for p in pypdf.PdfReader(SLIDES / lec["pdf"]).pages]
+        if len(pages) != lec["slides"] or len(slides) != lec["slides"]:
+            bad.append(f"lecture {lec['number']}: {len(pages)} pages, {len(slides)} slides, {lec['slides']} listed")
+            continue
+        if f"Lecture {lec['number']}" not in pages[0]:
+            bad.append(f"lecture {lec['number']}: page 1 is not its title slide: {pages[0][:60]!r}")
+        for k, (slide, text) in enumerate(zip(slides, pages, strict=True)):
+            heading = words.findall(build_slides._heading(slide))
+            flat = re.sub(r"\s+", "", text)
+            if heading and not all(w in flat for w in heading[:3]):
+                bad.append(f"lecture {lec['number']} page {k + 1}: {heading[:3]} not in {text[:60]!r}")
+        handout = pypdf.PdfReader(SLIDES / lec["handout"])
+        notes = "\n".join(p.extract_text() or "" for p in handout.pages)
+        if len(handout.pages) <= lec["slides"] or "Key point" not in notes or "min." not in notes:
+            bad.append(f"lecture {lec['number']}: the handout has no pages of notes")
+        for key in ("pdf", "handout"):
+            if f'href="{lec[key]}"' not in index:
+                bad.append(f"lecture {lec['number']}: the index does not link {lec[key]}")
+    assert lectures and not bad, "\n".join(bad)
