@@ -102,16 +102,16 @@ def test_d_dt_differentiates():
     assert np.allclose(chapter.d_dt(lambda t: np.array([np.sin(t), t**2]), 0.3), [np.cos(0.3), 0.6], atol=1e-8)
 
 
-def test_random_chain_is_reproducible_and_valid():
-    a = chapter.random_chain(6, np.random.default_rng(3))
-    b = chapter.random_chain(6, np.random.default_rng(3))
+def test_random_arm_is_reproducible_and_valid():
+    a = chapter.random_arm(6, np.random.default_rng(3))
+    b = chapter.random_arm(6, np.random.default_rng(3))
     assert a.dof == 6 and np.array_equal(a.screw_axes, b.screw_axes) and np.array_equal(a.home, b.home)
     assert set(a.joint_types) <= {"R", "P"}
     for i, kind in enumerate(a.joint_types):
         w, v = a.screw_axes[:3, i], a.screw_axes[3:, i]
         assert np.isclose(np.linalg.norm(w if kind == "R" else v), 1.0)
     with pytest.raises(ValueError, match="positive number of joints"):
-        chapter.random_chain(0, np.random.default_rng(0))
+        chapter.random_arm(0, np.random.default_rng(0))
 
 
 def test_legend_clear_sees_a_line_under_the_legend():

@@ -18,7 +18,7 @@ import sympy as sp
 from tools.bench_grade import string_ids_supported, submission
 
 from course import exercises
-from course.classroom import answers
+from course.classroom import answer_data
 from course.classroom.grade import COLUMNS, Row, exercises_of, grade_class, student_id
 from course.classroom.report import report_name
 from course.classroom.sandbox import Limits
@@ -203,7 +203,7 @@ def test_student_id_is_read_without_running_anything():
     np.arange(6.0).reshape(2, 3), np.array([1, 2], dtype=np.int64), np.array([True, False]),
 ])
 def test_plain_answers_round_trip(value):
-    back = answers.decode(answers.encode(value))
+    back = answer_data.decode(answer_data.encode(value))
     if isinstance(value, np.ndarray):
         assert back.dtype.kind == value.dtype.kind and np.array_equal(back, value)
     else:
@@ -214,15 +214,15 @@ def test_sympy_answers_round_trip_with_their_types():
     t1, l1 = sp.symbols("theta1 l1", real=True)
     for value in [sp.Matrix([[0, l1 * sp.sin(t1)], [1, -l1 * sp.cos(t1)]]), sp.ImmutableMatrix([[sp.pi / 2]]),
                   sp.Array([t1, 2 * t1]), sp.sqrt(2) * sp.atan2(t1, l1) + sp.Rational(1, 3), sp.Float(0.125) * t1]:
-        back = answers.decode(answers.encode(value))
+        back = answer_data.decode(answer_data.encode(value))
         assert type(back) is type(value) and back == value
 
 
 def test_malformed_data_never_evaluates():
-    assert isinstance(answers.decode({"t": "sympy", "v": ["F", "__import__", [["Integer", "1"]]]}), answers.Opaque)
-    assert isinstance(answers.decode({"t": "nope"}), answers.Opaque)
-    assert isinstance(answers.decode("not a dict"), answers.Opaque)
-    assert isinstance(answers.decode(answers.encode(object())), answers.Opaque)
+    assert isinstance(answer_data.decode({"t": "sympy", "v": ["F", "__import__", [["Integer", "1"]]]}), answer_data.Opaque)
+    assert isinstance(answer_data.decode({"t": "nope"}), answer_data.Opaque)
+    assert isinstance(answer_data.decode("not a dict"), answer_data.Opaque)
+    assert isinstance(answer_data.decode(answer_data.encode(object())), answer_data.Opaque)
 
 
 def test_every_reference_answer_survives_the_codec_and_is_accepted_again():
@@ -230,7 +230,7 @@ def test_every_reference_answer_survives_the_codec_and_is_accepted_again():
         ex = exercises.load(eid, seed=3)
         if ex.kind == "function":
             continue  # graded through the sandbox in the class above
-        back = answers.decode(json.loads(json.dumps(answers.encode(ex.solution()))))
+        back = answer_data.decode(json.loads(json.dumps(answer_data.encode(ex.solution()))))
         assert exercises.check(eid, back, seed=3).correct, eid
 
 
@@ -326,13 +326,13 @@ def student_functions(tmp_path):
 
 def test_a_function_answer_is_collected_with_its_helpers_and_runs_in_the_sandbox(student_functions):
     from course.classroom.sandbox import SandboxedFunction, make_scratch
-    from jacobians.grading.sandbox import run_guarded
+    from jacobians.grading.guard import run_guarded
 
     ns, parent = student_functions
-    data = json.loads(json.dumps(answers.encode(ns["my_fn"])))
-    code = answers.decode(data)
-    assert isinstance(code, answers.CodeAnswer) and "def helper" in code.helpers[0]
-    assert ["import", "numpy", "np"] in code.imports and answers.decode(code.constants["SCALE"]) == 2.0
+    data = json.loads(json.dumps(answer_data.encode(ns["my_fn"])))
+    code = answer_data.decode(data)
+    assert isinstance(code, answer_data.CodeAnswer) and "def helper" in code.helpers[0]
+    assert ["import", "numpy", "np"] in code.imports and answer_data.decode(code.constants["SCALE"]) == 2.0
     fn = SandboxedFunction(code, make_scratch(parent), Limits())
     try:
         assert np.array_equal(fn([1, 2]), [3.0, 5.0])
@@ -340,13 +340,13 @@ def test_a_function_answer_is_collected_with_its_helpers_and_runs_in_the_sandbox
         assert ok and np.array_equal(out, [3.0, 5.0])
     finally:
         fn.close()
-    bad = SandboxedFunction(answers.decode(answers.encode(ns["bad"])), make_scratch(parent), Limits())
+    bad = SandboxedFunction(answer_data.decode(answer_data.encode(ns["bad"])), make_scratch(parent), Limits())
     try:
         assert run_guarded(bad, (1,)) == (False, "your function raised ZeroDivisionError: division by zero")
         assert run_guarded(bad, (1,))[0] is False  # the process lives on after an exception
     finally:
         bad.close()
-    slow = SandboxedFunction(answers.decode(answers.encode(ns["slow"])), make_scratch(parent), Limits())
+    slow = SandboxedFunction(answer_data.decode(answer_data.encode(ns["slow"])), make_scratch(parent), Limits())
     ok, out = run_guarded(slow, (1,), limit=1.0)
     assert not ok and "did not finish within 1 s" in out
     with pytest.raises(RuntimeError, match="stopped after an earlier failure"):

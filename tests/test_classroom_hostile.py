@@ -269,7 +269,7 @@ def test_without_isolation_the_grader_refuses_unless_unsafe(monkeypatch, tmp_pat
     ["F", "Pow", [["Symbol", "x", {}], ["Rational", "1", "100000"]]],
 ])
 def test_a_decoder_bomb_decodes_to_too_large(tree):
-    from course.classroom.answers import Opaque, decode
+    from course.classroom.answer_data import Opaque, decode
 
     assert decode({"t": "sympy", "v": tree}) == Opaque("too large")
 
@@ -277,7 +277,7 @@ def test_a_decoder_bomb_decodes_to_too_large(tree):
 def test_answers_of_the_course_still_decode():
     import sympy as sp
 
-    from course.classroom.answers import decode, encode
+    from course.classroom.answer_data import decode, encode
 
     x = sp.Symbol("x", real=True)
     for value in (sp.sqrt(2) * x**2, (1 + x) ** -3, sp.Rational(2**200, 3), sp.Matrix([[x**64, 1 / x]])):
@@ -304,7 +304,7 @@ def test_the_checker_gets_a_cpu_budget():
 
 def test_an_exercise_variable_travels_as_its_id_and_is_rebuilt_only_in_the_sandbox():
     from course import exercises
-    from course.classroom.answers import Opaque, decode, encode
+    from course.classroom.answer_data import Opaque, decode, encode
 
     ns = {"__name__": "__main__", "ex4": exercises.load("ch01_ex4", seed="s1")}
     exec("def f(T):\n    return ex4.given['inverse']\n", ns)

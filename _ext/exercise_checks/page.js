@@ -290,8 +290,10 @@ function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onC
     id: `course-answer-${n}`, rows: bank.kind === "scalar" ? "1" : "3", spellcheck: "false", autocomplete: "off",
     "aria-describedby": `course-answer-help-${n}`,
   }));
-  // a formula's preview, as math.js reads it (plain text; typeset only if the page's MathJax is already loaded)
+  // a formula's preview, as math.js reads it: typeset by the book's MathJax, which the first formula typed
+  // loads (window.courseMath, _theme/math_menu.js; the page itself needs none), and plain text until it is ready
   const shown = el("div", { class: "course-answer-preview", "aria-live": "off" });
+  let mathAsked = false;
   const showPreview = () => {
     if (!symbolic) return;
     shown.textContent = "";
@@ -299,6 +301,10 @@ function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onC
     if (!parsed || parsed.kind) return;
     const p = preview(parsed);
     const w = /** @type {any} */ (window);
+    if (!(w.MathJax && typeof w.MathJax.tex2chtml === "function") && w.courseMath && !mathAsked) {
+      mathAsked = true;
+      w.courseMath.load().then(showPreview, () => undefined);  // no MathJax: the plain-text preview stays
+    }
     if (w.MathJax && typeof w.MathJax.tex2chtml === "function") {
       try {
         shown.append(el("span", {}, "Read as: "), w.MathJax.tex2chtml(p.tex, { display: false }));

@@ -60,7 +60,7 @@ __all__ = [
     "fd_jacobian_tol",
     "d_dt",
     "d_dt_tol",
-    "random_chain",
+    "random_arm",
     "legend_clear",
 ]
 
@@ -380,7 +380,7 @@ def d_dt_tol(f: Callable[[float], ArrayLike], t0: float = 0.0) -> float:
     return fd_tol(lambda t: np.asarray(f(t[0])), np.array([t0]))
 
 
-def random_chain(n: int, rng: np.random.Generator) -> jac.SerialChain:
+def random_arm(n: int, rng: np.random.Generator) -> jac.SerialChain:
     """A random chain of n joints, about 70 % revolute and 30 % prismatic, with a random home pose."""
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise ValueError(f"Expected a positive number of joints n, got {n!r}")

@@ -1,7 +1,7 @@
 """Inside the sandbox: define a student's function from its collected source and call it on request.
 
 Protocol on stdin/stdout, one JSON object a line: first the function's spec
-(:class:`course.classroom.answers.CodeAnswer` fields, and ``seed``: the ID being graded, for which the
+(:class:`course.classroom.answer_data.CodeAnswer` fields, and ``seed``: the ID being graded, for which the
 notebook's exercise variables such as ``ex4`` are loaded again), answered by
 ``{"ready": true}`` or ``{"error": ...}``; then ``{"args": [...]}`` requests,
 answered by ``{"ok": value}`` or ``{"raised": [name, message]}``. Run by
@@ -15,8 +15,8 @@ import json
 import sys
 from typing import Any
 
-from course.classroom import answers
-from course.classroom.answers import decode, encode
+from course.classroom import answer_data
+from course.classroom.answer_data import decode, encode
 from course.classroom.sandbox import GUARD
 
 
@@ -39,7 +39,7 @@ def _build(spec: dict[str, Any]) -> Any:
             obj = getattr(obj, part)
         return obj
     if spec.get("seed") is not None:
-        answers._EXERCISE_LOADER["load"] = _exercise_loader(spec["seed"])
+        answer_data._EXERCISE_LOADER["load"] = _exercise_loader(spec["seed"])
     ns: dict[str, Any] = {"__name__": "__main__"}
     for item in spec.get("imports", []):
         if item[0] == "import":

@@ -10,7 +10,7 @@ are skipped):
    (:mod:`~course.classroom.sandbox`: a uid, namespaces and a cgroup of its own), its cells run by IPython's
    shell in a fork of a warm worker (:mod:`~course.classroom._zygote`) that enters the sandbox, with a time
    limit per cell and per notebook; every ``exercises.check`` logs its answer as data
-   (:mod:`~course.classroom.answers`);
+   (:mod:`~course.classroom.answer_data`);
 3. regrade the last answer to each exercise here, with the course's reference
    for the student's ID (a function answer is called in a sandboxed process);
    the verdict the notebook showed is never used, only compared;
@@ -77,7 +77,7 @@ UNSAFE_NOTE = "[UNSAFE: graded without isolation] "
 MAX_LOG = 64 << 20
 MAX_LOG_LINE = 8 << 20
 #: CPU seconds the grader may spend regrading one answer (decoding it and running the course's checker);
-#: a second line behind the bounds of :mod:`~course.classroom.answers`.
+#: a second line behind the bounds of :mod:`~course.classroom.answer_data`.
 CHECK_CPU = 60.0
 #: Biggest notebook read, in bytes.
 MAX_BYTES = 50 << 20
@@ -400,7 +400,7 @@ def _last_checks(log: Path, wanted: set[str]) -> dict[str, dict[str, Any]]:
 
 def _regrade(exercises: Any, eid: str, entry: dict[str, Any], sid: str | int, scratch: Path,
              limits: Limits) -> tuple[str, str, str, str]:
-    from .answers import CodeAnswer, Opaque, decode
+    from .answer_data import CodeAnswer, Opaque, decode
 
     extra = ""
     proxy = None

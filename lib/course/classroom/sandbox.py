@@ -202,7 +202,7 @@ def probe_isolation() -> Isolation:
         scratch = make_scratch(parent, isolate=True)
         proc = _spawn([sys.executable, "-P", "-c", "import os; "
                        f"assert not os.path.exists('/sys/fs/cgroup') and os.getuid() >= {UID_BASE}; "
-                       "import nbclient, ipykernel, numpy, course.classroom.answers"],
+                       "import nbclient, ipykernel, numpy, course.classroom.answer_data"],
                       scratch, Limits(), cpu_seconds=120, env={}, pipes=False, how=probe, stderr=True)
         try:
             _, err = proc.communicate(timeout=120)
@@ -787,7 +787,7 @@ def kill_tree(proc: subprocess.Popen[bytes] | WarmProcess) -> None:
 class SandboxedFunction:
     """A student's function answer, called in a sandboxed process; the grader only sees data.
 
-    Calling it sends the arguments as :mod:`~course.classroom.answers` data and
+    Calling it sends the arguments as :mod:`~course.classroom.answer_data` data and
     returns the decoded result, or raises an exception of the same name as the
     one the student's code raised. After a timeout or a broken pipe the process
     is killed and later calls raise ``RuntimeError``.
@@ -795,7 +795,7 @@ class SandboxedFunction:
 
     def __init__(self, answer: Any, scratch: Path, limits: Limits, *, call_timeout: float = 10.0,
                  seed: str | int | None = None, warm: bool = True) -> None:
-        from .answers import encode  # noqa: F401  (imported for its side effect: numpy loaded once)
+        from .answer_data import encode  # noqa: F401  (imported for its side effect: numpy loaded once)
 
         self.__name__ = answer.name
         self.answer = answer
@@ -840,7 +840,7 @@ class SandboxedFunction:
                 self.close()
 
     def __call__(self, *args: Any) -> Any:
-        from .answers import decode, encode
+        from .answer_data import decode, encode
 
         if self.error:
             raise _named_error("NameError" if "NameError" in self.error else "RuntimeError", self.error)

@@ -14,7 +14,7 @@ exercise checked only under it is listed as practice, never as right.
 
 When the notebook runs inside ``make grade`` (the environment variable
 :data:`LOG_ENV` names a file), each check is also appended to that file as one
-JSON line holding the answer in the safe form of :mod:`course.classroom.answers`;
+JSON line holding the answer in the safe form of :mod:`course.classroom.answer_data`;
 the grader regrades those answers itself, so the verdict this session saw is
 never trusted.
 
@@ -88,7 +88,7 @@ def record(exercise_id: object, seed: object, answer: Any, feedback: Any) -> Non
         _SESSION.append(attempt)
         path = os.environ.get(LOG_ENV)
         if path:
-            from course.classroom.answers import encode  # only under make grade: students never pay for it
+            from course.classroom.answer_data import encode  # only under make grade: students never pay for it
             line = json.dumps({"exercise": attempt.exercise_id, "seed": attempt.seed, "correct": attempt.correct,
                                "kind": attempt.kind, "answer": encode(answer)})
             with open(path, "a", encoding="utf-8") as f:

@@ -70,7 +70,7 @@ def random_transform(rng: Generator) -> Array:
     return T
 
 
-def random_chain(rng: Generator, n: int | None = None, prismatic: bool = True) -> tuple[Array, Array, Array]:
+def random_chain_data(rng: Generator, n: int | None = None, prismatic: bool = True) -> tuple[Array, Array, Array]:
     """A random spatial chain (S 6xn, M 4x4): unit axes through random points, maybe a prismatic joint."""
     n = int(rng.integers(2, 7)) if n is None else n
     cols = []
@@ -149,7 +149,7 @@ def chain_case(body: CaseBody, layout: str = "columns") -> Callable[[Generator],
     arguments, the reference and the mistakes; the case is labelled by the chain's number of joints.
     With ``layout="rows"`` the first argument (the axes, 6 x n) is passed transposed, one axis per row."""
     def make_case(rng: Generator) -> Case:
-        S, M, th = random_chain(rng)
+        S, M, th = random_chain_data(rng)
         args, ref, mistakes = body(S, M, th)
         if layout == "rows":
             args = (np.asarray(args[0]).T.copy(), *args[1:])

@@ -22,7 +22,7 @@ from ._kinematics import DEG, Array, adj, inv_T
 from ._latex import bmatrix, degs, num, vec
 from ._mistakes import IK_MESSAGES, degrees_mistake, ik_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._variants import angles_deg, example_text, lengths, planar_example, random_chain
+from ._variants import angles_deg, example_text, lengths, planar_example, random_chain_data
 
 # ----------------------------------------------------------------- exercise 1: the error twist
 
@@ -502,7 +502,7 @@ def _draw_start(rng: Generator, frame: str, prismatic: bool = True, eps: tuple[f
     9 steps with no iterate within 5 % of a tolerance (so rounding cannot flip a stop test); the trail and the
     number of steps the loop needs."""
     while True:
-        S, M, th_star = random_chain(rng, prismatic=prismatic)
+        S, M, th_star = random_chain_data(rng, prismatic=prismatic)
         n = S.shape[1]
         T_sd = SerialChain(S, M).fk(th_star)
         th0 = th_star + rng.uniform(0.05, 0.3) * rng.normal(size=n) / np.sqrt(n)

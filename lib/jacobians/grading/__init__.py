@@ -45,7 +45,7 @@ guard.
 Modules: :mod:`~jacobians.grading.feedback` (the verdict and its HTML box),
 :mod:`~jacobians.grading.answers` (any answer to a float array, or a polite
 refusal), :mod:`~jacobians.grading.compare` (reference and mistakes),
-:mod:`~jacobians.grading.sandbox` (running a student's function),
+:mod:`~jacobians.grading.guard` (running a student's function),
 :mod:`~jacobians.grading.exercise` (one variant, graded by kind),
 :mod:`~jacobians.grading.catalogue` (exercises by id and seed).
 """
@@ -65,7 +65,7 @@ from .exercise import (
                        symbolic_exercise,
 )
 from .feedback import Feedback
-from .sandbox import TIME_LIMIT
+from .guard import TIME_LIMIT
 
 __all__ = ["MAX_ENTRIES", "TIME_LIMIT", "Case", "Catalogue", "Exercise", "Feedback", "Mistake", "compare",
            "exercise_entropy", "function_exercise", "numeric_exercise", "predicate_exercise", "scalar_exercise",

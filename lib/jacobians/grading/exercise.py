@@ -26,8 +26,8 @@ from numpy.typing import NDArray
 from .answers import Refused, as_array, describe, is_sympy, sympy
 from .compare import Mistake, compare, given_decimals, precision_message
 from .feedback import Feedback, agrees, verdict
+from .guard import run_guarded
 from .rounding import Method, Rule, derive_rule, direct_rule, rule_sentence
-from .sandbox import run_guarded
 
 __all__ = ["Case", "Exercise", "Interval", "function_exercise", "numeric_exercise", "predicate_exercise",
            "scalar_exercise", "symbolic_exercise"]
