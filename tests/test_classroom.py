@@ -35,9 +35,12 @@ def _id(k: int) -> str | int:
 
 
 def _need_isolation() -> None:
-    """Skip, with the reason, where make grade would refuse to grade (not root, no bubblewrap, no cgroups)."""
+    """Skip, with the reason, where make grade would refuse to grade (not root, no bubblewrap, no cgroups); fail
+    where the machine has all that and the sandbox still does not work."""
     from course.classroom.sandbox import isolation
 
+    if isolation().broken:
+        pytest.fail(f"the grading sandbox does not work on a machine that has all it needs: {isolation().reason}")
     if not isolation().ok:
         pytest.skip(f"make grade cannot isolate notebooks here: {isolation().reason}")
 

@@ -28,7 +28,12 @@ from course.classroom import sandbox
 from course.classroom.sandbox import Limits, kill_tree, limits_hit, make_scratch, remove_scratch, start
 
 ISOLATION = sandbox.isolation()
-pytestmark = pytest.mark.skipif(not ISOLATION.ok, reason=f"no isolation here: {ISOLATION.reason}")
+pytestmark = pytest.mark.skipif(not ISOLATION.ok and not ISOLATION.broken, reason=f"no isolation here: {ISOLATION.reason}")
+
+
+def test_the_sandbox_works_where_the_machine_allows_it():
+    """A machine with root, bubblewrap and a cgroup must get working sandboxes: their failure is the grader's."""
+    assert not ISOLATION.broken, ISOLATION.reason
 
 
 @pytest.fixture()

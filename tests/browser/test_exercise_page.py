@@ -213,7 +213,7 @@ def test_code_exercises_link_to_the_notebook(book_html):
 
 @pytest.mark.parametrize("mode", ["light", "dark"])
 def test_a_formula_and_a_grid_with_the_keyboard(browser_context, book_url, artifacts, mode):
-    """A symbolic answer typed in the box gets the notebook's verdict and a preview of how it was read; the same
+    """A symbolic answer typed in the box gets the notebook's verdict and a typeset preview of how it was read; the same
     matrix entered cell by cell in the grid (Tab from cell to cell, Ctrl+Enter checks) too; at 390 px the grid
     scrolls in its own box and the page does not."""
     from exercise_answers import formula_text
@@ -229,9 +229,10 @@ def test_a_formula_and_a_grid_with_the_keyboard(browser_context, book_url, artif
         kind, text = _verdict(tab, eid, formula_text(ex.reference))
         fb = ex.check(ex.reference)
         assert "course-answer-correct" in kind and fb.message in text
-        tab.wait_for_selector(f"{box} .course-answer-preview table")
-        preview = tab.inner_text(f"{box} .course-answer-preview")
-        assert "cos" in preview or "sin" in preview
+        # the preview is typeset by the book's MathJax, which the first typed formula loads (its MathML is read)
+        tab.wait_for_selector(f"{box} .course-answer-preview mjx-container", timeout=60_000)
+        preview = tab.text_content(f"{box} .course-answer-preview mjx-assistive-mml") or ""
+        assert "cos" in preview or "sin" in preview, preview
         tab.locator(box).scroll_into_view_if_needed()
         tab.screenshot(path=str(artifacts / f"exercise-formula-desktop-{mode}.png"))
         # a catalogued mistake, typed in the grid with the keyboard

@@ -171,6 +171,9 @@ class Isolation:
     ok: bool
     reason: str | None = None
     cgroup: str | None = None
+    #: the machine has all a sandbox needs (root, bwrap, setpriv, a cgroup) and the test sandbox still failed:
+    #: a fault of the grader on this machine, never a reason to skip its tests
+    broken: bool = False
 
 
 def unsafe_allowed() -> bool:
@@ -218,7 +221,8 @@ def probe_isolation() -> Isolation:
     if rc != 0:
         last = (err or b"").decode("utf-8", "replace").strip().splitlines()[-1:] or ["no message"]
         return Isolation(False, f"a test sandbox failed (bwrap or Python inside it: {last[0][:200]}); "
-                                "are user namespaces allowed (sysctl kernel.unprivileged_userns_clone)?")
+                                "are user namespaces allowed (sysctl kernel.unprivileged_userns_clone)?",
+                         broken=True)
     return probe
 
 
@@ -487,10 +491,12 @@ def _binds(scratch: Path, views: Path, limits: Limits) -> list[str]:
     for f in ("/etc/ld.so.cache", "/etc/localtime", "/etc/nsswitch.conf"):
         if os.path.exists(f):
             args += ["--ro-bind", f, f]
+    # /tmp before the views: a Python or a checkout that lives under /tmp (a clone in /tmp, a CI runner's
+    # temp folder) is bound on top of the sandbox's own tmpfs, not hidden by it
+    args += ["--proc", "/proc", "--dev", "/dev", "--size", str(limits.tmp_size), "--tmpfs", "/tmp"]
     for k, folder in enumerate(_needed()):
         args += ["--ro-bind", str(views / str(k)), folder]
-    args += ["--proc", "/proc", "--dev", "/dev", "--size", str(limits.tmp_size), "--tmpfs", "/tmp",
-             "--bind", str(scratch), HOME, "--chdir", HOME, "--remount-ro", "/"]
+    args += ["--bind", str(scratch), HOME, "--chdir", HOME, "--remount-ro", "/"]
     return args
 
 
