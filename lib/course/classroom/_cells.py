@@ -137,12 +137,25 @@ def _strays() -> list[str]:
     return out[:5]
 
 
+def _mount_points() -> set[str]:
+    """The entries of /tmp that the sandbox itself made: the folders on the way to a Python or a checkout that
+    lives under /tmp (bound there read-only, sandbox.py's _needed), not written by the notebook."""
+    here = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # holds course/
+    out = set()
+    for folder in (sys.base_prefix, sys.prefix, here):
+        for path in (os.path.realpath(folder), os.path.abspath(folder)):
+            if path.startswith("/tmp/"):
+                out.add("/tmp/" + path[len("/tmp/"):].split("/", 1)[0])
+    return out
+
+
 def _left_files() -> list[str]:
     """Files the notebook left in the sandbox's private /tmp and /dev/shm (they vanish with it)."""
     out = []
+    ours = _mount_points()
     for folder in ("/tmp", "/dev/shm"):
         try:
-            out += [f"{folder}/{n}"[:100] for n in sorted(os.listdir(folder))]
+            out += [f"{folder}/{n}"[:100] for n in sorted(os.listdir(folder)) if f"{folder}/{n}" not in ours]
         except OSError:
             continue
     return out[:5]
