@@ -301,19 +301,9 @@ function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onC
     if (!parsed || parsed.kind) return;
     const p = preview(parsed);
     const w = /** @type {any} */ (window);
-    if (!(w.MathJax && typeof w.MathJax.tex2chtml === "function") && w.courseMath && !mathAsked) {
+    if (!(w.MathJax && typeof w.MathJax.tex2chtmlPromise === "function") && w.courseMath && !mathAsked) {
       mathAsked = true;
       w.courseMath.load().then(showPreview, () => undefined);  // no MathJax: the plain-text preview stays
-    }
-    if (w.MathJax && typeof w.MathJax.tex2chtml === "function") {
-      try {
-        shown.append(el("span", {}, "Read as: "), w.MathJax.tex2chtml(p.tex, { display: false }));
-        w.MathJax.startup.document.clear();
-        w.MathJax.startup.document.updateDocument();
-        return;
-      } catch {
-        shown.textContent = "";
-      }
     }
     const table = el("table", { class: "course-answer-preview-table" });
     for (const row of p.rows) {
@@ -322,6 +312,17 @@ function mountBox(/** @type {HTMLElement} */ host, /** @type {() => void} */ onC
       table.append(tr);
     }
     shown.append(el("span", {}, "Read as: "), table);
+    if (w.MathJax && typeof w.MathJax.tex2chtmlPromise === "function") {
+      // the promise form: a TeX extension that loads on first use (autoload) makes the synchronous form throw
+      const typed = box.value;
+      w.MathJax.tex2chtmlPromise(p.tex, { display: false }).then((/** @type {Element} */ node) => {
+        if (box.value !== typed) return;  // the reader typed on: a newer preview is on its way
+        shown.textContent = "";
+        shown.append(el("span", {}, "Read as: "), node);
+        w.MathJax.startup.document.clear();
+        w.MathJax.startup.document.updateDocument();
+      }, () => undefined);  // TeX MathJax cannot read: the plain-text preview stays
+    }
   };
   let previewTimer = 0;
   box.addEventListener("input", () => {

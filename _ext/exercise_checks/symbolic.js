@@ -106,10 +106,22 @@ export function decideSymbolic(/** @type {any} */ answer, /** @type {any} */ v, 
     message: `Your ${what} ${verb} with the reference at random values of ${v.symbols.join(", ")}.` };
 }
 
+const GREEK = new Set(["alpha", "beta", "gamma", "delta", "epsilon", "theta", "lambda", "mu", "phi", "psi", "omega"]);
+
+/** The TeX of an arm's symbol as the statements write it (theta1 -> θ₁, l2 -> l₂); other nodes: math.js's own. */
+function symbolTex(/** @type {any} */ node) {
+  if (node.type !== "SymbolNode") return undefined;
+  const m = /^([A-Za-z]+?)_?(\d+)$/.exec(node.name);
+  const base = m ? m[1] : node.name;
+  if (!m && !GREEK.has(base)) return undefined;  // pi, e and unknown names: math.js's own TeX
+  const tex = GREEK.has(base) ? `\\${base}` : base;
+  return m ? `${tex}_{${m[2]}}` : tex;
+}
+
 /** A preview of the typed formulas: plain text (math.js's own printing, implicit products shown) and TeX. */
 export function preview(/** @type {any} */ answer) {
   const text = answer.nodes.map((/** @type {any} */ n) => n.toString({ implicit: "show" }));
-  const tex = answer.nodes.map((/** @type {any} */ n) => n.toTex({ implicit: "show" }));
+  const tex = answer.nodes.map((/** @type {any} */ n) => n.toTex({ implicit: "show", handler: symbolTex }));
   const [r, c] = answer.shape.length === 2 ? answer.shape : [1, text.length];
   const rows = [];
   for (let i = 0; i < r; i++) rows.push(text.slice(i * c, (i + 1) * c));
