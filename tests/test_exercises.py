@@ -602,3 +602,27 @@ def test_book_version_executes_and_shows_only_correct_verdicts_inside_solutions(
     assert sorted(verdicts) == ids
     for eid, html in verdicts.items():
         assert "jacobians-feedback-correct" in html and "Correct" in html, (eid, html[:200])
+
+
+def test_progress_counts_the_last_answer_and_treats_the_placeholder_id_as_practice():
+    """The summary follows make grade's rule: the last answer to an exercise under the notebook's ID counts (a
+    right answer followed by a wrong one is not right), and a right answer under the placeholder ID
+    "student-id" (the book's solutions run under it) is listed as practice, never as right."""
+    from course import exercises
+    from course.exercises import _progress
+
+    _progress.reset()
+    try:
+        sid, eid, other = "s2417093", "ch01_ex1", "ch01_ex2"
+        ex = exercises.load(eid, seed=sid)
+        assert exercises.check(eid, ex.solution(), seed=sid).correct
+        assert not exercises.check(eid, 0 * ex.solution() + 1, seed=sid).correct
+        practice = exercises.load(other, seed="student-id")
+        assert exercises.check(other, practice.solution(), seed="student-id").correct
+        s = exercises.summary("ch01", seed=sid)
+        assert eid in s.tried and eid not in s.right
+        assert other in s.practice and other not in s.right
+        assert exercises.check(eid, ex.solution(), seed=sid).correct
+        assert eid in exercises.summary("ch01", seed=sid).right
+    finally:
+        _progress.reset()
