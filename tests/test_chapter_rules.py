@@ -22,7 +22,10 @@ with markdown-it (so a ``##`` inside a code fence is not a heading). The rules:
 
 from __future__ import annotations
 
+import ast
+import functools
 import re
+import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -387,3 +390,136 @@ def test_no_chapter_defines_a_copy_of_a_library_helper(path):
     found = [name for c in nb.cells if c.cell_type == "code" for name in helper_copies(c.source, provided)]
     assert not found, (f"{path.name} defines {found}: use jacobians.symbolic / course.chapter "
                        "(lib/course/chapter.py) instead")
+
+
+# ---------------------------------------------------------------- no copy of the library's code, under any name
+class _Shape(ast.NodeTransformer):
+    """A function reduced to its code: names (arguments, locals, globals) become placeholders in order of first
+    use, the function's own name, annotations, decorators and docstring go."""
+
+    def __init__(self) -> None:
+        self.names: dict[str, str] = {}
+
+    def _name(self, name: str) -> str:
+        return self.names.setdefault(name, f"v{len(self.names)}")
+
+    def visit_arg(self, node: ast.arg) -> ast.arg:
+        node.arg, node.annotation = self._name(node.arg), None
+        return node
+
+    def visit_Name(self, node: ast.Name) -> ast.Name:
+        node.id = self._name(node.id)
+        return node
+
+    def visit_FunctionDef(self, node: ast.FunctionDef) -> ast.FunctionDef:
+        node.name, node.returns, node.decorator_list = "f", None, []
+        first = node.body[0] if node.body else None
+        if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant) and isinstance(first.value.value, str):
+            node.body = node.body[1:] or [ast.Pass()]
+        self.generic_visit(node)
+        return node
+
+
+#: a function shorter than this (AST nodes of its code) is too small to call a copy: a one-line wrapper
+MIN_NODES = 25
+
+
+def code_shape(fn: ast.FunctionDef) -> str | None:
+    """The normalised code of ``fn`` (see :class:`_Shape`), or None if it is too small to count."""
+    import copy
+
+    norm = _Shape().visit(copy.deepcopy(fn))
+    if sum(1 for _ in ast.walk(norm)) < MIN_NODES:
+        return None
+    return ast.dump(norm, annotate_fields=False, include_attributes=False)
+
+
+def _functions(source: str) -> list[ast.FunctionDef]:
+    source = "\n".join(line for line in source.splitlines() if not line.lstrip().startswith(("%", "!")))
+    try:
+        tree = ast.parse(source)
+    except SyntaxError:
+        return []
+    return [n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)]
+
+
+@functools.cache
+def _library_shapes() -> dict[str, str]:
+    out: dict[str, str] = {}
+    for path in sorted((ROOT / "lib").rglob("*.py")):
+        for fn in _functions(path.read_text(encoding="utf-8")):
+            shape = code_shape(fn)
+            if shape is not None:
+                out.setdefault(shape, f"{path.relative_to(ROOT / 'lib').as_posix()}:{fn.name}")
+    return out
+
+
+def library_code_copies(source: str, shapes: dict[str, str]) -> list[str]:
+    """The functions of ``source`` whose code is a library function's, whatever the names: 'name = where'."""
+    return [f"{fn.name} = {shapes[s]}" for fn in _functions(source) if (s := code_shape(fn)) in shapes]
+
+
+def test_the_code_copy_rule_catches_a_renamed_copy():
+    import inspect
+
+    from jacobians import chain, lie
+
+    shapes = _library_shapes()
+    copied = inspect.getsource(chain.SerialChain.fk if hasattr(chain.SerialChain, "fk") else lie.log_se3)
+    tree = ast.parse(textwrap.dedent(copied))
+    for node in ast.walk(tree):  # every name changed, as a student's copy would
+        if isinstance(node, ast.Name):
+            node.id += "_x"
+        elif isinstance(node, ast.arg):
+            node.arg += "_x"
+        elif isinstance(node, ast.FunctionDef):
+            node.name = "my_own_version"
+    found = library_code_copies(ast.unparse(tree), shapes)
+    assert len(found) == 1 and found[0].startswith("my_own_version = jacobians/"), found
+    own = "def body_columns(chain, theta):\n    out = []\n    for i in range(chain.n):\n" \
+          "        out.append(chain.screws[:, i] * theta[i] + 1.5 * theta[i] ** 2 - 7)\n    return out\n"
+    assert library_code_copies(own, shapes) == []
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=_ids(CHAPTERS))
+def test_no_chapter_function_has_the_code_of_a_library_function(path):
+    nb = jupytext.reads(path.read_text(encoding="utf-8"), fmt="md:myst")
+    shapes = _library_shapes()
+    found = [f for c in nb.cells if c.cell_type == "code" for f in library_code_copies(c.source, shapes)]
+    assert not found, f"{path.name} repeats library code under another name: {found} (call the library instead)"
+
+
+# ---------------------------------------------------------------- TeX in Python strings
+_CONTROL = "\t\x08\x0c\x07\x0b\r"
+
+
+def tex_escape_problems(source: str) -> list[str]:
+    """Strings of a code cell that lose TeX to Python's escapes: an invalid escape such as '\\d' (a warning
+    today, an error in a later Python), or a control character that '\\t', '\\b', '\\f', '\\a', '\\v' or
+    '\\r' made of \\theta, \\beta, \\frac, \\alpha, \\vec, \\rho (write them in r"..." strings)."""
+    import warnings
+
+    source = "\n".join("" if line.lstrip().startswith(("%", "!")) else line for line in source.splitlines())
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            tree = ast.parse(source)
+        except (SyntaxError, DeprecationWarning, SyntaxWarning) as exc:
+            return [f"line {getattr(exc, 'lineno', '?')}: {exc}"]
+    return [f"line {n.lineno}: {n.value[:60]!r}" for n in ast.walk(tree)
+            if isinstance(n, ast.Constant) and isinstance(n.value, str) and any(ch in n.value for ch in _CONTROL)
+            and "$" in n.value]
+
+
+def test_the_tex_escape_rule_catches_both_kinds():
+    assert tex_escape_problems('x = "unit $\\\\dot\\\\theta$"') == []
+    assert tex_escape_problems('x = r"unit $\\dot\\theta$"') == []
+    assert len(tex_escape_problems('x = "unit $\\\\dot\\theta$"')) == 1  # \t: a tab where \theta was
+    assert "invalid escape" in tex_escape_problems('x = "unit $\\dot p$"')[0]
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=_ids(CHAPTERS))
+def test_tex_in_a_chapters_strings_survives_python(path):
+    nb = jupytext.reads(path.read_text(encoding="utf-8"), fmt="md:myst")
+    found = [p for c in nb.cells if c.cell_type == "code" for p in tex_escape_problems(c.source)]
+    assert not found, f"{path.name}: TeX lost to Python's escapes (use r\"...\"): {found}"
