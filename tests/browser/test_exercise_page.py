@@ -64,6 +64,15 @@ def _open(browser_context, book_url: str, page: str, problems: list[str], color_
 
 
 @pytest.mark.parametrize("page", PAGES)
+
+def _assert_fits_a_phone(tab) -> None:
+    """At 390 px, no answer box and no ID panel runs past the screen's right edge."""
+    tab.set_viewport_size({"width": 390, "height": 844})
+    overflow = tab.evaluate("""() => [...document.querySelectorAll('.course-answer, .course-id-panel')]
+        .filter(e => e.getBoundingClientRect().right > document.documentElement.clientWidth + 1).length""")
+    assert overflow == 0
+
+
 def test_page_and_notebook_agree(browser_context, book_url, page, capsys):
     problems: list[str] = []
     tab = _open(browser_context, book_url, page, problems)
@@ -191,10 +200,7 @@ def test_a_reader_answers_with_the_keyboard(browser_context, book_url, artifacts
         if limit[0] != eid:
             assert (rows[eid].correct, rows[eid].mistake) == ("0", m.name)
         # phone width: the boxes fit the screen
-        tab.set_viewport_size({"width": 390, "height": 844})
-        overflow = tab.evaluate("""() => [...document.querySelectorAll('.course-answer, .course-id-panel')]
-            .filter(e => e.getBoundingClientRect().right > document.documentElement.clientWidth + 1).length""")
-        assert overflow == 0
+        _assert_fits_a_phone(tab)
         tab.locator(f'.course-answer[data-exercise="{eid}"]').scroll_into_view_if_needed()
         tab.screenshot(path=str(artifacts / f"exercise-page-phone-{mode}.png"))
         assert not problems, problems
@@ -250,10 +256,7 @@ def test_a_formula_and_a_grid_with_the_keyboard(browser_context, book_url, artif
         tab.keyboard.press("Control+Enter")
         out = tab.locator(f"{box} .course-answer-verdict")
         assert m.name in out.inner_text() and ex.check(m.value).message in out.inner_text()
-        tab.set_viewport_size({"width": 390, "height": 844})
-        overflow = tab.evaluate("""() => [...document.querySelectorAll('.course-answer, .course-id-panel')]
-            .filter(e => e.getBoundingClientRect().right > document.documentElement.clientWidth + 1).length""")
-        assert overflow == 0
+        _assert_fits_a_phone(tab)
         tab.locator(f"{box} .course-answer-grid").scroll_into_view_if_needed()
         tab.screenshot(path=str(artifacts / f"exercise-grid-phone-{mode}.png"))
         assert not problems, problems
