@@ -63,8 +63,6 @@ def _open(browser_context, book_url: str, page: str, problems: list[str], color_
     return tab
 
 
-@pytest.mark.parametrize("page", PAGES)
-
 def _assert_fits_a_phone(tab) -> None:
     """At 390 px, no answer box and no ID panel runs past the screen's right edge."""
     tab.set_viewport_size({"width": 390, "height": 844})
@@ -73,6 +71,7 @@ def _assert_fits_a_phone(tab) -> None:
     assert overflow == 0
 
 
+@pytest.mark.parametrize("page", PAGES)
 def test_page_and_notebook_agree(browser_context, book_url, page, capsys):
     problems: list[str] = []
     tab = _open(browser_context, book_url, page, problems)
