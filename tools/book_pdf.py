@@ -112,9 +112,10 @@ READY_JS = """() => document.fonts.status === 'loaded'
   && Array.from(document.querySelectorAll('[data-model]')).every(v => v.dataset.ready === '1')"""
 
 
-def build(site: Path, toc: Path, out: Path) -> dict[str, Any]:
-    from playwright.sync_api import sync_playwright
-    from pypdf import PdfReader, PdfWriter
+def build(site: Path, toc: Path, out: Path, context: Any = None) -> dict[str, Any]:
+    """Print the pages of ``toc`` from ``site`` into ``out``; in a browser context of the caller's (Playwright),
+    or in a Chromium of its own."""
+    from pypdf import PdfWriter
 
     pages = toc_pages(toc)
     missing = [p for p in pages if not (site / p).is_file()]
@@ -125,35 +126,21 @@ def build(site: Path, toc: Path, out: Path) -> dict[str, Any]:
     threading.Thread(target=server.serve_forever, daemon=True).start()
     base = f"http://127.0.0.1:{server.server_address[1]}/"
     writer = PdfWriter()
-    shrunk = 0
     start = time.monotonic()
     try:
-        with sync_playwright() as pw:
-            browser = pw.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
-            try:
-                context = browser.new_context(viewport={"width": 1000, "height": 1400})
-                page = context.new_page()
-                for path in pages:
-                    page.goto(base + path, wait_until="load", timeout=300_000)  # (minutes on a loaded machine)
-                    try:
-                        page.wait_for_function(READY_JS, timeout=20_000)
-                    except Exception:
-                        print(f"book_pdf: {path}: live views not ready after 20 s, printed as they are",
-                              file=sys.stderr)
-                    page.add_style_tag(content=NO_RASTER_CSS)
-                    page.evaluate(EAGER_JS)
-                    page.emulate_media(media="print")
-                    shrunk += page.evaluate(SHRINK_JS, [PRINT_WIDTH_PX, PRINT_SCALE, JPEG_QUALITY])
-                    title = page.title().split("—")[0].split(" | ")[0].strip() or path
-                    data = page.pdf(format="A4", print_background=True, display_header_footer=False,
-                                    margin={"top": "15mm", "bottom": "15mm", "left": "14mm", "right": "14mm"})
-                    first = len(writer.pages)
-                    for p in PdfReader(io.BytesIO(data)).pages:
-                        writer.add_page(p)
-                    writer.add_outline_item(title=title, page_number=first)
-                context.close()
-            finally:
-                browser.close()
+        if context is not None:
+            shrunk = _print_pages(context, base, pages, writer)
+        else:
+            from playwright.sync_api import sync_playwright
+
+            with sync_playwright() as pw:
+                browser = pw.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
+                try:
+                    own = browser.new_context()
+                    shrunk = _print_pages(own, base, pages, writer)
+                    own.close()
+                finally:
+                    browser.close()
     finally:
         server.shutdown()
         server.server_close()
@@ -163,6 +150,37 @@ def build(site: Path, toc: Path, out: Path) -> dict[str, Any]:
         writer.write(f)
     return {"pages": len(pages), "pdf_pages": len(writer.pages), "bytes": out.stat().st_size,
             "seconds": time.monotonic() - start, "shrunk": shrunk}
+
+
+def _print_pages(context: Any, base: str, pages: list[str], writer: Any) -> int:
+    """Print each page into ``writer``, a bookmark at its first page; returns the figures printed smaller."""
+    from pypdf import PdfReader
+
+    shrunk = 0
+    page = context.new_page()
+    try:
+        page.set_viewport_size({"width": 1000, "height": 1400})
+        for path in pages:
+            page.emulate_media(media="screen")   # the live views mount (and report ready) on screen
+            page.goto(base + path, wait_until="load", timeout=300_000)  # (minutes on a loaded machine)
+            try:
+                page.wait_for_function(READY_JS, timeout=20_000)
+            except Exception:
+                print(f"book_pdf: {path}: live views not ready after 20 s, printed as they are", file=sys.stderr)
+            page.add_style_tag(content=NO_RASTER_CSS)
+            page.evaluate(EAGER_JS)
+            page.emulate_media(media="print")
+            shrunk += page.evaluate(SHRINK_JS, [PRINT_WIDTH_PX, PRINT_SCALE, JPEG_QUALITY])
+            title = page.title().split("—")[0].split(" | ")[0].strip() or path
+            data = page.pdf(format="A4", print_background=True, display_header_footer=False,
+                            margin={"top": "15mm", "bottom": "15mm", "left": "14mm", "right": "14mm"})
+            first = len(writer.pages)
+            for p in PdfReader(io.BytesIO(data)).pages:
+                writer.add_page(p)
+            writer.add_outline_item(title=title, page_number=first)
+    finally:
+        page.close()
+    return shrunk
 
 
 def main(argv: list[str] | None = None) -> int:
