@@ -16,6 +16,18 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 # make book SOLUTIONS=0: publish the book without the solutions (_ext/course_solutions.py)
 SOLUTIONS ?= 1
 export COURSE_SOLUTIONS := $(SOLUTIONS)
+# The publishing PDFs (Chromium prints; minutes of CPU on a cold build). make book BOOK_PDF=0: no whole-book PDF
+# (tools/book_pdf.py). SLIDES_PDF=0: no PDF of a deck or lecture; SLIDES_PDF="<deck> ...": only these decks' PDFs,
+# and those of the lectures made of them alone (tools/build_slides.py --pdf-only). make test builds the book with
+# BOOK_PDF=0 SLIDES_PDF=$(TEST_SLIDES_PDF) and prints a sample of each instead (tests/browser/test_publishing_pdf.py,
+# tests/slides/test_pdf.py); the tests read both variables to know what this build printed.
+BOOK_PDF ?= 1
+SLIDES_PDF ?= 1
+export BOOK_PDF SLIDES_PDF
+SLIDES_PDF_ARGS = $(if $(filter 0,$(SLIDES_PDF)),--no-pdf,$(if $(filter-out 1,$(SLIDES_PDF)),--pdf-only $(SLIDES_PDF)))
+#: the deck make test prints (with its lecture, lecture 4: the one lecture of a single deck), math, live views and
+#: animations included
+TEST_SLIDES_PDF := 05_geometric_jacobian
 
 .PHONY: help setup book site test test-site lint test-lib test-js test-live test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
@@ -31,6 +43,7 @@ help:
 	@echo "make test-install  a student's install from a wheel in a fresh venv: notebooks, a live view, size"
 	@echo "make grade SUBMISSIONS=<dir>  grade every student notebook under <dir> (gradebook.csv, reports/), as root"
 	@echo "make book SOLUTIONS=0         the book without the solutions"
+	@echo "make book BOOK_PDF=0 SLIDES_PDF=0  the book without the whole-book PDF and the decks' PDFs"
 	@echo "make test-numerics  the float comparisons on two other OpenBLAS kernels, in reverse order"
 
 # ------------------------------------------------------------------ set-up
@@ -68,8 +81,8 @@ sandbox:
 book: vendor browser
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
-	$(PY) -m tools.build_slides
-	$(PY) -m tools.book_pdf _build/html
+	$(PY) -m tools.build_slides $(SLIDES_PDF_ARGS)
+	$(if $(filter 0,$(BOOK_PDF)),@echo "No whole-book PDF (BOOK_PDF=0)",$(PY) -m tools.book_pdf _build/html)
 	@$(REFRESH_COMPRESSED)
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
 
@@ -91,7 +104,10 @@ test: setup browser sandbox
 	$(MAKE) -j2 --output-sync=target test-site lint test-lib test-js test-live test-install
 
 # the book, the browser tests on it (without the pages' screenshots, which are for a person: `make test-browser`
-# takes them), the targets after it (in this order: the last rewrites the site)
+# takes them), the targets after it (in this order: the last rewrites the site). The book without its publishing
+# PDFs but one deck's (BOOK_PDF, SLIDES_PDF above): the tests print a sample of the book and check that deck.
+test-site: BOOK_PDF = 0
+test-site: SLIDES_PDF = $(TEST_SLIDES_PDF)
 test-site: setup
 	$(MAKE) book
 	BOOK_SHOTS=0 $(MAKE) test-browser
@@ -203,11 +219,11 @@ exercises: setup
 	$(PY) -m tools.make_exercises _build/exercises
 
 slides: vendor browser
-	$(PY) -m tools.build_slides
+	$(PY) -m tools.build_slides $(SLIDES_PDF_ARGS)
 	@$(REFRESH_COMPRESSED)
 
 # the decks' PDFs (a page a slide) and handouts (with the speaker notes), with Debian's Chromium, into
 # _build/html/slides/pdf (make book and make slides print them too)
 slides-pdf: setup browser
 	@test -f _build/html/slides/decks.json || $(MAKE) book
-	$(PY) -m tools.build_slides --no-build
+	$(PY) -m tools.build_slides --no-build $(if $(filter-out 0 1,$(SLIDES_PDF)),--pdf-only $(SLIDES_PDF))

@@ -1,6 +1,6 @@
 """Build the lecture decks: the book's sources through Sphinx's ``revealjs`` builder.
 
-Usage: python -m tools.build_slides [DEST] [--no-build] [--no-pdf]
+Usage: python -m tools.build_slides [DEST] [--no-build] [--no-pdf | --pdf-only DECK ...]
 
 1. ``jupyter-book build . --builder custom --custom-builder revealjs`` (the
    book's own toolchain and configuration: myst-nb with the book's
@@ -18,9 +18,11 @@ Usage: python -m tools.build_slides [DEST] [--no-build] [--no-pdf]
    joined into lectures of 45-55 minutes, :func:`assemble_lectures`) into
    ``DEST/lectures/``, ``DEST/lectures.json`` for the tests;
 4. every deck is printed to a PDF and a handout with the speaker notes
-   (``tools/slides_pdf.py``, into ``DEST/pdf``; ``--no-pdf`` skips it), and
-   each lecture's PDF and handout are put together from its decks' pages
-   (:func:`lecture_pdfs`: only a lecture's own title and summary are printed);
+   (``tools/slides_pdf.py``, into ``DEST/pdf``; ``--no-pdf`` skips it,
+   ``--pdf-only DECK ...`` prints only these decks), and each lecture's PDF and
+   handout are put together from its decks' pages (:func:`lecture_pdfs`: only
+   a lecture's own title and summary are printed; with ``--pdf-only``, only the
+   lectures made of the printed decks alone);
 5. ``DEST/index.html`` lists each lecture with its minutes (the sum of its
    speaker notes' minutes), PDFs and parts, then each chapter's deck with its
    minutes, PDFs and chapter; ``DEST/decks.json`` the same for the tests.
@@ -526,7 +528,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("dest", type=Path, nargs="?", default=BOOK_HTML / "slides")
     ap.add_argument("--no-build", action="store_true", help="reuse _build/revealjs as it is")
     ap.add_argument("--no-pdf", action="store_true", help="do not print the PDFs and handouts (tools/slides_pdf.py)")
+    ap.add_argument("--pdf-only", nargs="+", metavar="DECK", default=None,
+                    help="print only these decks (by name, e.g. 05_geometric_jacobian) and the lectures made of them")
     args = ap.parse_args(argv)
+    if args.no_pdf and args.pdf_only:
+        ap.error("--no-pdf and --pdf-only exclude each other")
     t0 = time.perf_counter()
     if not args.no_build and run_sphinx():
         print("build_slides: the revealjs build failed", file=sys.stderr)
@@ -535,17 +541,26 @@ def main(argv: list[str] | None = None) -> int:
     decks = assemble(dest)
     (dest / "decks.json").write_text(json.dumps(decks, indent=1))
     lectures = assemble_lectures(dest, decks)
+    if args.pdf_only:
+        unknown = sorted(set(args.pdf_only) - {d["name"] for d in decks})
+        if unknown:
+            print(f"build_slides: --pdf-only names no deck: {', '.join(unknown)} "
+                  f"(decks: {', '.join(d['name'] for d in decks)})", file=sys.stderr)
+            return 2
     if not args.no_pdf:
         from tools import slides_pdf
 
         t1 = time.perf_counter()
-        printed = {row["name"]: row for row in slides_pdf.print_decks(dest)}
+        printed = {row["name"]: row for row in slides_pdf.print_decks(dest, only=args.pdf_only)}
         for d in decks:   # the number of slides reveal.js counted: the PDF's number of pages
-            d["slides"] = str(printed[d["name"]]["slides"])
+            if d["name"] in printed:
+                d["slides"] = str(printed[d["name"]]["slides"])
         (dest / "decks.json").write_text(json.dumps(decks, indent=1))
-        print(f"build_slides: {2 * len(decks)} PDFs (decks and handouts) in {time.perf_counter() - t1:.1f} s")
-        own = lecture_pdfs(dest, lectures, printed)
-        print(f"build_slides: {2 * len(lectures)} PDFs of the lectures, from the decks' pages "
+        print(f"build_slides: {2 * len(printed)} PDFs (decks and handouts) in {time.perf_counter() - t1:.1f} s")
+        # a lecture's PDFs are made of its decks' pages: only the lectures whose decks were all printed
+        whole = [lec for lec in lectures if all(not deck or deck in printed for deck, _, _ in lec["sources"])]
+        own = lecture_pdfs(dest, whole, printed)
+        print(f"build_slides: {2 * len(whole)} PDFs of the lectures, from the decks' pages "
               f"(their own slides printed in {own:.1f} s)")
     (dest / "lectures.json").write_text(json.dumps(lectures, indent=1))
     write_index(dest, decks, lectures)

@@ -1,7 +1,8 @@
 """Every ``make`` target run after ``make book`` leaves a working site: no page or deck links a missing file.
 
 Runs ``make slides``, ``make exercises``, ``make vendor`` and ``make slides-pdf``
-(it prints every deck in Chromium, about 80 s; ``SITE_TARGETS_PDF=0`` leaves it out) in sequence on
+(it prints every deck in Chromium, about 80 s, or the decks ``SLIDES_PDF`` names, as in ``make test``;
+``SITE_TARGETS_PDF=0`` leaves it out) in sequence on
 the built book (``make book`` first; this test never builds the book) and,
 before the first and after each, crawls the site: every ``href`` and ``src``
 of every HTML file under ``_build/html`` (book pages, decks, the slides index),
@@ -9,7 +10,8 @@ and every file a stylesheet there names with ``url(...)``, must be a file of
 the site. A local file crawl, no browser: a 404 here is a 404 in a browser.
 
 Run by ``make test-targets`` (part of ``make test``, after the browser and
-deck tests, because it rewrites the site they read).
+deck tests, because it rewrites the site they read). The site is read once after each target (:func:`crawl`):
+what pages and stylesheets load, and where links lead.
 """
 
 from __future__ import annotations
@@ -87,13 +89,23 @@ def missing_files(site: Path, anchors: bool = True) -> list[str]:
     enough (the browser loads the first format it supports). With ``anchors``, also every ``<a href>`` (a click that
     would 404).
     """
+    loads, links = crawl(site)
+    return loads + links if anchors else loads
+
+
+def crawl(site: Path) -> tuple[list[str], list[str]]:
+    """The site read once: (missing files that pages and stylesheets load, missing targets of ``<a href>``)."""
     missing = []
+    dead = []
     for page in _pages(site):
         parser = _Links()
         parser.feed(page.read_text(encoding="utf-8", errors="replace"))
-        for link in parser.loads + (parser.anchors if anchors else []):
+        for link in parser.loads:
             if not _exists(site, page.parent, link):
                 missing.append(f"{page.relative_to(site)} -> {link}")
+        for link in parser.anchors:
+            if not _exists(site, page.parent, link):
+                dead.append(f"{page.relative_to(site)} -> {link}")
     for sheet in sorted(site.rglob("*.css")):
         text = sheet.read_text(encoding="utf-8", errors="replace")
         for face in _FONT_FACE.finditer(text):
@@ -104,7 +116,7 @@ def missing_files(site: Path, anchors: bool = True) -> list[str]:
         for m in _CSS_URL.finditer(_FONT_FACE.sub("", text)):
             if not _exists(site, sheet.parent, m.group(2)):
                 missing.append(f"{sheet.relative_to(site)} -> {m.group(2)}")
-    return missing
+    return missing, dead
 
 
 def test_crawler_finds_a_missing_file(tmp_path):
@@ -142,18 +154,18 @@ def test_every_target_after_the_book_leaves_a_working_site():
     """No file any page or deck loads is missing, after the book and after each target; no link breaks."""
     if not (SITE / "index.html").is_file():
         pytest.fail(f"No built book at {SITE}: run `make book` first (this test does not build it).", pytrace=False)
-    loads = missing_files(SITE, anchors=False)
+    loads, links = crawl(SITE)
     assert not loads, f"the built book already loads {len(loads)} missing files: {loads[:10]}"
     assert (SITE / "_static" / "mathjax" / "es5" / "startup.js").is_file()
     # Links that already lead nowhere after `make book` are the builders' to fix (listed, then not held against
     # the targets); what a target must not do is break one more.
-    before = set(missing_files(SITE))
+    before = set(links)
     if before:
         print(f"\nafter make book, {len(before)} links lead to a missing page: " + "; ".join(sorted(before)))
     for target in TARGETS:
         done = subprocess.run(["make", "--no-print-directory", target], cwd=ROOT, capture_output=True, text=True)
         assert done.returncode == 0, f"make {target} failed:\n{(done.stdout + done.stderr)[-3000:]}"
-        loads = missing_files(SITE, anchors=False)
+        loads, links = crawl(SITE)
         assert not loads, f"after `make {target}`, pages and decks load {len(loads)} missing files: {loads[:10]}"
-        broken = sorted(set(missing_files(SITE)) - before)
+        broken = sorted(set(links) - before)
         assert not broken, f"after `make {target}`, {len(broken)} more links lead nowhere: {broken[:10]}"
