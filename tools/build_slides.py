@@ -523,6 +523,13 @@ def write_index(dest: Path, decks: list[dict[str, str]], lectures: list[dict[str
     )
 
 
+def pdf_args(slides_pdf: str | None) -> list[str]:
+    """The arguments for the PDFs the Makefile's ``SLIDES_PDF`` asks for: ``1`` or unset every deck's, ``0``
+    none, else the decks it names (as the Makefile's ``SLIDES_PDF_ARGS``)."""
+    asked = (slides_pdf or "1").split()
+    return [] if asked == ["1"] else ["--no-pdf"] if asked == ["0"] else ["--pdf-only", *asked]
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("dest", type=Path, nargs="?", default=BOOK_HTML / "slides")

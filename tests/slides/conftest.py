@@ -3,6 +3,7 @@ as a lecturer carries them: a copy of the built ``slides/`` folder alone, opened
 
 from __future__ import annotations
 
+import os
 import shutil
 from pathlib import Path
 
@@ -31,7 +32,7 @@ def usb(tmp_path_factory) -> Path:
     from tools import build_slides
 
     if not (SLIDES / "decks.json").is_file():
-        assert build_slides.main([]) == 0, "tools/build_slides.py failed"
+        assert build_slides.main(build_slides.pdf_args(os.environ.get("SLIDES_PDF"))) == 0, "tools/build_slides.py failed"
     stick = tmp_path_factory.mktemp("usb") / "slides"
     shutil.copytree(SLIDES, stick, ignore=shutil.ignore_patterns("pdf"))
     return stick
