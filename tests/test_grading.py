@@ -13,11 +13,11 @@ from hypothesis import strategies as st
 
 from course import exercises
 from jacobians import grading
-from jacobians.grading import Exercise, Feedback, Mistake, compare
+from jacobians.grading import Feedback, Mistake, NumericExercise, compare
 
 
 def _numeric_exercise(ref, mistakes=()):
-    return Exercise("t_ex1", "test", "statement", {}, "numeric", np.asarray(ref, float), list(mistakes))
+    return NumericExercise("t_ex1", "test", "statement", {}, np.asarray(ref, float), list(mistakes))
 
 
 REF = np.arange(12, dtype=float).reshape(6, 2) + 1.0
