@@ -518,3 +518,38 @@ def test_progress_counts_the_last_answer_and_treats_the_placeholder_id_as_practi
         assert eid in exercises.summary("ch01", seed=sid).right
     finally:
         _progress.reset()
+
+
+# ------------------------------------------------------------------ the pages are what the generator writes
+
+def test_every_exercise_page_is_what_the_generator_writes_with_the_catalogues_exercises():
+    """Each page: its head, one generated block per exercise of its chapter (catalogue order), the progress cell."""
+    assert _load_tool().check_pages() == []
+
+
+def test_a_page_off_the_generated_layout_is_refused():
+    tool = _load_tool()
+    text = (ROOT / "exercises" / "02_space_jacobian.md").read_text(encoding="utf-8")
+    untagged = text.replace(":tags: [solution, remove-cell]\n", "", 1)
+    with pytest.raises(ValueError, match="Exercise 2.1: .*generated layout"):
+        tool.parse_page(untagged)
+    with pytest.raises(ValueError, match="progress cell"):
+        tool.parse_page(text.replace('exercises.summary("ch02")', 'exercises.summary("ch03")'))
+
+
+@pytest.mark.parametrize("eid", ["ch02_ex3", "ch02_ex4"])
+def test_a_new_exercises_cells_make_a_page_the_student_tool_accepts(eid, tmp_path):
+    """The cells --new writes (here for a symbolic and a code exercise, as if new): the page parses, and its
+    student version reads statement, answer, check for every exercise."""
+    tool = _load_tool()
+    src = ROOT / "exercises" / "02_space_jacobian.md"
+    head, blocks, chapter = tool.parse_page(src.read_text(encoding="utf-8"))
+    blocks = [tool.new_block(eid) if b.eid == eid else b for b in blocks]
+    page = tmp_path / src.name
+    page.write_text(tool.render_page(head, blocks, chapter), encoding="utf-8")
+    assert [b.eid for b in tool.parse_page(page.read_text(encoding="utf-8"))[1]] == [b.eid for b in blocks]
+    assert tool.parse_page(tool.render_page(head, [], chapter)) == (head, [], chapter)  # a new chapter's page
+    nb = tool.student_notebook(page)
+    tool.check_student(nb)
+    if eid == "ch02_ex4":
+        assert "def my_space_jacobian(S, theta):" in next(c.source for c in nb.cells if c.source.startswith("def "))
