@@ -377,7 +377,7 @@ def test_student_notebook_executes_and_shows_no_answer_yet(student_dir):
     nb = nbformat.read(student_dir / "02_space_jacobian.ipynb", as_version=4)
     NotebookClient(nb, timeout=120, kernel_name="python3", resources={"metadata": {"path": str(ROOT)}}).execute()
     boxes = [o for c in nb.cells if c.cell_type == "code" and "exercises.check(" in c.source for o in c.outputs]
-    assert len(boxes) == 4
+    assert len(boxes) == len([e for e in IDS if e.startswith("ch02_")])
     for out in boxes:
         html = out["data"]["text/html"]
         assert "No answer yet" in html and "Traceback" not in html
@@ -447,7 +447,7 @@ def test_student_version_of_each_exercise_is_statement_answer_check(student_dir)
             found[eid] = [c.source.strip() for c in cells]
             assert all(not c.metadata.get("tags") for c in cells), (eid, [c.metadata for c in cells])
         assert "In the student notebook" not in "\n".join(c.source for c in nb.cells), path.name
-    assert sorted(found) == sorted(IDS) and len(found) == 51
+    assert sorted(found) == sorted(IDS)
     for eid, (load, ans, check) in found.items():
         assert load.startswith(f'ex{eid.split("_ex")[1]} = exercises.load("{eid}", seed=SEED)'), (eid, load)
         assert re.search(r"^answer = None\b", ans, re.M) and len(re.findall(r"^answer\s*=", ans, re.M)) == 1, (eid, ans)
