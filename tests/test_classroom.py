@@ -1,8 +1,9 @@
 """make grade's machinery on a class of made-up notebooks: right, wrong, half-done, broken JSON, empty,
 endless loop, raising, writing outside its scratch folder, tampering with the checker; the gradebook row by row.
 
-One chapter (exercises 2: two numeric, one symbolic, one code exercise) keeps it fast; the per-cell limit is
-20 s: the endless loop is stopped, and the set-up cell finishes on a loaded machine."""
+One chapter (exercises 2: numeric, symbolic and code exercises) keeps it fast; its exercises are read from the
+catalogue, so that adding one changes no test here. The per-cell limit is 20 s: the endless loop is stopped, and
+the set-up cell finishes on a loaded machine."""
 
 from __future__ import annotations
 
@@ -23,8 +24,13 @@ from course.classroom.grade import COLUMNS, Row, exercises_of, grade_class, stud
 from course.classroom.report import report_name
 from course.classroom.sandbox import Limits
 
+#: The chapter the class hands in, and its exercises (in page order), from the catalogue.
 CHAPTER = "02_space_jacobian"
-IDS = ["ch02_ex1", "ch02_ex2", "ch02_ex3", "ch02_ex4"]
+IDS = [eid for eid in exercises.exercise_ids() if eid.startswith(f"ch{CHAPTER[:2]}_")]
+#: The chapter's code exercise (a function returning zeros fails its first test).
+CODE = next(eid for eid in IDS if exercises.load(eid, seed=0).kind == "function")
+#: The exercises a half-done notebook answers (bench_grade's "half": the first half of the page).
+HALF = len(IDS) // 2
 #: The per-cell limit of the class: it stops the endless loop, and must leave the set-up cell (numpy, sympy,
 #: matplotlib and the course imported in a fresh sandbox) time to finish on a loaded shared machine too.
 CELL = 20
@@ -122,14 +128,14 @@ def test_wrong_notebook_every_exercise_wrong_with_the_checkers_message(graded):
     for r in got.values():
         assert r.correct == "0" and r.student == str(_id(2)), r
         assert r.message.startswith("wrong: "), r.message
-    assert "On test 1 (" in got["ch02_ex4"].message  # the function (zeros) fails on the first random input
+    assert "On test 1 (" in got[CODE].message  # the function (zeros) fails on the first random input
 
 
 def test_half_done_notebook_first_half_right_rest_not_attempted(graded):
     _, rows, _ = graded
     got = _exercise_rows(rows, "a/deep/folder/half.ipynb")
-    assert [got[e].correct for e in IDS] == ["1", "1", "0", "0"]
-    for eid in ("ch02_ex3", "ch02_ex4"):  # answer = None was checked: the checker's "empty" verdict
+    assert [got[e].correct for e in IDS] == ["1"] * HALF + ["0"] * (len(IDS) - HALF)
+    for eid in IDS[HALF:]:  # answer = None was checked: the checker's "empty" verdict
         assert got[eid].message.startswith("not attempted: "), got[eid]
 
 
@@ -146,14 +152,14 @@ def test_endless_loop_is_stopped_and_the_other_cells_still_count(graded):
     _, rows, _ = graded
     notes = [r.message for r in _rows(rows, "loop.ipynb") if r.exercise == "(notebook)"]
     assert notes == [f"code cell 4 was stopped after {CELL} s (an endless loop?)"]  # (code cells counted from 1)
-    assert [r.correct for r in _exercise_rows(rows, "loop.ipynb").values()] == ["1"] * 4
+    assert [r.correct for r in _exercise_rows(rows, "loop.ipynb").values()] == ["1"] * len(IDS)
 
 
 def test_raising_cell_is_named_and_the_run_goes_on(graded):
     _, rows, _ = graded
     notes = [r.message for r in _rows(rows, "raising.ipynb") if r.exercise == "(notebook)"]
     assert notes == ["code cell 3 raised ZeroDivisionError: division by zero"]
-    assert [r.correct for r in _exercise_rows(rows, "raising.ipynb").values()] == ["1"] * 4
+    assert [r.correct for r in _exercise_rows(rows, "raising.ipynb").values()] == ["1"] * len(IDS)
 
 
 def test_writing_outside_is_refused_reported_and_changes_nothing(graded):
@@ -171,7 +177,7 @@ def test_writing_outside_is_refused_reported_and_changes_nothing(graded):
 def test_a_replaced_checker_does_not_change_the_grade(graded):
     _, rows, _ = graded
     got = _exercise_rows(rows, "cheat.ipynb")
-    assert [r.correct for r in got.values()] == ["0"] * 4
+    assert [r.correct for r in got.values()] == ["0"] * len(IDS)
     for r in got.values():
         assert "The notebook's own check said correct" in r.message
 
@@ -182,7 +188,7 @@ def test_one_html_report_per_student(graded):
     students = {r.student for r in rows}
     assert pages == sorted(report_name(s) for s in students)
     page = (root / "reports" / report_name(str(_id(1)))).read_text(encoding="utf-8")
-    assert "4 of 4 exercises right" in page and "ch02_ex4" in page
+    assert f"{len(IDS)} of {len(IDS)} exercises right" in page and CODE in page
     assert "http" not in page.replace('lang="en"', "")  # nothing loaded from the network
     loop = (root / "reports" / report_name(str(_id(4)))).read_text(encoding="utf-8")
     assert f"code cell 4 was stopped after {CELL} s" in loop
@@ -196,8 +202,9 @@ def test_student_id_is_read_without_running_anything():
     assert student_id(["SEED = 12"]) == 12
     assert student_id(["SEED = __import__('os').system('echo hi')"]) is None
     assert student_id(["x = 1", "def f(:"]) is None
-    assert exercises_of(['ex1 = exercises.load("ch02_ex1", seed=SEED)', "exercises.load('ch02_ex3')",
-                         'exercises.load("ch02_ex1")']) == ["ch02_ex1", "ch02_ex3"]
+    first, other = IDS[0], IDS[-1]
+    assert exercises_of([f'ex1 = exercises.load("{first}", seed=SEED)', f"exercises.load('{other}')",
+                         f'exercises.load("{first}")']) == [first, other]
 
 
 # --------------------------------------------------------------------------- the codec
@@ -243,16 +250,18 @@ def test_progress_summary_counts_right_tried_untouched():
 
     _progress.reset()
     try:
-        exercises.check("ch02_ex1", exercises.load("ch02_ex1", seed=5).solution(), seed=5)
-        exercises.check("ch02_ex2", [[1, 2], [3, 4]], seed=5)
-        exercises.check("ch02_ex3", None, seed=5)  # "no answer yet" is not an attempt
-        s = exercises.summary("ch02")
-        assert (s.right, s.tried, s.untouched) == (["ch02_ex1"], ["ch02_ex2"], ["ch02_ex3", "ch02_ex4"])
-        assert str(s).splitlines()[0] == ("Your progress in ch02: 1 of 4 right, 1 tried but not right yet, "
-                                          "2 untouched.")
-        assert "ch02_ex3, ch02_ex4" in s._repr_html_()
-        exercises.check("ch02_ex2", exercises.load("ch02_ex2", seed=5).solution(), seed=5)
-        assert exercises.summary("ch02").right == ["ch02_ex1", "ch02_ex2"]
+        one, two, three, *rest = IDS
+        chapter = one.split("_")[0]
+        exercises.check(one, exercises.load(one, seed=5).solution(), seed=5)
+        exercises.check(two, [[1, 2], [3, 4]], seed=5)
+        exercises.check(three, None, seed=5)  # "no answer yet" is not an attempt
+        s = exercises.summary(chapter)
+        assert (s.right, s.tried, s.untouched) == ([one], [two], [three, *rest])
+        assert str(s).splitlines()[0] == (f"Your progress in {chapter}: 1 of {len(IDS)} right, 1 tried but not "
+                                          f"right yet, {len(IDS) - 2} untouched.")
+        assert ", ".join([three, *rest]) in s._repr_html_()
+        exercises.check(two, exercises.load(two, seed=5).solution(), seed=5)
+        assert exercises.summary(chapter).right == [one, two]
         with pytest.raises(ValueError, match="ch99"):
             exercises.summary("ch99")
     finally:
@@ -270,21 +279,25 @@ def test_every_exercise_notebook_ends_with_the_progress_cell():
 
 
 # --------------------------------------------------------------------------- the instructor's page
-def test_the_teaching_page_counts_the_exercises_of_each_chapter_right():
+def test_the_teaching_page_counts_the_exercises_of_each_chapter_from_the_catalogue():
+    """Each week's row asks the catalogue ({exercise-count}`NN`, _ext/exercise_checks) for its chapter's count,
+    whose kinds add up to the chapter's exercises; a chapter without exercises is an error, not a zero."""
     import re
-    from collections import Counter
+
+    from _ext.exercise_checks import count_text
 
     text = (Path(__file__).resolve().parent.parent / "chapters" / "teaching.md").read_text(encoding="utf-8")
-    rows = re.findall(r"^\| \d+ \| .*?exercises/(\d\d)_\w+` \((\d+): (.*?)\) \|$", text, re.M)
-    assert [r[0] for r in rows] == [f"{k:02d}" for k in range(1, 13)]
-    # a number checked by a rule ("predicate" or "scalar") is a numeric exercise
-    names = {"numeric": "numeric", "predicate": "numeric", "scalar": "numeric", "symbolic": "symbolic",
-             "function": "code"}
-    for chapter, total, kinds in rows:
+    rows = re.findall(r"^\| \d+ \| .*?exercises/(\d\d)_\w+` \(\{exercise-count\}`(\d\d)`\) \|$", text, re.M)
+    assert [r[0] for r in rows] == [r[1] for r in rows] == [f"{k:02d}" for k in range(1, 13)]
+    for chapter, _ in rows:
         ids = [i for i in exercises.exercise_ids() if i.startswith(f"ch{chapter}_")]
-        counted = Counter(names[exercises.load(i, seed=0).kind] for i in ids)
+        total, kinds = count_text(int(chapter)).split(": ")
         said = {kind: int(n) for n, kind in (part.split() for part in kinds.split(", "))}
-        assert int(total) == len(ids) and said == dict(counted), (chapter, said, dict(counted))
+        assert int(total) == len(ids) == sum(said.values()) and set(said) <= {"numeric", "symbolic", "code"}
+        assert said.get("code", 0) == sum(exercises.load(i, seed=0).kind == "function" for i in ids)
+    assert count_text(2).startswith(f"{len([i for i in exercises.exercise_ids() if i.startswith('ch02_')])}: ")
+    with pytest.raises(KeyError, match="chapter 99"):
+        count_text(99)
 
 
 # --------------------------------------------------------------------------- a function answer, in the sandbox

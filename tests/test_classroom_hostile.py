@@ -24,6 +24,7 @@ from pathlib import Path
 
 import pytest
 
+from course import exercises
 from course.classroom import sandbox
 from course.classroom.sandbox import Limits, kill_tree, limits_hit, make_scratch, remove_scratch, start
 
@@ -308,7 +309,6 @@ def test_the_checker_gets_a_cpu_budget():
 
 
 def test_an_exercise_variable_travels_as_its_id_and_is_rebuilt_only_in_the_sandbox():
-    from course import exercises
     from course.classroom.answer_data import Opaque, decode, encode
 
     ns = {"__name__": "__main__", "ex4": exercises.load("ch01_ex4", seed="s1")}
@@ -320,7 +320,8 @@ def test_an_exercise_variable_travels_as_its_id_and_is_rebuilt_only_in_the_sandb
 
 # --------------------------------------------------------------------------- part 2: a hostile class, graded
 CH02 = "02_space_jacobian"
-IDS02 = ["ch02_ex1", "ch02_ex2", "ch02_ex3", "ch02_ex4"]
+#: The exercises of the chapter the class hands in (and of chapters 1 and 3), from the catalogue.
+IDS02, IDS01, IDS03 = ([e for e in exercises.exercise_ids() if e.startswith(f"ch{k:02d}_")] for k in (2, 1, 3))
 MARK = f"hostile-{os.getpid()}"
 
 _SURVIVOR = r'''import ctypes
@@ -328,7 +329,7 @@ libc = ctypes.CDLL(None)  # fork + setsid + execve with an empty environment, do
 line = ('{"exercise": "%s", "seed": "x", "correct": false, "kind": "wrong", "answer": {"t": "int", "v": "0"}}')
 script = ("end=$(($(date +%%s)+40)); while [ $(date +%%s) -lt $end ]; do for f in /home/*/checks.jsonl "
           "/tmp/*/checks.jsonl /tmp/*/*/checks.jsonl /proc/*/cwd/checks.jsonl /proc/*/root/home/student/checks.jsonl; "
-          "do for e in ch02_ex1 ch02_ex2 ch02_ex3 ch02_ex4; do printf '%s\\n' \"$(printf '%s' '%s' | sed s/EX/$e/)\" "
+          "do for e in IDS02; do printf '%s\\n' \"$(printf '%s' '%s' | sed s/EX/$e/)\" "
           ">> \"$f\"; done; done 2>/dev/null; sleep 0.2; done") % ("%s", "%s", line % "EX")
 attr = ctypes.create_string_buffer(1024)  # POSIX_SPAWN_SETSID: no Python runs in the child; no audit event)
 libc.posix_spawnattr_init(attr)
@@ -455,7 +456,7 @@ def _grade_hostile_class(root: Path, port: int):
     from course.classroom.grade import grade_class
 
     w = nbformat.write
-    w(_with_cell(submission(CH02, "s-survivor", "right"), 1, _SURVIVOR), root / "a_survivor.ipynb")
+    w(_with_cell(submission(CH02, "s-survivor", "right"), 1, _SURVIVOR.replace("IDS02", " ".join(IDS02))), root / "a_survivor.ipynb")
     w(submission(CH02, "s-victim", BOOK), root / "b_victim.ipynb")
     w(_with_cell(submission(CH02, "s-reader", "right"), 1, f"ROOT = {str(root)!r}\n" + _READER),
       root / "c_reader.ipynb")
@@ -556,7 +557,7 @@ def test_case_and_space_variants_are_one_student_and_the_latest_counts(hostile_c
     assert old.student == "s2401012" and old.correct == "" and "dup/new.ipynb is later and counts" in old.message
     assert any("earlier submissions not counted: dup/old.ipynb" in m for m in _notes(rows, "dup/new.ipynb"))
     right = [r for r in rows if r.student == "s2401012" and r.correct == "1"]
-    assert len(right) == 4  # not 8 of 8
+    assert len(right) == len(IDS02)  # not twice as many
 
 
 def test_placeholder_ids_are_flagged_and_never_merged(hostile_class):
@@ -579,8 +580,8 @@ def test_a_formula_id_is_defused_in_the_csv(hostile_class):
 
 def test_book_style_code_answers_are_graded_right(hostile_class):
     _, rows, *_ = hostile_class
-    assert _grades(rows, "j_book01.ipynb") == dict.fromkeys([f"ch01_ex{k}" for k in range(1, 5)], "1")
-    assert _grades(rows, "j_book03.ipynb") == dict.fromkeys([f"ch03_ex{k}" for k in range(1, 5)], "1")
+    assert _grades(rows, "j_book01.ipynb") == dict.fromkeys(IDS01, "1")
+    assert _grades(rows, "j_book03.ipynb") == dict.fromkeys(IDS03, "1")
 
 
 def test_the_roster_flags_unknown_ids_and_missing_students(hostile_class):

@@ -63,16 +63,17 @@ def _literal(value: Any) -> str:
 def answer_source(exercise_id: str, seed: str | int, way: str) -> str:
     """The source of a filled answer cell for ``exercise_id`` (``way``: ``right`` or ``wrong``)."""
     from course import exercises
+    from jacobians.grading import FunctionExercise, SymbolicExercise
 
     seed_arg: Any = seed
     ex = exercises.load(exercise_id, seed=seed_arg)
-    if ex.kind == "function":  # a function of the notebook that calls the variant's reference when run
+    if isinstance(ex, FunctionExercise):  # a function of the notebook that calls the variant's reference when run
         body = (f"return exercises.load({exercise_id!r}, seed=SEED).reference(*args)" if way == "right"
                 else "return np.zeros((6, 6))")
         return f"def {ex.fn_name}(*args):\n    {body}\n\n\nanswer = {ex.fn_name}\n"
     ref = ex.solution()
     if way == "wrong":
-        if ex.kind == "symbolic":
+        if isinstance(ex, SymbolicExercise):
             ref = 2 * ref
         else:
             ref = np.asarray(ref, dtype=float) + 1.0

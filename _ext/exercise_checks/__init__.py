@@ -23,6 +23,9 @@ fetch: the page works from ``file://`` as well as served.
 
 Exercises of other kinds (code) get a sentence saying they are checked in the notebook,
 with a link to the page's student notebook (``student/<page>.ipynb``).
+
+The role ``{exercise-count}`02``` writes how many exercises chapter 2 has, by kind, as the catalogue says
+("4: 2 numeric, 1 symbolic, 1 code"): no page writes a count of its own.
 """
 
 from __future__ import annotations
@@ -39,9 +42,9 @@ from typing import Any
 from docutils import nodes
 from sphinx.application import Sphinx
 from sphinx.util import logging
-from sphinx.util.docutils import SphinxDirective
+from sphinx.util.docutils import SphinxDirective, SphinxRole
 
-__all__ = ["AnswerBox", "box_html", "setup", "write_banks"]
+__all__ = ["AnswerBox", "ExerciseCount", "box_html", "count_text", "setup", "write_banks"]
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
@@ -77,6 +80,38 @@ def box_html(exercise_id: str, kind: str, docname: str) -> str:
             f'data-statements="{html.escape(statements)}">'
             f"<noscript>Checking your answer on this page needs JavaScript; {link} checks it in Jupyter."
             f"</noscript></div>\n<script defer src=\"{html.escape(src)}\"></script>")
+
+
+#: How the count names each kind: a number checked by a rule (predicate, scalar) is a numeric exercise.
+KIND_NAMES = {"numeric": "numeric", "predicate": "numeric", "scalar": "numeric", "symbolic": "symbolic",
+              "function": "code"}
+
+
+def count_text(chapter: int) -> str:
+    """How many exercises ``chapter`` has in the catalogue, by kind: ``"4: 2 numeric, 1 symbolic, 1 code"``."""
+    from course.exercises import exercise_ids
+
+    ids = [e for e in exercise_ids() if e.startswith(f"ch{chapter:02d}_")]
+    if not ids:
+        raise KeyError(f"chapter {chapter} has no exercise")
+    names = [KIND_NAMES[exercise_kind(e)] for e in ids]
+    parts = [f"{names.count(k)} {k}" for k in ("numeric", "symbolic", "code") if k in names]
+    return f"{len(ids)}: {', '.join(parts)}"
+
+
+class ExerciseCount(SphinxRole):
+    """``{exercise-count}`NN```: the exercises of chapter NN, counted from the catalogue (:func:`count_text`)."""
+
+    def run(self) -> tuple[list[nodes.Node], list[nodes.system_message]]:
+        try:
+            chapter = int(self.text.strip())
+            text = count_text(chapter)
+        except (ValueError, KeyError) as exc:
+            msg = self.inliner.reporter.error(f"exercise-count: {exc}", line=self.lineno)
+            return [self.inliner.problematic(self.rawtext, self.rawtext, msg)], [msg]
+        for module in sorted((ROOT / "lib" / "course" / "exercises").glob(f"ch{chapter:02d}.py")):
+            self.env.note_dependency(str(module))  # re-read the page when the chapter's definitions change
+        return [nodes.Text(text)], []
 
 
 class AnswerBox(SphinxDirective):
@@ -189,6 +224,7 @@ def _finished(app: Sphinx, exception: Exception | None) -> None:
 
 def setup(app: Sphinx) -> dict[str, Any]:
     app.add_directive("answer-box", AnswerBox)
+    app.add_role("exercise-count", ExerciseCount())
     app.connect("env-purge-doc", _purge)
     app.connect("env-merge-info", _merge)
     app.connect("html-page-context", _page_assets)

@@ -1,7 +1,7 @@
 // The page's verdict on an answer, from the bank data the library wrote at build time.
 //
 // This is the decision of jacobians.grading.compare.compare (numbers, vectors, matrices) and of
-// Exercise._check_scalar (one number, several right values, a range), step by step in the same order and
+// ScalarExercise._grade (one number, several right values, a range), step by step in the same order and
 // with the same floating-point operations, so that the page and the notebook give the same verdict, mistake
 // name and message. The browser tests (tests/browser/test_exercise_page.py) check the agreement answer by
 // answer; a change to the Python comparison must be made here too.
@@ -310,7 +310,7 @@ export function compareNumeric(answer, v, bank) {
   return shapeFeedback(ans, ref, tolv, what) || entriesFeedback(ans, ref, tolv, what, hint);
 }
 
-/** Exercise._check_scalar: one number, one of several right values, maybe within a range. */
+/** ScalarExercise._grade: one number, one of several right values, maybe within a range. */
 export function compareScalar(/** @type {{shape: number[], data: number[]}} */ answer, /** @type {any} */ v,
   /** @type {any} */ bank) {
   const what = v.what || bank.what;

@@ -2,7 +2,7 @@
 //
 // The text is laid out as a numeric answer is (parse.js: rows, commas, brackets, NumPy or sympy's Matrix(...)),
 // and each entry is parsed by math.js (never evaluated as JavaScript). The verdict is the one of
-// Exercise._check_symbolic: the answer is evaluated at the three points the checker uses (drawn at build time,
+// SymbolicExercise._grade: the answer is evaluated at the three points the checker uses (drawn at build time,
 // stored in the bank with the reference's and every catalogued mistake's values there) and compared at each
 // point as compare() does with rtol 1e-6, atol 1e-8 (decide.js's compareNumeric); the first point where it
 // differs gives the verdict. An answer without any symbol, where symbols are expected, is told so; a symbol
@@ -11,7 +11,7 @@
 import { agrees, compareNumeric } from "./decide.js";
 import { layout, layoutShape, math, mathText } from "./parse.js";
 
-/** compare() for code and symbolic answers (Exercise._check_symbolic). */
+/** compare() for code and symbolic answers (SymbolicExercise._grade). */
 const RTOL = 1e-6;
 const ATOL = 1e-8;
 

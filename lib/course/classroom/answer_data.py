@@ -115,6 +115,13 @@ def _spend(budget: list[int], n: int = 1) -> None:
         raise _TooBig()
 
 
+def _is_exercise(cls: type) -> bool:
+    """Whether ``cls`` is the grading package's Exercise or one of its kinds (found by name along the class's
+    bases, without importing the package)."""
+    return any(c.__name__ == "Exercise" and (c.__module__ or "").startswith("jacobians.grading")
+               for c in getattr(cls, "__mro__", ()))
+
+
 def _enc(x: Any, budget: list[int], depth: int) -> dict[str, Any]:
     _spend(budget)
     if depth > 40:
@@ -148,8 +155,8 @@ def _enc(x: Any, budget: list[int], depth: int) -> dict[str, Any]:
     module = type(x).__module__ or ""
     if module.startswith("sympy"):
         return _enc_sympy(x, budget)
-    if type(x).__name__ == "Exercise" and module.startswith("jacobians.grading") and isinstance(
-            getattr(x, "id", None), str):  # the notebook's ``exN``: rebuilt, not copied (see EXERCISE)
+    if _is_exercise(type(x)) and isinstance(getattr(x, "id", None), str):
+        # the notebook's ``exN`` (an exercise of any kind): rebuilt, not copied (see EXERCISE)
         return {"t": "exercise", "id": x.id[:60]}
     if isinstance(x, (types.FunctionType, types.BuiltinFunctionType, types.MethodType)):
         return _enc_function(x, budget)

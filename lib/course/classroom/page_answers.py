@@ -32,6 +32,7 @@ import math
 from pathlib import Path
 from typing import Any, NamedTuple
 
+from jacobians.grading import SymbolicExercise
 from jacobians.grading.answers import MAX_ENTRIES
 
 __all__ = ["FORMAT", "MAX_ANSWERS", "MAX_BYTES", "Mark", "find_answer_files", "read_answers_file",
@@ -39,7 +40,7 @@ __all__ = ["FORMAT", "MAX_ANSWERS", "MAX_BYTES", "Mark", "find_answer_files", "r
 
 #: The ``format`` of a file the page saves.
 FORMAT = "jacobians-course-answers"
-#: Biggest answers file read, in bytes (51 exercises of 36 numbers need about 40 KB).
+#: Biggest answers file read, in bytes (about 50 exercises of 36 numbers need about 40 KB).
 MAX_BYTES = 4 << 20
 #: Most answers read from one file.
 MAX_ANSWERS = 200
@@ -207,7 +208,7 @@ def read_answers_text(raw: bytes) -> tuple[str | None, list[Mark]]:
             marks.append(note(f"answers an unknown exercise {str(eid)[:40]!r}; that answer is ignored"))
             continue
         ex = exercises.load(eid, seed=sid)
-        value = (_formulas(entry, {str(x): x for x in ex.symbols.values()}) if ex.kind == "symbolic"
+        value = (_formulas(entry, {str(x): x for x in ex.symbols.values()}) if isinstance(ex, SymbolicExercise)
                  else _value(entry))
         if isinstance(value, str):
             marks.append(Mark(eid, "0", f"The saved answer {value}: it cannot be graded."))

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from jacobians.grading import Exercise
+from jacobians.grading import Exercise, NumericExercise, ScalarExercise, SymbolicExercise
 from jacobians.grading.catalogue import seed_value
 from jacobians.grading.exercise import _eval_sym
 from jacobians.grading.feedback import statement_html
@@ -91,9 +91,9 @@ def _variant(ex: Exercise, messages: dict[str, int]) -> dict[str, Any]:
     def msg(text: str) -> int:
         return messages.setdefault(text, len(messages))
 
-    if ex.kind == "symbolic":
+    if isinstance(ex, SymbolicExercise):
         # the page evaluates the typed formula at the points the checker uses (Exercise.sample_points) and compares
-        # with the reference's and each mistake's values there, as Exercise._check_symbolic does
+        # with the reference's and each mistake's values there, as SymbolicExercise._grade does
         points = ex.sample_points()
         return {
             "symbols": sorted(points[0]),
@@ -114,9 +114,9 @@ def _variant(ex: Exercise, messages: dict[str, int]) -> dict[str, Any]:
         "hint": msg(ex.hint or ""),
         "what": ex.what,  # a variant may ask for another quantity (a body twist or a geometric velocity)
     }
-    if ex.kind == "numeric":
+    if isinstance(ex, NumericExercise):
         out.update(tol=ex.tol, decimals=ex.decimals, carry=ex.carry if ex.method is not None else None)
-    else:  # scalar
+    elif isinstance(ex, ScalarExercise):
         iv = ex.interval
         out.update(decimals=ex.decimals, accepted=[float(a) for a in ex.accepted],
                    outside=[float(o) for o in ex.outside],

@@ -97,3 +97,12 @@ def blockdiag(A: ArrayLike, B: ArrayLike) -> Array:
 def planar_chain(ls: ArrayLike) -> SerialChain:
     """The planar arm with link lengths ``ls`` (joints about z, links along x at home)."""
     return robots.planar([float(v) for v in np.asarray(ls, dtype=float)])
+
+
+def nearest_pose(T: ArrayLike) -> Array:
+    """A printed pose with its rotation block replaced by the nearest rotation (polar factor of its SVD): the
+    library wants an exact rotation, a statement prints 4 digits."""
+    out = np.array(T, dtype=float)
+    U, _, Vt = np.linalg.svd(out[:3, :3])
+    out[:3, :3] = U @ Vt
+    return out

@@ -12,16 +12,26 @@ from jacobians.grading.catalogue import Builder
 
 from ._hints import HINTS
 
-__all__ = ["CATALOGUE", "CodeVariant", "register", "register_code"]
+__all__ = ["CATALOGUE", "LIBRARY_CHECKS", "CodeVariant", "LibraryCheck", "register", "register_code"]
 
 #: Every exercise of the course, by id.
 CATALOGUE = Catalogue()
 
+#: A cross-check of one variant's reference against the library (``jacobians``), computed another way than the
+#: definition computes it: it raises AssertionError when the two disagree.
+LibraryCheck = Callable[[Exercise], None]
+
+#: The library check of each exercise that has one, by id (``tests/test_exercise_library.py`` runs them all).
+LIBRARY_CHECKS: dict[str, LibraryCheck] = {}
 
 
-def register(exercise_id: str) -> Callable[[Builder], Builder]:
-    """Decorator adding a builder ``rng -> Exercise`` under an id; an exercise without a hint of its own gets
-    the one of :data:`~course.exercises._hints.HINTS` (what to check when no catalogued mistake matches)."""
+def register(exercise_id: str, *, library: LibraryCheck | None = None) -> Callable[[Builder], Builder]:
+    """Decorator adding a builder ``rng -> Exercise`` under an id, with its ``library`` check (see
+    :data:`LibraryCheck`); an exercise without a hint of its own gets the one of
+    :data:`~course.exercises._hints.HINTS` (what to check when no catalogued mistake matches)."""
+    if library is not None:
+        LIBRARY_CHECKS[exercise_id] = library
+
     def deco(builder: Builder) -> Builder:
         def build(rng: np.random.Generator) -> Exercise:
             ex = builder(rng)
@@ -54,9 +64,13 @@ class CodeVariant(NamedTuple):
     n_cases: int | None = None
 
 
-def register_code(exercise_id: str, title: str, variants: list[CodeVariant]) -> None:
+def register_code(exercise_id: str, title: str, variants: list[CodeVariant], *,
+                  library: LibraryCheck | None = None) -> None:
     """Add a function exercise: the seed picks one of ``variants``; the student writes its ``fn_name``,
-    tested on the cases its ``make_case`` draws (from the variant's own stream)."""
+    tested on the cases its ``make_case`` draws (from the variant's own stream); ``library`` as for
+    :func:`register`."""
+    if library is not None:
+        LIBRARY_CHECKS[exercise_id] = library
     def build(rng: np.random.Generator) -> Exercise:
         v = variants[int(rng.integers(len(variants)))]
         statement, given = v.statement, dict(v.given)

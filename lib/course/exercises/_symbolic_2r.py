@@ -201,3 +201,19 @@ def sym_catalogue(ref: Any, other: Any, other_name: str, other_msg: str, home: A
 
 SYM_NOTE = ("Use sympy: `theta1, theta2, l1, l2 = sympy.symbols('theta1 theta2 l1 l2', real=True)` and give a "
             "`sympy.Matrix`.")
+
+
+#: The point a symbolic reference is checked at against the library: lengths and angles of no special value.
+CHECK_POINT = {"theta1": 0.4, "theta2": -1.1, "l1": 0.7, "l2": 1.3}
+
+
+def numeric_arm(reference: Any, S: Any, M: Any, symbols: dict[str, Any]) -> tuple[Any, Any, Any]:
+    """A symbolic reference, screw axes and home pose at :data:`CHECK_POINT`: the reference's value, the numeric
+    :class:`~jacobians.chain.SerialChain` of the arm at those lengths, and its joint angles."""
+    from jacobians.chain import SerialChain
+
+    subs = {symbols[name]: value for name, value in CHECK_POINT.items()}
+    ref = np.array(sp.Matrix(reference).subs(subs).evalf().tolist(), dtype=float)
+    S_num = np.array(sp.Matrix(S).subs(subs).evalf().tolist(), dtype=float)
+    M_num = np.array(sp.Matrix(M).subs(subs).evalf().tolist(), dtype=float)
+    return ref, SerialChain(S_num, M_num), np.array([CHECK_POINT["theta1"], CHECK_POINT["theta2"]])

@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.random import Generator
 
+import jacobians as jac
 from jacobians import robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exercise
 
@@ -16,11 +17,18 @@ from ._kinematics import DEG, Array, adj, body_jac, expS, space_jac
 from ._latex import degs, num, vec
 from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, draw_shape, sym_arm, sym_catalogue, sym_names
+from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, draw_shape, numeric_arm, sym_arm, sym_catalogue, sym_names
 from ._variants import LAYOUT_TEXT, angles_deg, layout_cases, planar_column, planar_example, worked_example
 
 
-@register("ch02_ex1")
+def _library_ch02_ex1(ex: Exercise) -> None:
+    """The column is that column of the library's space Jacobian of the same arm."""
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.space_jacobian(arm, th)[:, ex.given["column"] - 1], atol=1e-12)
+
+
+@register("ch02_ex1", library=_library_ch02_ex1)
 def _ch02_ex1(rng: Generator) -> Exercise:
     ls, th_deg, i, S, J_s, J_b, J_s_deg = planar_column(rng, "space", 2, 4)  # joint 2 or 3
     ref = J_s[:, i - 1]
@@ -72,7 +80,21 @@ def _jac_catalogue(ref: Array, J_other: Array, other_name: str, other_msg: str, 
     return mistakes
 
 
-@register("ch02_ex2")
+def _library_ch02_ex2(ex: Exercise) -> None:
+    """The library's space Jacobian, and finite differences of its forward kinematics: [V_s] = Tdot T^-1."""
+    g = ex.given
+    arm = jac.robots.spatial_rrp(g["h"], g["reach"])
+    th = np.array([np.radians(g["theta1_deg"]), np.radians(g["theta2_deg"]), g["d3"]])
+    np.testing.assert_allclose(ex.solution(), jac.space_jacobian(arm, th), atol=1e-12)
+    T0 = arm.fk(th)
+    dT = jac.numerical_jacobian(lambda x: arm.fk(x), th)
+    for i in range(3):
+        W = dT[..., i] @ np.linalg.inv(T0)
+        # central differences of a smooth map with O(1) derivatives: error well under 1e-6
+        np.testing.assert_allclose([W[2, 1], W[0, 2], W[1, 0], *W[:3, 3]], ex.solution()[:, i], atol=1e-6)
+
+
+@register("ch02_ex2", library=_library_ch02_ex2)
 def _ch02_ex2(rng: Generator) -> Exercise:
     h, reach = float(rng.choice([0.5, 1.0, 1.5])), float(rng.choice([0.5, 1.0, 2.0]))
     arm = robots.spatial_rrp(h, reach)
@@ -106,7 +128,13 @@ def _ch02_ex2(rng: Generator) -> Exercise:
                             mistakes, what="space Jacobian", method=method)
 
 
-@register("ch02_ex3")
+def _library_ch02_ex3(ex: Exercise) -> None:
+    """At a point, the reference is the library's space Jacobian of the numeric arm (S, M at those lengths)."""
+    ref, chain, th = numeric_arm(ex.reference, ex.given["S"], ex.given["M"], ex.given["symbols"])
+    np.testing.assert_allclose(ref, jac.space_jacobian(chain, th), atol=1e-12)
+
+
+@register("ch02_ex3", library=_library_ch02_ex3)
 def _ch02_ex3(rng: Generator) -> Exercise:
     arm, shape = draw_arm(rng), draw_shape(rng)
     syms, S, M, J_s, J_b, B, T = sym_arm(arm, shape)

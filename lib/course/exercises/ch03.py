@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.random import Generator
 
+import jacobians as jac
 from jacobians import robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exercise
 
@@ -16,11 +17,18 @@ from ._kinematics import DEG, Array, adj, body_jac, inv_T, space_jac
 from ._latex import bmatrix, degs, num, vec
 from ._mistakes import degrees_mistake, neighbour_columns, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
-from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, draw_shape, sym_arm, sym_catalogue, sym_names
+from ._symbolic_2r import SYM_NOTE, describe_arm, draw_arm, draw_shape, numeric_arm, sym_arm, sym_catalogue, sym_names
 from ._variants import LAYOUT_TEXT, example_text, layout_cases, planar_column, planar_example
 
 
-@register("ch03_ex1")
+def _library_ch03_ex1(ex: Exercise) -> None:
+    """The column is that column of the library's body Jacobian of the same arm."""
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.body_jacobian(arm, th)[:, ex.given["column"] - 1], atol=1e-12)
+
+
+@register("ch03_ex1", library=_library_ch03_ex1)
 def _ch03_ex1(rng: Generator) -> Exercise:
     ls, th_deg, i, B, J_b, J_s, J_b_deg = planar_column(rng, "body", 1, 3)  # joint 1 or 2
     ref = J_b[:, i - 1]
@@ -53,7 +61,12 @@ def _ch03_ex1(rng: Generator) -> Exercise:
                             ref, mistakes, what="column", method=method)
 
 
-@register("ch03_ex2")
+def _library_ch03_ex2(ex: Exercise) -> None:
+    """The body axes are the library chain's."""
+    np.testing.assert_allclose(ex.solution(), jac.SerialChain(ex.given["S"], ex.given["M"]).body_axes, atol=1e-12)
+
+
+@register("ch03_ex2", library=_library_ch03_ex2)
 def _ch03_ex2(rng: Generator) -> Exercise:
     vals = [float(v) for v in rng.choice([0.3, 0.5, 0.8, 1.0, 1.2], size=5)]
     arm = robots.spatial_5r(*vals)
@@ -79,7 +92,13 @@ def _ch03_ex2(rng: Generator) -> Exercise:
                             what="matrix of body screw axes", method=method)
 
 
-@register("ch03_ex3")
+def _library_ch03_ex3(ex: Exercise) -> None:
+    """At a point, the reference is the library's body Jacobian of the numeric arm (S, M at those lengths)."""
+    ref, chain, th = numeric_arm(ex.reference, ex.given["S"], ex.given["M"], ex.given["symbols"])
+    np.testing.assert_allclose(ref, jac.body_jacobian(chain, th), atol=1e-12)
+
+
+@register("ch03_ex3", library=_library_ch03_ex3)
 def _ch03_ex3(rng: Generator) -> Exercise:
     arm, shape = draw_arm(rng), draw_shape(rng)
     syms, S, M, J_s, J_b, B, T = sym_arm(arm, shape)

@@ -9,12 +9,13 @@ import numpy as np
 from numpy.random import Generator
 from numpy.typing import ArrayLike
 
+import jacobians as jac
 from jacobians import robots
 from jacobians.chain import SerialChain
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
 from ._hand import adjoint_steps, inverse_adjoint_steps, planar_jv, planar_points, planar_trig
-from ._kinematics import Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
+from ._kinematics import Array, adj, blockdiag, body_jac, fk, inv_T, nearest_pose, space_jac
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake, swap_mistake
 from ._registry import CodeVariant, register, register_code
@@ -53,7 +54,15 @@ def _frame_change(given: str, J: Array, T: Array, ref: Array, mistakes: list[Mis
                             ref, [*mistakes, swap_mistake(ref)], what=f"{name[target]} Jacobian", method=method)
 
 
-@register("ch04_ex1")
+def _library_ch04_ex1(ex: Exercise) -> None:
+    """The library's change of frame, on the exact rotation nearest the printed one (the statement prints 4
+    digits: the two differ by up to 1e-4 per entry, times |J| <= 2 or so, hence the 2e-3)."""
+    key = "J_s" if "J_s" in ex.given else "J_b"
+    change = jac.space_to_body if key == "J_s" else jac.body_to_space
+    np.testing.assert_allclose(ex.solution(), change(ex.given[key], nearest_pose(ex.given["T_sb"])), atol=2e-3)
+
+
+@register("ch04_ex1", library=_library_ch04_ex1)
 def _ch04_ex1(rng: Generator) -> Exercise:
     arm, th, J_s, J_b, T = _rrp_state(rng)
     R = T[:3, :3]
@@ -167,7 +176,20 @@ _GIVEN_INSTEAD = {
 }
 
 
-@register("ch04_ex4")
+def _library_ch04_ex4(ex: Exercise) -> None:
+    """The asked velocity is the library's Jacobian times the rates; a geometric one's linear part is the tool
+    point's velocity by finite differences."""
+    g = ex.given
+    arm = jac.robots.planar(g["lengths"])
+    th = np.radians(g["theta_deg"])
+    fn = {"body": jac.body_jacobian, "space": jac.space_jacobian, "geometric": jac.geometric_jacobian}
+    np.testing.assert_allclose(ex.solution(), fn[g["asked"]](arm, th) @ g["theta_dot"], atol=1e-12)
+    if g["asked"] == "geometric":
+        pdot = jac.numerical_jacobian(lambda x: arm.fk(x)[:3, 3], th) @ g["theta_dot"]
+        np.testing.assert_allclose(ex.solution()[3:], pdot, atol=1e-6)
+
+
+@register("ch04_ex4", library=_library_ch04_ex4)
 def _ch04_ex4(rng: Generator) -> Exercise:
     asked = str(rng.choice(list(VELOCITIES)))
     ls, th_deg, th, arm = planar_pose(rng, 3)

@@ -9,10 +9,11 @@ import numpy as np
 from numpy.random import Generator
 from numpy.typing import ArrayLike
 
+import jacobians as jac
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
 from ._hand import planar_jv, rotate_halves
-from ._kinematics import DEG, Array, adj, blockdiag, body_jac, fk, inv_T, space_jac
+from ._kinematics import DEG, Array, adj, blockdiag, body_jac, fk, inv_T, nearest_pose, space_jac
 from ._latex import bmatrix, degs, vec
 from ._mistakes import degrees_mistake, sign_mistakes, swap_mistake
 from ._registry import CodeVariant, register, register_code
@@ -37,7 +38,15 @@ def _geo_catalogue(ref: Array, J_b: Array, R: Array, J_s: Array | None = None) -
     return ms + [swap_mistake(ref)]
 
 
-@register("ch05_ex1")
+def _library_ch05_ex1(ex: Exercise) -> None:
+    """The library's geometric Jacobian; its linear rows are the tool point's, by finite differences."""
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.geometric_jacobian(arm, th), atol=1e-12)
+    np.testing.assert_allclose(ex.solution()[3:], jac.numerical_jacobian(lambda x: arm.fk(x)[:3, 3], th), atol=1e-6)
+
+
+@register("ch05_ex1", library=_library_ch05_ex1)
 def _ch05_ex1(rng: Generator) -> Exercise:
     ls, th_deg, th, arm = planar_pose(rng, 2)
     J_b = body_jac(arm.body_axes, th)
@@ -64,7 +73,13 @@ def _ch05_ex1(rng: Generator) -> Exercise:
                             hint="Column i is (z_i, z_i × (p - p_i)) with p_i the current position of joint i.",
                             method=method)
 
-@register("ch05_ex2")
+def _library_ch05_ex2(ex: Exercise) -> None:
+    """The library's body-to-geometric change, on the exact rotation nearest the printed one (see ch04_ex1)."""
+    np.testing.assert_allclose(ex.solution(), jac.body_to_geometric(ex.given["J_b"], nearest_pose(ex.given["T_sb"])),
+                               atol=2e-3)
+
+
+@register("ch05_ex2", library=_library_ch05_ex2)
 def _ch05_ex2(rng: Generator) -> Exercise:
     T, J_b, ref, J_s = spatial_5r_pose(rng)
     mistakes = _geo_catalogue(ref, J_b, T[:3, :3], J_s)

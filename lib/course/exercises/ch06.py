@@ -9,6 +9,7 @@ import numpy as np
 import sympy as sp
 from numpy.random import Generator
 
+import jacobians as jac
 from jacobians import lie, robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, scalar_exercise, symbolic_exercise
 from jacobians.grading.exercise import Interval
@@ -18,11 +19,27 @@ from ._kinematics import DEG, Array, blockdiag, body_jac, fk
 from ._latex import bmatrix, degs, num
 from ._mistakes import degrees_mistake, swap_mistake
 from ._registry import register
-from ._symbolic_2r import describe_arm, distinct_sym, draw_arm, draw_shape, sym_arm, sym_names, theta_mixups
+from ._symbolic_2r import (
+    describe_arm,
+    distinct_sym,
+    draw_arm,
+    draw_shape,
+    numeric_arm,
+    sym_arm,
+    sym_names,
+    theta_mixups,
+)
 from ._variants import angles_deg
 
 
-@register("ch06_ex1")
+def _library_ch06_ex1(ex: Exercise) -> None:
+    """At a point, the reference is finite differences of the library's forward kinematics of the numeric arm."""
+    _, S, M, *_ = sym_arm(ex.given["joints"], ex.given["shape"])
+    ref, chain, th = numeric_arm(ex.reference, S, M, ex.given["symbols"])
+    np.testing.assert_allclose(ref, jac.numerical_jacobian(lambda x: chain.fk(x)[:2, 3], th), atol=1e-6)
+
+
+@register("ch06_ex1", library=_library_ch06_ex1)
 def _ch06_ex1(rng: Generator) -> Exercise:
     arm, shape = draw_arm(rng), draw_shape(rng)
     syms, S, M, J_s, J_b, B, T = sym_arm(arm, shape)
@@ -61,7 +78,14 @@ def _B(phi: Array, rep: str) -> Array:
     return np.array([[0, -sa, ca * sb], [0, ca, sa * sb], [1, 0, cb]])
 
 
-@register("ch06_ex2")
+def _library_ch06_ex2(ex: Exercise) -> None:
+    """The library's map from Euler-angle rates to the angular velocity."""
+    phi = np.radians(ex.given["phi_deg"])
+    rates = jac.representations.rate_to_angular_velocity(phi, ex.given["representation"])
+    np.testing.assert_allclose(ex.solution(), rates, atol=1e-12)
+
+
+@register("ch06_ex2", library=_library_ch06_ex2)
 def _ch06_ex2(rng: Generator) -> Exercise:
     rep = "zyx" if rng.random() < 0.5 else "zyz"
     phi_deg = angles_deg(rng, 3, step=15, low=-75, high=75)
@@ -177,7 +201,13 @@ def _ch06_ex4(rng: Generator) -> Exercise:
                            "rotations before it) and find where det B, a function of φ2 only, vanishes.")
 
 
-@register("ch06_ex5")
+def _library_ch06_ex5(ex: Exercise) -> None:
+    """The library's analytic Jacobian of the ZYX wrist (its rotation rows)."""
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.analytic_jacobian(jac.robots.zyx_wrist(0.2), th)[:3], atol=1e-9)
+
+
+@register("ch06_ex5", library=_library_ch06_ex5)
 def _ch06_ex5(rng: Generator) -> Exercise:
     th_deg = angles_deg(rng, 3, step=15, low=-60, high=60)
     th = th_deg * DEG

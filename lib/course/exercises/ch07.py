@@ -9,10 +9,11 @@ import numpy as np
 from numpy.random import Generator
 from numpy.typing import ArrayLike
 
+import jacobians as jac
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
 from ._hand import rotate_halves
-from ._kinematics import Array, adj, blockdiag, fk, inv_T, space_jac, swap
+from ._kinematics import Array, adj, blockdiag, fk, inv_T, nearest_pose, space_jac, swap
 from ._latex import bmatrix
 from ._registry import CodeVariant, register, register_code
 from ._variants import chain_case, planar_exact_state, spatial_5r_pose, worked_example
@@ -50,7 +51,15 @@ def _ch07_ex1(rng: Generator) -> Exercise:
                             what="geometric Jacobian", method=method)
 
 
-@register("ch07_ex2")
+def _library_ch07_ex2(ex: Exercise) -> None:
+    """The library's geometric-to-space change of the Jacobian in (ω, v) rows, on the exact rotation nearest the
+    printed one (see ch04_ex1)."""
+    J0 = ex.given["J0"]
+    np.testing.assert_allclose(ex.solution(), jac.geometric_to_space(np.vstack([J0[3:], J0[:3]]),
+                                                                 nearest_pose(ex.given["T_sb"])), atol=2e-3)
+
+
+@register("ch07_ex2", library=_library_ch07_ex2)
 def _ch07_ex2(rng: Generator) -> Exercise:
     T, J_b, J, J_s = spatial_5r_pose(rng)
     J0 = np.round(swap(J), 6)          # Corke's jacob0: (v of the tool point, omega) in the world frame

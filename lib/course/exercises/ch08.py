@@ -9,6 +9,7 @@ import numpy as np
 from numpy.random import Generator
 from numpy.typing import ArrayLike
 
+import jacobians as jac
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
 from ._hand import planar_points, planar_trig
@@ -37,7 +38,14 @@ def link_poses(S: Array, link_homes: Array, theta: Array) -> Array:
     return np.stack(out)
 
 
-@register("ch08_ex1")
+def _library_ch08_ex1(ex: Exercise) -> None:
+    """Link 2's Jacobian is the library's (space frame)."""
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.link_jacobians(arm, th, frame="space")[1], atol=1e-12)
+
+
+@register("ch08_ex1", library=_library_ch08_ex1)
 def _ch08_ex1(rng: Generator) -> Exercise:
     ls, th_deg, th, arm = planar_pose(rng, 3)
     J_s = space_jac(arm.screw_axes, th)
@@ -78,7 +86,14 @@ def centre_jacobian(ls: Array, th: Array, link: int = 1) -> Array:
     return out
 
 
-@register("ch08_ex2")
+def _library_ch08_ex2(ex: Exercise) -> None:
+    """Link 2's Jacobian is the library's (geometric)."""
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(ex.solution(), jac.link_jacobians(arm, th, frame="geometric")[1], atol=1e-12)
+
+
+@register("ch08_ex2", library=_library_ch08_ex2)
 def _ch08_ex2(rng: Generator) -> Exercise:
     ls, th_deg, th, arm = planar_pose(rng, 3)
     S = arm.screw_axes
@@ -133,7 +148,26 @@ def mass_matrix_2r(ls: Array, ms: Array, th: Array, frame: str = "body", with_ro
     return M
 
 
-@register("ch08_ex3")
+def _library_ch08_ex3(ex: Exercise) -> None:
+    """The mass matrix of two uniform rods, from finite differences of the library's link poses (the kinetic
+    energy of each centre and spin), and the two closed-form entries."""
+    L, m = ex.given["lengths"], ex.given["masses"]
+    arm = jac.robots.planar(L)
+    th = np.radians(ex.given["theta_deg"])
+    M_fd = np.zeros((2, 2))
+    def centre(i: int) -> Callable[[Array], Array]:
+        return lambda x: arm.link_poses(x)[i][:2, 3]
+
+    for i in range(2):
+        Jc = jac.numerical_jacobian(centre(i), th)
+        Jw = np.array([[1.0, 1.0 if i == 1 else 0.0]])
+        M_fd += m[i] * Jc.T @ Jc + m[i] * L[i] ** 2 / 12 * Jw.T @ Jw
+    np.testing.assert_allclose(ex.solution(), M_fd, atol=1e-6)
+    assert np.isclose(ex.solution()[1, 1], m[1] * L[1] ** 2 / 3)
+    assert np.isclose(ex.solution()[0, 1], m[1] * L[1] ** 2 / 3 + m[1] * L[0] * L[1] / 2 * np.cos(th[1]))
+
+
+@register("ch08_ex3", library=_library_ch08_ex3)
 def _ch08_ex3(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     ms = np.round(rng.uniform(1.0, 4.0, size=2), 1)

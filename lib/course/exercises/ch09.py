@@ -9,6 +9,7 @@ import numpy as np
 from numpy.random import Generator
 from numpy.typing import ArrayLike
 
+import jacobians as jac
 from jacobians.grading import Case, Exercise, Mistake, numeric_exercise, scalar_exercise
 from jacobians.grading.exercise import Interval
 
@@ -57,7 +58,14 @@ def _pos_jac_planar(ls: Array, th: Array) -> Array:
     return np.stack([x, y])
 
 
-@register("ch09_ex2")
+def _library_ch09_ex2(ex: Exercise) -> None:
+    """The rates give the asked tool velocity through the library's J_v."""
+    arm = jac.robots.planar(ex.given["lengths"])
+    th = np.radians(ex.given["theta_deg"])
+    np.testing.assert_allclose(jac.geometric_jacobian(arm, th)[3:5] @ ex.solution(), ex.given["p_dot"], atol=1e-9)
+
+
+@register("ch09_ex2", library=_library_ch09_ex2)
 def _ch09_ex2(rng: Generator) -> Exercise:
     ls = lengths(rng, 3)
     th_deg = angles_deg(rng, 3, step=30, low=-120, high=120)
@@ -97,7 +105,15 @@ def _regular_2r(rng: Generator) -> tuple[Array, Array, Array]:
     return ls, th_deg, _pos_jac_planar(ls, th_deg * DEG)
 
 
-@register("ch09_ex3")
+def _library_ch09_ex3(ex: Exercise) -> None:
+    """The manipulability of the planar 2R arm is |det J_v| = l1 l2 |sin θ2|, also the library's."""
+    L = ex.given["lengths"]
+    th = np.radians(ex.given["theta_deg"])
+    assert np.isclose(ex.solution(), L[0] * L[1] * abs(np.sin(th[1])))
+    assert np.isclose(ex.solution(), abs(np.linalg.det(jac.geometric_jacobian(jac.robots.planar(L), th)[3:5])))
+
+
+@register("ch09_ex3", library=_library_ch09_ex3)
 def _ch09_ex3(rng: Generator) -> Exercise:
     ls, th_deg, Jv = _regular_2r(rng)
     ref = np.sqrt(np.linalg.det(Jv @ Jv.T))

@@ -46,7 +46,7 @@ Modules: :mod:`~jacobians.grading.feedback` (the verdict and its HTML box),
 :mod:`~jacobians.grading.answers` (any answer to a float array, or a polite
 refusal), :mod:`~jacobians.grading.compare` (reference and mistakes),
 :mod:`~jacobians.grading.guard` (running a student's function),
-:mod:`~jacobians.grading.exercise` (one variant, graded by kind),
+:mod:`~jacobians.grading.exercise` (one variant: a class per kind, one protocol),
 :mod:`~jacobians.grading.catalogue` (exercises by id and seed).
 """
 
@@ -58,6 +58,11 @@ from .compare import Mistake, compare
 from .exercise import (
                        Case,
                        Exercise,
+                       FunctionExercise,
+                       NumericExercise,
+                       PredicateExercise,
+                       ScalarExercise,
+                       SymbolicExercise,
                        function_exercise,
                        numeric_exercise,
                        predicate_exercise,
@@ -67,6 +72,7 @@ from .exercise import (
 from .feedback import Feedback
 from .guard import TIME_LIMIT
 
-__all__ = ["MAX_ENTRIES", "TIME_LIMIT", "Case", "Catalogue", "Exercise", "Feedback", "Mistake", "compare",
+__all__ = ["MAX_ENTRIES", "TIME_LIMIT", "Case", "Catalogue", "Exercise", "Feedback", "FunctionExercise", "Mistake",
+           "NumericExercise", "PredicateExercise", "ScalarExercise", "SymbolicExercise", "compare",
            "exercise_entropy", "function_exercise", "numeric_exercise", "predicate_exercise", "scalar_exercise",
            "seed_value", "stable_hash", "symbolic_exercise"]

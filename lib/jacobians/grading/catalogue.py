@@ -29,7 +29,6 @@ from typing import Any
 
 import numpy as np
 
-from .compare import distinct_mistakes
 from .exercise import Exercise
 from .feedback import Feedback
 
@@ -128,8 +127,7 @@ class Catalogue:
         ex.id = exercise_id
         ex.seed = s
         ex.entropy = entropy
-        if ex.kind == "numeric":
-            ex.mistakes = distinct_mistakes(ex.reference, ex.mistakes, ex.rtol, ex.atol, ex.decimals, ex.tol)
+        ex.loaded()
         return ex
 
     def check(self, exercise_id: str, answer: Any, *, seed: int | str | None = None) -> Feedback:

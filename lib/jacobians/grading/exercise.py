@@ -1,7 +1,7 @@
 """One variant of an exercise, and how it grades an answer of each kind.
 
-Five kinds: ``numeric`` (a number, vector or matrix, compared to the
-precision the statement asks for), ``scalar`` (one number, one of several
+Five kinds, one class each, all graded through :meth:`Exercise.check`: ``numeric``
+(a number, vector or matrix, compared to the precision the statement asks for), ``scalar`` (one number, one of several
 right values, within a stated range), ``symbolic`` (a sympy expression or matrix in the exercise's
 symbols, compared at random points and by simplification), ``function`` (a
 student's function, run on seeded random test cases, each a :class:`Case`)
@@ -18,19 +18,20 @@ import copy
 import functools
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, NamedTuple
+from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
 from .answers import Refused, as_array, describe, is_sympy, sympy
-from .compare import Mistake, compare, given_decimals, precision_message
+from .compare import Mistake, compare, distinct_mistakes, given_decimals, precision_message
 from .feedback import Feedback, agrees, verdict
 from .guard import run_guarded
 from .rounding import Method, Rule, derive_rule, direct_rule, rule_sentence
 
-__all__ = ["Case", "Exercise", "Interval", "function_exercise", "numeric_exercise", "predicate_exercise",
-           "scalar_exercise", "symbolic_exercise"]
+__all__ = ["Case", "Exercise", "FunctionExercise", "Interval", "NumericExercise", "PredicateExercise", "ScalarExercise",
+           "SymbolicExercise", "function_exercise", "numeric_exercise", "predicate_exercise", "scalar_exercise",
+           "symbolic_exercise"]
 
 #: Decimals a numeric answer is asked for unless the exercise says otherwise.
 DECIMALS = 3
@@ -65,7 +66,9 @@ class Case(NamedTuple):
 
 @dataclass
 class Exercise:
-    """One randomised variant of an exercise.
+    """One randomised variant of an exercise: what every kind has. Each kind is a subclass
+    (:class:`NumericExercise`, :class:`ScalarExercise`, :class:`SymbolicExercise`, :class:`FunctionExercise`,
+    :class:`PredicateExercise`) that names itself in ``kind`` and grades an answer in :meth:`_grade`.
 
     Attributes
     ----------
@@ -75,54 +78,28 @@ class Exercise:
         Markdown with LaTeX (``$...$``) giving the task and this variant's numbers.
     given : dict
         The numbers (and symbols) a student needs, as numpy arrays / sympy objects.
-    kind : {"numeric", "scalar", "symbolic", "function", "predicate"}
+    reference : object
+        The right answer (array, sympy object, or the reference function).
+    mistakes : list of Mistake
+        The catalogue of likely mistakes, each with its value for this variant and its message.
     seed : str
         The seed as text (a student ID, or an int written out).
     entropy : tuple of int
         The stable hashes of the seed and the id that seeded this variant's stream.
-    decimals : int or None
-        The precision the statement asks for (numeric and scalar exercises).
-    tol : float or None
-        The accepted tolerance the statement prints (numeric exercises): an answer within ``tol`` of the
-        reference, entry by entry, is right. It is derived from the exercise's ``method`` (see
-        :mod:`jacobians.grading.rounding`).
-    carry : int or None
-        The decimals the statement asks the student to carry through the steps.
-    method : callable or None
-        The intended computation, with every written-down intermediate passed through ``r`` (``method(r)``).
+    kind : str
+        The kind's name (class attribute): "numeric", "scalar", "symbolic", "function" or "predicate".
     """
+
+    kind: ClassVar[str] = ""
 
     id: str
     title: str
     statement: str
     given: dict[str, Any]
-    kind: str
     reference: Any = None
     mistakes: list[Mistake] = field(default_factory=list)
     what: str = "answer"
     hint: str = ""
-    rtol: float = 2e-3
-    atol: float = 2e-3
-    symbols: dict[str, Any] = field(default_factory=dict)
-    # function exercises: rng -> Case
-    make_case: Callable[[np.random.Generator], Case] | None = None
-    n_cases: int = 6
-    fn_name: str = "your function"
-    # more test cases after the random ones (e.g. the edge cases a statement promises), a mistake to name when the
-    # function runs out of time, and an adapter of the function's result (the value to compare, or a verdict)
-    more_cases: Callable[[np.random.Generator], list[Case]] | None = None
-    on_timeout: Mistake | None = None
-    adapt: Callable[[Any, tuple[Any, ...], Any], Any] | None = None
-    # predicate exercises: float array -> Feedback
-    predicate: Callable[[NDArray[np.float64]], Feedback] | None = None
-    # scalar exercises: the right values inside the range, right values outside it, the range
-    accepted: list[float] = field(default_factory=list)
-    outside: list[float] = field(default_factory=list)
-    interval: Interval | None = None
-    decimals: int | None = None
-    tol: float | None = None
-    carry: int | None = None
-    method: Method | None = None
     seed: str = "0"
     entropy: tuple[int, int] = (0, 0)
 
@@ -143,6 +120,9 @@ class Exercise:
             return self.reference.copy()
         return self.reference
 
+    def loaded(self) -> None:
+        """Called by the catalogue once the id and the seed are set (a kind may settle its catalogue here)."""
+
     # ------------------------------------------------------------ grading
     def check(self, answer: Any) -> Feedback:
         """Grade ``answer``; never raises, never mutates ``answer``."""
@@ -162,24 +142,67 @@ class Exercise:
     def _check(self, answer: Any) -> Feedback:
         if answer is None:
             raise Refused("Set `answer` to your result and run the check cell again.", "empty")
-        if self.kind == "function":
-            return self._check_function(answer)
-        if self.kind == "symbolic":
-            return self._check_symbolic(answer)
-        arr = as_array(answer)
-        if self.kind == "scalar":
-            return self._check_scalar(arr)
-        if self.kind == "predicate":
-            if not np.all(np.isfinite(arr)):
-                return verdict(False, "Your answer contains NaN or inf.", mistake="not_finite")
-            if self.predicate is None:
-                raise ValueError(f"Exercise {self.id!r} is a predicate exercise without a predicate")
-            return self.predicate(arr)
-        return compare(arr, self.reference, self.mistakes, self.rtol, self.atol, self.what, self.hint,
+        return self._grade(answer)
+
+    def _grade(self, answer: Any) -> Feedback:
+        """The verdict on an answer that is not None (may raise :class:`Refused`); each kind defines it."""
+        raise NotImplementedError(f"{type(self).__name__} does not grade answers: use one of the kinds")
+
+
+@dataclass(repr=False)
+class NumericExercise(Exercise):
+    """A number, vector or matrix, compared entry by entry with the reference to the precision the statement
+    asks for.
+
+    Attributes
+    ----------
+    decimals : int or None
+        The precision the statement asks for.
+    tol : float or None
+        The accepted tolerance the statement prints: an answer within ``tol`` of the reference, entry by entry,
+        is right. It is derived from the exercise's ``method`` (see :mod:`jacobians.grading.rounding`).
+    carry : int or None
+        The decimals the statement asks the student to carry through the steps.
+    method : callable or None
+        The intended computation, with every written-down intermediate passed through ``r`` (``method(r)``).
+    """
+
+    kind: ClassVar[str] = "numeric"
+
+    rtol: float = 2e-3
+    atol: float = 2e-3
+    decimals: int | None = None
+    tol: float | None = None
+    carry: int | None = None
+    method: Method | None = None
+
+    def loaded(self) -> None:
+        """Drop the catalogued mistakes the stated rule cannot tell from the reference (or from each other)."""
+        self.mistakes = distinct_mistakes(self.reference, self.mistakes, self.rtol, self.atol, self.decimals,
+                                          self.tol)
+
+    def _grade(self, answer: Any) -> Feedback:
+        return compare(as_array(answer), self.reference, self.mistakes, self.rtol, self.atol, self.what, self.hint,
                        decimals=self.decimals, tol=self.tol,
                        carry=self.carry if self.method is not None else None)
 
-    def _check_scalar(self, arr: NDArray[np.float64]) -> Feedback:
+
+@dataclass(repr=False)
+class ScalarExercise(Exercise):
+    """One number with possibly several right values (``accepted``) inside a stated range (``interval``); a
+    right value outside it (``outside``) is told to be right but for a multiple of 2π."""
+
+    kind: ClassVar[str] = "scalar"
+    #: A scalar answer is right within half a unit of the last decimal asked: no printed tolerance.
+    tol: ClassVar[None] = None
+
+    accepted: list[float] = field(default_factory=list)
+    outside: list[float] = field(default_factory=list)
+    interval: Interval | None = None
+    decimals: int | None = None
+
+    def _grade(self, answer: Any) -> Feedback:
+        arr = as_array(answer)
         d = self.decimals if self.decimals is not None else DECIMALS
         if arr.size != 1:
             return verdict(False, f"Give one number (the {self.what}); you gave {arr.size} values.",
@@ -212,7 +235,36 @@ class Exercise:
         verb = agrees(self.what, "is", "are")
         return verdict(False, f"Your {self.what} {verb} not right. {self.hint}".strip(), mistake="wrong_value")
 
-    def _check_function(self, fn: Any) -> Feedback:
+
+
+@dataclass(repr=False)
+class FunctionExercise(Exercise):
+    """A student's function, run on seeded random test cases (each a :class:`Case`) against the reference.
+
+    Attributes
+    ----------
+    make_case : callable
+        ``rng -> Case``: one random test case.
+    n_cases : int
+        How many random cases are run.
+    fn_name : str
+        The name the statement asks the function to have.
+    more_cases, on_timeout, adapt
+        More test cases after the random ones (e.g. the edge cases a statement promises), a mistake to name when
+        the function runs out of time, and an adapter of the function's result (the value to compare, or a
+        verdict).
+    """
+
+    kind: ClassVar[str] = "function"
+
+    make_case: Callable[[np.random.Generator], Case] | None = None
+    n_cases: int = 6
+    fn_name: str = "your function"
+    more_cases: Callable[[np.random.Generator], list[Case]] | None = None
+    on_timeout: Mistake | None = None
+    adapt: Callable[[Any, tuple[Any, ...], Any], Any] | None = None
+
+    def _grade(self, fn: Any) -> Feedback:
         if isinstance(fn, (str, bytes)):
             raise Refused("Please give your function itself (its name, without quotes or brackets), not text.")
         if not callable(fn):
@@ -229,26 +281,9 @@ class Exercise:
         where = ""
         candidates: set[str] | None = None
         for case, (args, ref, mistakes, label) in enumerate(cases):
-            ok, out = run_guarded(fn, copy.deepcopy(args))
-            if not ok:
-                if out.startswith("your function did not finish") and self.on_timeout is not None:
-                    return verdict(False, f"On test {case + 1} ({label}) {out}. {self.on_timeout.message}",
-                                   mistake=self.on_timeout.name)
-                return verdict(False, f"On test {case + 1} ({label}) {out}.", mistake="raised")
-            if self.adapt is not None:
-                adapted = self.adapt(out, args, ref)
-                if isinstance(adapted, Feedback):
-                    adapted.message = f"On test {case + 1} ({label}): {adapted.message}"
-                    return adapted
-                out = adapted
-            try:
-                arr = as_array(out)
-            except Refused as r:
-                if r.kind == "empty":
-                    return verdict(False, f"On test {case + 1} ({label}) your function returned None: "
-                                   "did you forget `return`?", mistake="returned_none")
-                return verdict(False, f"On test {case + 1} ({label}) your function's result could not be graded: "
-                               + r.message, mistake="bad_return")
+            arr = self._result(fn, case, args, ref, label)
+            if isinstance(arr, Feedback):
+                return arr
             # Code is compared tightly: the same computation agrees to rounding error.
             fb = compare(arr, ref, mistakes, 1e-6, 1e-8, self.what, self.hint)
             if fb.correct:
@@ -274,6 +309,32 @@ class Exercise:
                            mistake="ambiguous")
         return first
 
+    def _result(self, fn: Any, case: int, args: tuple[Any, ...], ref: Any, label: str
+                ) -> NDArray[np.float64] | Feedback:
+        """The function's result on test ``case`` (on a copy of its arguments) as the array compared, or the
+        verdict that ends the grading there (it raised, ran out of time, returned nothing gradable, or the
+        adapter decided)."""
+        ok, out = run_guarded(fn, copy.deepcopy(args))
+        if not ok:
+            if out.startswith("your function did not finish") and self.on_timeout is not None:
+                return verdict(False, f"On test {case + 1} ({label}) {out}. {self.on_timeout.message}",
+                               mistake=self.on_timeout.name)
+            return verdict(False, f"On test {case + 1} ({label}) {out}.", mistake="raised")
+        if self.adapt is not None:
+            adapted = self.adapt(out, args, ref)
+            if isinstance(adapted, Feedback):
+                adapted.message = f"On test {case + 1} ({label}): {adapted.message}"
+                return adapted
+            out = adapted
+        try:
+            return as_array(out)
+        except Refused as r:
+            if r.kind == "empty":
+                return verdict(False, f"On test {case + 1} ({label}) your function returned None: "
+                               "did you forget `return`?", mistake="returned_none")
+            return verdict(False, f"On test {case + 1} ({label}) your function's result could not be graded: "
+                           + r.message, mistake="bad_return")
+
     def cases(self) -> list[Case]:
         """The test cases of a function exercise, in the order they are run: ``n_cases`` drawn by
         ``make_case``, then those of ``more_cases`` (each from this variant's own stream). They depend on the
@@ -294,7 +355,17 @@ class Exercise:
             _CASES[key] = out
         return out
 
-    def _check_symbolic(self, answer: Any) -> Feedback:
+
+
+@dataclass(repr=False)
+class SymbolicExercise(Exercise):
+    """A sympy expression or matrix in ``symbols`` (name -> sympy Symbol), compared at random points."""
+
+    kind: ClassVar[str] = "symbolic"
+
+    symbols: dict[str, Any] = field(default_factory=dict)
+
+    def _grade(self, answer: Any) -> Feedback:
         ref = self.reference
         names = {str(s): s for s in self.symbols.values()}
         answer = _sympy_array_as_matrix(answer, ref)
@@ -330,6 +401,25 @@ class Exercise:
         rng = self._rng(77)
         return [{name: float(rng.uniform(0.3, 1.4)) * (float(rng.choice([-1, 1])) if name.startswith("th") else 1.0)
                  for name in names} for _ in range(3)]
+
+
+
+
+@dataclass(repr=False)
+class PredicateExercise(Exercise):
+    """A number judged by ``predicate`` (float array -> Feedback), for answers that are not unique."""
+
+    kind: ClassVar[str] = "predicate"
+
+    predicate: Callable[[NDArray[np.float64]], Feedback] | None = None
+
+    def _grade(self, answer: Any) -> Feedback:
+        arr = as_array(answer)
+        if not np.all(np.isfinite(arr)):
+            return verdict(False, "Your answer contains NaN or inf.", mistake="not_finite")
+        if self.predicate is None:
+            raise ValueError(f"Exercise {self.id!r} is a predicate exercise without a predicate")
+        return self.predicate(arr)
 
 
 def _matches(arr: NDArray[np.float64], value: Any) -> bool:
@@ -407,7 +497,7 @@ def _with_precision(statement: str, decimals: int, scalar: bool) -> str:
 
 def numeric_exercise(title: str, statement: str, given: dict[str, Any], reference: Any,
                      mistakes: list[Mistake], *, what: str = "answer", hint: str = "",
-                     decimals: int = DECIMALS, method: Method | None = None) -> Exercise:
+                     decimals: int = DECIMALS, method: Method | None = None) -> NumericExercise:
     """A number, vector or matrix, asked to ``decimals`` decimals; the statement gets a sentence saying what is
     accepted. ``method(r)`` is the intended computation (every intermediate a student writes down passed
     through ``r``): the accepted tolerance is derived from how rounding those intermediates propagates
@@ -424,42 +514,43 @@ def numeric_exercise(title: str, statement: str, given: dict[str, Any], referenc
             raise ValueError(f"Expected the method of {title!r} to give the reference, got {out} for {ref}")
         rule = derive_rule(method, decimals)
     st = statement.rstrip() + " " + rule_sentence(rule, scalar)
-    return Exercise("", title, st, given, "numeric", reference, mistakes, what=what, hint=hint, decimals=decimals,
-                    tol=rule.tol, carry=rule.carry, method=method)
+    return NumericExercise("", title, st, given, reference, mistakes, what=what, hint=hint, decimals=decimals,
+                           tol=rule.tol, carry=rule.carry, method=method)
 
 
 def scalar_exercise(title: str, statement: str, given: dict[str, Any], accepted: list[float],
                     mistakes: list[Mistake], *, interval: Interval | None = None, outside: list[float] | None = None,
-                    what: str = "answer", hint: str = "", decimals: int = DECIMALS) -> Exercise:
+                    what: str = "answer", hint: str = "", decimals: int = DECIMALS) -> ScalarExercise:
     """One number with possibly several right values (``accepted``, all inside ``interval``). A value outside
     the interval is told so (and, if it is in ``outside``, that it is right but for a multiple of 2π)."""
     if interval is not None and not all(interval.low < a < interval.high for a in accepted):
         raise ValueError(f"Expected every accepted value inside {interval.text}, got {accepted}")
-    return Exercise("", title, _with_precision(statement, decimals, True), given, "scalar", float(accepted[0]),
-                    mistakes, what=what, hint=hint, decimals=decimals, accepted=[float(a) for a in accepted],
-                    outside=[float(o) for o in (outside or [])], interval=interval)
+    return ScalarExercise("", title, _with_precision(statement, decimals, True), given, float(accepted[0]),
+                          mistakes, what=what, hint=hint, decimals=decimals, accepted=[float(a) for a in accepted],
+                          outside=[float(o) for o in (outside or [])], interval=interval)
 
 
 def symbolic_exercise(title: str, statement: str, symbols: dict[str, Any], reference: Any,
-                      mistakes: list[Mistake], *, what: str = "answer") -> Exercise:
+                      mistakes: list[Mistake], *, what: str = "answer") -> SymbolicExercise:
     """A sympy expression or matrix in ``symbols`` (name -> sympy Symbol), which are also the given."""
-    return Exercise("", title, statement, {"symbols": symbols}, "symbolic", reference, mistakes,
-                    symbols=symbols, what=what)
+    return SymbolicExercise("", title, statement, {"symbols": symbols}, reference, mistakes, symbols=symbols,
+                            what=what)
 
 
 def function_exercise(title: str, statement: str, *, reference: Callable[..., Any],
                       make_case: Callable[[np.random.Generator], Case], fn_name: str, what: str,
                       more_cases: Callable[[np.random.Generator], list[Case]] | None = None,
                       on_timeout: Mistake | None = None,
-                      adapt: Callable[[Any, tuple[Any, ...], Any], Any] | None = None) -> Exercise:
+                      adapt: Callable[[Any, tuple[Any, ...], Any], Any] | None = None) -> FunctionExercise:
     """A student's function named ``fn_name``, run on the cases ``make_case`` draws, then on ``more_cases``.
     ``on_timeout`` names the mistake of a function that runs out of time; ``adapt(result, args, reference)``
     turns a result in another accepted form into the value compared (or returns a verdict)."""
-    return Exercise("", title, statement, {}, "function", reference=reference, make_case=make_case,
-                    fn_name=fn_name, what=what, more_cases=more_cases, on_timeout=on_timeout, adapt=adapt)
+    return FunctionExercise("", title, statement, {}, reference=reference, make_case=make_case,
+                            fn_name=fn_name, what=what, more_cases=more_cases, on_timeout=on_timeout, adapt=adapt)
 
 
 def predicate_exercise(title: str, statement: str, given: dict[str, Any], reference: Any,
-                       predicate: Callable[[NDArray[np.float64]], Feedback], *, what: str = "answer") -> Exercise:
+                       predicate: Callable[[NDArray[np.float64]], Feedback], *,
+                       what: str = "answer") -> PredicateExercise:
     """A number judged by ``predicate`` (answers that are not unique); ``reference`` is one right answer."""
-    return Exercise("", title, statement, given, "predicate", reference, [], predicate=predicate, what=what)
+    return PredicateExercise("", title, statement, given, reference, [], predicate=predicate, what=what)
