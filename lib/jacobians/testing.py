@@ -272,6 +272,13 @@ def ode_tol(sol: Any, rtol: float, atol: float, growth: float = 1.0) -> float:
     (each step takes at least one evaluation). The local error estimate is the
     embedded pair's (asymptotically exact; the solution carried on is of
     the higher order), which holds for the smooth right-hand sides used here.
+
+    >>> from scipy.integrate import solve_ivp
+    >>> sol = solve_ivp(lambda t, y: -y, (0, 2), [1.0], rtol=1e-8, atol=1e-10, dense_output=True)
+    >>> bound = ode_tol(sol, 1e-8, 1e-10)          # y' = -y contracts: growth 1
+    >>> t = np.linspace(0, 2, 9)
+    >>> within(sol.sol(t)[0], np.exp(-t), bound), within(sol.sol(t)[0], np.exp(-1.001 * t), bound)
+    (True, False)
     """
     y = np.asarray(sol.y, dtype=float)
     dense = getattr(sol, "sol", None)
