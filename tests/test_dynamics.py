@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 import jacobians as jac
 from jacobians.dynamics import centres_of_mass, gravity_torques, potential_energy
-from jacobians.testing import close, random_chain, random_theta
+from jacobians.testing import close, fd_tol, random_chain, random_theta, within
 
 seeds = st.integers(0, 2**32 - 1)
 
@@ -29,7 +29,9 @@ def test_gravity_is_the_gradient_of_potential_energy(seed):
     theta = random_theta(chain, rng)
     m, c, g = _problem(rng, chain)
     fd = jac.numerical_jacobian(lambda t: potential_energy(chain, t, m, g, c), theta)
-    assert np.allclose(gravity_torques(chain, theta, m, g, c), fd, atol=1e-6)
+    # central differences: truncation h²/6·max|P'''| + rounding 512·EPS·max|P|/h (fd_tol, constants from P itself)
+    bound = fd_tol(lambda t: potential_energy(chain, t, m, g, c), theta)
+    assert within(gravity_torques(chain, theta, m, g, c), fd, bound)
 
 
 @settings(max_examples=30, deadline=None)
@@ -46,7 +48,9 @@ def test_equals_sum_of_link_jacobian_transposes(seed):
     at_com = jac.SerialChain(chain.screw_axes, chain.home, link_homes=homes)
     J = jac.link_jacobians(at_com, theta, "geometric")  # (n, 6, n)
     expected = -sum(J[i, 3:].T @ (m[i] * g) for i in range(chain.dof))
-    assert np.allclose(gravity_torques(chain, theta, m, g, c), expected, atol=1e-10)
+    # two exact sums of the same terms m_i J_iᵀ g: rounding relative to the terms' size, not to τ (which may cancel)
+    terms = max(float(np.abs(J[i, 3:].T @ (m[i] * g)).max()) for i in range(chain.dof))
+    assert close(gravity_torques(chain, theta, m, g, c), expected, scale=chain.dof * terms)
 
 
 def test_batched_and_defaults():
@@ -57,13 +61,14 @@ def test_batched_and_defaults():
     got = gravity_torques(chain, th, m)
     assert got.shape == (2, 3, 6)
     for idx in np.ndindex(2, 3):
-        assert np.allclose(got[idx], gravity_torques(chain, th[idx], m, [0, 0, -9.81], np.zeros((6, 3))))
+        assert close(got[idx], gravity_torques(chain, th[idx], m, [0, 0, -9.81], np.zeros((6, 3))))   # same sums
     assert centres_of_mass(chain, th).shape == (2, 3, 6, 3)
     assert potential_energy(chain, th, m).shape == (2, 3)
     # planar arm, gravity in its plane: the horizontal arm's torques are m g times the lever arms
     arm = jac.robots.planar_2r(l1=1.0, l2=0.5)
-    assert np.allclose(gravity_torques(arm, [0, 0], [2.0, 1.0], [0, -10, 0]), [2 * 10 * 0.5 + 10 * 1.25, 10 * 0.25])
-    assert np.allclose(gravity_torques(arm, [np.pi / 2, 0], [2.0, 1.0], [0, -10, 0]), 0)  # hanging straight up
+    assert close(gravity_torques(arm, [0, 0], [2.0, 1.0], [0, -10, 0]), [2 * 10 * 0.5 + 10 * 1.25, 10 * 0.25])
+    # straight up: the torques are differences of terms m g l of size up to 25 (cos(π/2) ≠ 0 in floats)
+    assert close(gravity_torques(arm, [np.pi / 2, 0], [2.0, 1.0], [0, -10, 0]), 0, scale=25.0)
 
 
 def _pinocchio_model_with_masses(pin, chain, masses, centres):

@@ -12,6 +12,7 @@ import pytest
 
 import jacobians as jac
 from jacobians import lie
+from jacobians.testing import close, fd_tol, within
 
 ROOT = Path(__file__).resolve().parents[1]
 CH01 = ROOT / "chapters" / "01_twists.md"
@@ -35,13 +36,19 @@ def _warning(src: str, title_start: str) -> str:
     raise AssertionError(f"no warning starting with {title_start!r} in chapter 1")
 
 
+def _origin_image(w, q):
+    """Where the body point at the origin is at time t[0] while the body turns at unit rate about (w, q)."""
+    return lambda t: lie.exp_so3(w * t[0]) @ (np.zeros(3) - q) + q
+
+
 def _origin_velocity(w, q):
     """Velocity of the body point at the origin while the body turns at unit rate about (w, q)."""
-    def origin_image(t):
-        R = lie.exp_so3(w * t[0])
-        return R @ (np.zeros(3) - q) + q
+    return jac.numerical_jacobian(_origin_image(w, q), np.array([0.0]))[:, 0]
 
-    return jac.numerical_jacobian(origin_image, np.array([0.0]))[:, 0]
+
+def _origin_velocity_tol(w, q):
+    """Bound on the central difference's error (fd_tol); R(-q) + q is a small difference of terms of size |q|."""
+    return fd_tol(_origin_image(w, q), np.zeros(1), scale=float(np.abs(q).max()))
 
 
 # ---------------------------------------------------------------- the sign of v
@@ -63,17 +70,17 @@ def test_turning_about_w_q_moves_the_origin_with_q_cross_w(seed):
     w = rng.normal(size=3)
     w /= np.linalg.norm(w)
     q = rng.normal(size=3)
-    v = _origin_velocity(w, q)
-    np.testing.assert_allclose(v, -np.cross(w, q), atol=1e-8)
-    np.testing.assert_allclose(v, np.cross(q, w), atol=1e-8)   # the form the old box called wrong is right
-    assert not np.allclose(v, np.cross(w, q), atol=1e-3)         # the truly wrong form
+    v, bound = _origin_velocity(w, q), _origin_velocity_tol(w, q)
+    assert within(v, -np.cross(w, q), bound)
+    assert within(v, np.cross(q, w), bound)                      # the form the old box called wrong is right
+    assert not within(v, np.cross(w, q), bound)                  # the truly wrong form
 
 
 def test_example_of_the_box_pivot_on_plus_x():
     L1 = 0.8
     v = _origin_velocity(np.array([0.0, 0.0, 1.0]), np.array([L1, 0.0, 0.0]))
-    np.testing.assert_allclose(v, [0.0, -L1, 0.0], atol=1e-8)       # moves along -y
-    np.testing.assert_allclose(jac.robots.planar_3r(L1, 1.0, 1.0).screw_axes[:, 1], [0, 0, 1, 0, -L1, 0])
+    assert within(v, [0.0, -L1, 0.0], _origin_velocity_tol(np.array([0.0, 0.0, 1.0]), np.array([L1, 0.0, 0.0])))
+    assert close(jac.robots.planar_3r(L1, 1.0, 1.0).screw_axes[:, 1], [0, 0, 1, 0, -L1, 0])   # -ω × q, exact algebra
 
 
 # ---------------------------------------------------------------- the UR5 figure
@@ -120,12 +127,12 @@ def test_terminology_mappings(chain):
         R, p = T[:3, :3], T[:3, 3]
         J, J_s, J_b = jac.geometric_jacobian(chain, th), jac.space_jacobian(chain, th), jac.body_jacobian(chain, th)
         # Modern Robotics
-        np.testing.assert_allclose(J, np.block([[I3, Z3], [-lie.skew(p), I3]]) @ J_s, atol=1e-10)
-        np.testing.assert_allclose(J, np.block([[R, Z3], [Z3, R]]) @ J_b, atol=1e-10)
+        assert close(J, np.block([[I3, Z3], [-lie.skew(p), I3]]) @ J_s)         # exact algebra both sides: TOL
+        assert close(J, np.block([[R, Z3], [Z3, R]]) @ J_b)
         # note 003: the column formula in {0} builds J_s, which is not J_b
         E, S = np.eye(4), chain.screw_axes
         for i in range(chain.dof):
-            np.testing.assert_allclose(jac.adjoint(E) @ S[:, i], J_s[:, i], atol=1e-10)
+            assert close(jac.adjoint(E) @ S[:, i], J_s[:, i])
             E = E @ lie.exp_se3(S[:, i] * th[i])
         assert not np.allclose(J_s, J_b, atol=1e-3)
         # note 002 and Siciliano: (pdot, omega), linear first, is our J with its halves swapped
@@ -133,8 +140,10 @@ def test_terminology_mappings(chain):
         rev = np.array([c == "R" for c in chain.joint_types])
         P = chain.prefix_transforms(th)
         z = np.array([P[i, :3, :3] @ (S[:3, i] if rev[i] else S[3:, i]) for i in range(chain.dof)]).T
-        np.testing.assert_allclose(swap @ J, np.vstack([dp, np.where(rev, z, 0.0)]), atol=1e-6)
-        assert not np.allclose(J, np.vstack([dp, np.where(rev, z, 0.0)]), atol=1e-3)  # the order matters
+        # the rows dp are central differences: within fd_tol (truncation + rounding); the rows z are exact algebra
+        bound = fd_tol(lambda t: chain.fk(t)[:3, 3], th)
+        assert within(swap @ J, np.vstack([dp, np.where(rev, z, 0.0)]), bound)
+        assert not within(J, np.vstack([dp, np.where(rev, z, 0.0)]), bound)  # the order matters
 
 
 # ---------------------------------------------------------------- page mechanics

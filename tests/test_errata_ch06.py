@@ -21,6 +21,7 @@ import sympy as sp
 
 import jacobians as jac
 from jacobians import representations as reps
+from jacobians.testing import close
 
 CHAPTER = Path(__file__).resolve().parents[1] / "chapters" / "06_analytic_jacobian.md"
 
@@ -58,13 +59,15 @@ def test_B_exp_eigenvalues_are_sin_over_theta_pm_i_one_minus_cos_over_theta(thet
     lam = np.linalg.eigvals(_B_exp(theta))
     right = np.array([1.0, np.sin(theta) / theta + 1j * (1 - np.cos(theta)) / theta,
                       np.sin(theta) / theta - 1j * (1 - np.cos(theta)) / theta])
-    np.testing.assert_allclose(np.sort_complex(lam), np.sort_complex(right), atol=1e-12)
+    # B = I + a[ω] + b[ω]² is normal (its terms commute with their transposes): its eigenvalues move by no more than
+    # B does (Bauer-Fike with a unitary eigenbasis), so they are well-conditioned: TOL (close)
+    assert close(np.sort_complex(lam).view(float), np.sort_complex(right).view(float))
     old = np.array([1.0, (1 - np.cos(theta)) / theta**2 + 1j * (theta - np.sin(theta)) / theta**2,
                     (1 - np.cos(theta)) / theta**2 - 1j * (theta - np.sin(theta)) / theta**2])
     assert not np.allclose(np.sort_complex(lam), np.sort_complex(old), atol=1e-3)
     det = np.linalg.det(_B_exp(theta))
-    assert det == pytest.approx(2 * (1 - np.cos(theta)) / theta**2, abs=1e-12)
-    assert det == pytest.approx(abs(right[1]) ** 2, abs=1e-12)       # the right pair gives the determinant
+    assert close(det, 2 * (1 - np.cos(theta)) / theta**2)           # a 3×3 determinant of entries <= 1: TOL
+    assert close(det, abs(right[1]) ** 2)                             # the right pair gives the determinant
     assert abs(det - abs(old[1]) ** 2) > 0.05                          # the old pair did not
 
 
@@ -93,8 +96,8 @@ def test_mr_A_of_r_is_the_body_frame_transpose(text):
     A = np.eye(3) - (1 - np.cos(nr)) / nr**2 * W + (nr - np.sin(nr)) / nr**3 * W @ W
     B = reps.rate_to_angular_velocity(r, "exp")
     R = jac.lie.exp_so3(r)
-    np.testing.assert_allclose(A, R.T @ B, atol=1e-12)
-    np.testing.assert_allclose(A, B.T, atol=1e-12)
+    assert close(A, R.T @ B)                                          # closed forms, exact algebra: TOL
+    assert close(A, B.T)
     assert not np.allclose(A, B, atol=1e-3)
     assert r"A(r) &= R^{\mathsf T} B_{\exp}(r) \\" in text and r"&= B_{\exp}(r)^{\mathsf T} = B_{\exp}(-r)." in text
     assert "§5.1.5" in text
@@ -112,7 +115,8 @@ def _sigma_min_angular(chain, thetas):
 def test_old_gimbal_path_crossed_the_wrist_singularity():
     zyz = jac.robots.zyz_wrist(0.3)
     old = np.radians(np.column_stack([np.full(7, 30.0), OLD_PATH_DEG, np.zeros(7)]))
-    assert _sigma_min_angular(zyz, old).min() < 1e-3      # theta2 = 0: axes 1 and 3 aligned
+    # θ2 = 0 is on the old path: axes 1 and 3 aligned, σ_min = 0 exactly; computed within TOL (Weyl)
+    assert close(_sigma_min_angular(zyz, old).min(), 0.0)
 
 
 def test_new_gimbal_path_stays_away_from_it(text):
@@ -123,14 +127,15 @@ def test_new_gimbal_path_stays_away_from_it(text):
     view = re.search(r"```\{live-view\} gimbal_lock\n(.*?)```", text, flags=re.S).group(1)
     assert ":robot: zyz_wrist" in view and ":rep: zyx" in view
     theta = [float(t) for t in re.search(r":theta: (.*)\n", view).group(1).split()]
-    assert np.allclose(np.degrees(theta), [30.0, 45.0, 0.0])              # the view starts the path
+    assert close(np.degrees(theta), [30.0, 45.0, 0.0])                    # the view starts the path (17 digits given)
     assert "$\\theta_1 = 30°$, $\\theta_3 = 0$, and $\\theta_2$ from $45°$ to\n$135°$" in text
     zyz = jac.robots.zyz_wrist(0.3)
     path = np.radians(np.column_stack([np.full(241, 30.0), np.linspace(45.0, 135.0, 241), np.zeros(241)]))
     assert _sigma_min_angular(zyz, path).min() >= 0.54
     phi = jac.pose_coordinates(zyz.fk(path), "zyx")[:, :3]
     det_B = np.linalg.det(reps.rate_to_angular_velocity(phi, "zyx"))
-    assert np.abs(det_B).min() < 1e-12                   # the coordinates lock on the path
+    # det B = -cos φ2 = 0 at θ2 = 90°, a point of the path (45 + 120·0.375): computed within TOL of 0
+    assert close(np.abs(det_B).min(), 0.0)                # the coordinates lock on the path
     assert np.isnan(jac.analytic_jacobian(zyz, path, "zyx", on_singularity="nan")).any()
 
 

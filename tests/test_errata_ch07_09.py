@@ -14,6 +14,7 @@ import pytest
 
 import jacobians as jac
 from jacobians import analysis, lie
+from jacobians.testing import TOL, close, fd_tol, within
 
 ROOT = Path(__file__).resolve().parents[1]
 CH07 = ROOT / "chapters" / "07_conversions.md"
@@ -61,15 +62,15 @@ def test_ch07_ex4_counterexample_to_old_statement_and_new_condition():
     p = chain.fk(q)[:3, 3]
     J_s, J = jac.space_jacobian(chain, q), jac.geometric_jacobian(chain, q)
     assert np.linalg.norm(p) > 0.5 and np.linalg.norm(J_s[:3]) > 0.5       # old condition false
-    assert np.allclose(J_s, J)                                             # ... and the rows are equal
-    assert np.allclose(np.cross(J_s[:3].T, p), 0)                          # the new condition holds
+    assert close(J_s, J)                                                   # ... and the rows are equal (exact algebra)
+    assert close(np.cross(J_s[:3].T, p), 0, scale=float(np.abs(p).max()))  # the new condition holds (terms of size |p|)
     # where the new condition fails, the linear rows differ by omega x p
     arm = jac.robots.planar_3r()
     q = np.array([0.3, -0.8, 1.1])
     p = arm.fk(q)[:3, 3]
     J_s, J = jac.space_jacobian(arm, q), jac.geometric_jacobian(arm, q)
-    assert np.allclose(J[3:] - J_s[3:], np.cross(J_s[:3].T, p).T)
-    assert not np.allclose(J[3:], J_s[3:])
+    assert close(J[3:] - J_s[3:], np.cross(J_s[:3].T, p).T, scale=float(np.abs(J).max() + np.abs(J_s).max()))
+    assert not close(J[3:], J_s[3:])
 
 
 # ---------------------------------------------------------------- chapter 8, the mass matrix
@@ -96,10 +97,11 @@ def test_ch08_coaxial_counterexample_has_a_singular_mass_matrix():
     # every joint moves some mass (the old sufficient condition) ...
     assert M[0, 0] > 0.1 and M[1, 1] > 0.1
     # ... yet M is singular, with null vector (1, -1), and the stacked weighted Jacobian has rank 1
-    assert np.linalg.eigvalsh(M)[0] < 1e-12
-    assert np.allclose(M @ [1.0, -1.0], 0)
+    # λ_min = 0 exactly; computed, off by the rounding of M's entries (Weyl): TOL relative to max |M| (close)
+    assert close(np.linalg.eigvalsh(M)[0], 0.0, scale=float(np.abs(M).max()))
+    assert close(M @ [1.0, -1.0], 0, scale=float(np.abs(M).max()))
     A = np.vstack([np.zeros((6, 2)), np.diag(np.sqrt(np.diag(rod))) @ J_b[1]])
-    assert np.linalg.matrix_rank(A) == 1 and np.allclose(M, A.T @ A)
+    assert np.linalg.matrix_rank(A) == 1 and close(M, A.T @ A)
 
 
 def test_ch08_generic_arm_has_full_rank_and_positive_definite_mass_matrix():
@@ -108,16 +110,16 @@ def test_ch08_generic_arm_has_full_rank_and_positive_definite_mass_matrix():
     M, J_b = _mass_matrix(arm, np.array([0.3, -1.0, 0.6]), G)
     A = np.vstack([np.sqrt(G[i]) @ J_b[i] for i in range(3)])
     assert np.linalg.matrix_rank(A) == 3 and np.linalg.eigvalsh(M)[0] > 1e-6
-    assert np.allclose(M, A.T @ A)
+    assert close(M, A.T @ A)
 
 
 def test_ch08_last_link_frame_is_not_always_the_end_effector():
     # old text: "The end-effector frame is the case i = n, M_n = M", false for the planar arms
     assert "The end-effector frame is the case $i = n$, $M_n = M$." not in text(CH08)
     arm = jac.robots.planar_3r(1.0, 0.8, 0.5)
-    assert not np.allclose(arm.link_homes[-1], arm.home)
+    assert not close(arm.link_homes[-1], arm.home)
     ur5 = jac.robots.ur5()
-    assert np.allclose(ur5.link_homes[-1], ur5.home)
+    assert close(ur5.link_homes[-1], ur5.home)
 
 
 # ---------------------------------------------------------------- chapter 8, errors of the notes
@@ -136,7 +138,7 @@ def test_notes_zero_block_has_six_rows():
     J_s = jac.space_jacobian(arm, theta)
     with pytest.raises(ValueError):
         np.hstack([J_s[:, :1], np.zeros((3, 2))])                 # 0_{n x (n-i)}, n = 3, i = 1
-    assert np.allclose(np.hstack([J_s[:, :1], np.zeros((6, 2))]), jac.link_jacobians(arm, theta, "space")[0])
+    assert close(np.hstack([J_s[:, :1], np.zeros((6, 2))]), jac.link_jacobians(arm, theta, "space")[0])
 
 
 def test_notes_003_pose_of_frame_i_needs_M_i():
@@ -147,8 +149,8 @@ def test_notes_003_pose_of_frame_i_needs_M_i():
         for i in range(chain.dof):
             E = product_of_exponentials(chain, theta, i + 1)
             S_in_i = jac.adjoint(np.linalg.inv(chain.link_homes[i])) @ chain.screw_axes[:, i]
-            assert np.allclose(jac.adjoint(E @ chain.link_homes[i]) @ S_in_i, J_s[:, i])
-            wrong += not np.allclose(jac.adjoint(E @ chain.home) @ S_in_i, J_s[:, i], atol=1e-6)
+            assert close(jac.adjoint(E @ chain.link_homes[i]) @ S_in_i, J_s[:, i])
+            wrong += not close(jac.adjoint(E @ chain.home) @ S_in_i, J_s[:, i])   # closed forms: equal up to TOL, or not
         assert wrong >= chain.dof - 1
 
 
@@ -162,10 +164,12 @@ def test_notes_index_slips_give_wrong_columns():
     fd_b = lie.matrix_to_twist(np.linalg.inv(T) @ dT)
     E_prev = product_of_exponentials(chain, theta, i)
     G = lie.exp_se3(chain.screw_axes[:, i] * theta[i]) @ chain.link_homes[i]
-    assert np.allclose(jac.adjoint(E_prev) @ chain.screw_axes[:, i], fd_s, atol=1e-6)
-    assert not np.allclose(jac.adjoint(E_prev) @ chain.screw_axes[:, 0], fd_s, atol=1e-3)
-    assert np.allclose(jac.adjoint(np.linalg.inv(G)) @ chain.screw_axes[:, i], fd_b, atol=1e-6)
-    assert not np.allclose(jac.adjoint(np.linalg.inv(G)) @ chain.screw_axes[:, 0], fd_b, atol=1e-3)
+    # each entry of dT within fd_tol (truncation + rounding); a twist entry sums a row (column) of it times T⁻¹
+    bound = fd_tol(lambda t: chain.link_poses(t)[i], theta) * float(np.abs(np.linalg.inv(T)).sum())
+    assert within(jac.adjoint(E_prev) @ chain.screw_axes[:, i], fd_s, bound)
+    assert not within(jac.adjoint(E_prev) @ chain.screw_axes[:, 0], fd_s, bound)
+    assert within(jac.adjoint(np.linalg.inv(G)) @ chain.screw_axes[:, i], fd_b, bound)
+    assert not within(jac.adjoint(np.linalg.inv(G)) @ chain.screw_axes[:, 0], fd_b, bound)
 
 
 # ---------------------------------------------------------------- chapter 9, exercise 3
@@ -184,8 +188,10 @@ def test_ch09_ex3_torques_by_virtual_work_are_the_negated_old_value():
     f_s = arm.fk(theta)[:3, :3] @ F_measured[3:]
     J_v = jac.numerical_jacobian(lambda t: arm.fk(t)[:3, 3], theta)
     tau = -J_v.T @ f_s                                            # motors cancel the environment's generalised force
-    assert np.allclose(tau, -old, atol=1e-6)
-    assert not np.allclose(tau, old, atol=1e-3)
+    # J_v's entries are central differences (within fd_tol); τ sums a column of them times f_s
+    bound = fd_tol(lambda t: arm.fk(t)[:3, 3], theta) * float(np.abs(f_s).sum())
+    assert within(tau, -old, bound)
+    assert not within(tau, old, bound)
 
 
 # ---------------------------------------------------------------- chapter 9, other fixes
@@ -195,8 +201,8 @@ def test_ch09_determinant_is_the_product_of_singular_values_only_up_to_sign():
     assert "$|\\det J| = \\prod_i \\sigma_i$" in text(CH09)
     J = jac.geometric_jacobian(jac.robots.planar_2r(1.0, 0.8), [0.2, -1.0])[3:5]
     s = np.linalg.svd(J, compute_uv=False)
-    assert np.linalg.det(J) < 0 and not np.isclose(np.linalg.det(J), np.prod(s))
-    assert np.isclose(abs(np.linalg.det(J)), np.prod(s))
+    assert np.linalg.det(J) < 0 and not close(np.linalg.det(J), np.prod(s))
+    assert close(abs(np.linalg.det(J)), np.prod(s))                 # a 2×2 of entries <= 2: well-conditioned, TOL
 
 
 def test_ch09_ellipse_figure_has_one_pose_per_panel_and_nothing_clipped():
@@ -226,7 +232,14 @@ def test_ch09_ur5_third_singular_family_is_the_shoulder_plane_condition():
     t2 = brentq(lambda x: np.linalg.det(jac.space_jacobian(ur5, np.r_[base[0], x, base[2:]])), 0.5, 1.0)
     theta = np.r_[base[0], t2, base[2:]]
     J_s = jac.space_jacobian(ur5, theta)
-    assert np.linalg.svd(J_s, compute_uv=False)[-1] < 1e-9
+    # brentq stops within xtol + 4 EPS |t2| (2e-12 + 4 EPS |t2|) of the root of det; there det J_s is at most
+    # |d det/dθ2| times that (twice the difference quotient, for its variation) plus rounding, and
+    # σ_min = |det| / (σ_1 ... σ_5); Weyl adds TOL σ_1
+    s_ur = np.linalg.svd(J_s, compute_uv=False)
+    ddet = (np.linalg.det(jac.space_jacobian(ur5, np.r_[base[0], t2 + 1e-6, base[2:]]))
+            - np.linalg.det(jac.space_jacobian(ur5, np.r_[base[0], t2 - 1e-6, base[2:]]))) / 2e-6
+    det_bound = 2 * abs(ddet) * (2e-12 + 4 * np.finfo(float).eps * abs(t2)) + TOL * float(np.prod(s_ur[:-1])) * s_ur[0]
+    assert s_ur[-1] <= det_bound / float(np.prod(s_ur[:-1])) + TOL * s_ur[0]
     q5, q6 = np.cross(J_s[:3, 4], J_s[3:, 4]), np.cross(J_s[:3, 5], J_s[3:, 5])
     a = np.linalg.lstsq(np.stack([J_s[:3, 4], -J_s[:3, 5]], axis=1), q6 - q5, rcond=None)[0][0]
     wrist = q5 + a * J_s[:3, 4]

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 import jacobians as jac
 from jacobians import lie
 from jacobians.acceleration import acceleration, bracket, jacobian_derivative
-from jacobians.testing import random_chain, random_theta
+from jacobians.testing import close, fd2_tol, fd_tol, random_chain, random_theta, within
 
 seeds = st.integers(0, 2**32 - 1)
 FRAMES = ("space", "body", "geometric")
@@ -33,7 +33,9 @@ def test_jdot_is_the_derivative_along_the_motion(seed):
     for frame in FRAMES:
         got = jacobian_derivative(chain, theta, theta_dot, frame)
         assert got.shape == (6, chain.dof)
-        assert np.allclose(got, fd_jdot(chain, theta, theta_dot, frame), atol=1e-6, rtol=1e-6), frame
+        # central difference with step H along θ + sθ̇: truncation H²/6·max|J'''| + rounding (fd_tol, from J itself)
+        bound = fd_tol(lambda s, frame=frame: jac.jacobian(chain, theta + s[0] * theta_dot, frame), np.zeros(1), H)
+        assert within(got, fd_jdot(chain, theta, theta_dot, frame), bound), frame
 
 
 def test_column_formulas_written_out_with_lie_ad():
@@ -46,9 +48,9 @@ def test_column_formulas_written_out_with_lie_ad():
     for i in range(6):
         before = sum((Js[:, j] * thd[j] for j in range(i)), np.zeros(6))
         after = sum((Jb[:, j] * thd[j] for j in range(i + 1, 6)), np.zeros(6))
-        assert np.allclose(Jds[:, i], lie.ad(before) @ Js[:, i], atol=1e-12)
-        assert np.allclose(Jdb[:, i], -lie.ad(after) @ Jb[:, i], atol=1e-12)
-    assert np.allclose(Jds[:, 0], 0) and np.allclose(Jdb[:, -1], 0)  # first space / last body column is constant
+        assert close(Jds[:, i], lie.ad(before) @ Js[:, i])        # the same products, exact algebra
+        assert close(Jdb[:, i], -lie.ad(after) @ Jb[:, i])
+    assert close(Jds[:, 0], 0) and close(Jdb[:, -1], 0)  # first space / last body column is constant (ad(0) = 0)
 
 
 def test_bracket_is_lie_ad_columnwise():
@@ -56,7 +58,7 @@ def test_bracket_is_lie_ad_columnwise():
     V, X = rng.normal(size=(6, 4)), rng.normal(size=(6, 4))
     got = bracket(V, X)
     for k in range(4):
-        assert np.allclose(got[:, k], lie.ad(V[:, k]) @ X[:, k])
+        assert close(got[:, k], lie.ad(V[:, k]) @ X[:, k])
 
 
 def test_linear_in_theta_dot_and_partial_derivatives():
@@ -67,10 +69,13 @@ def test_linear_in_theta_dot_and_partial_derivatives():
     for frame in FRAMES:
         lhs = jacobian_derivative(chain, theta, 2.0 * a - 3.0 * b, frame)
         rhs = 2.0 * jacobian_derivative(chain, theta, a, frame) - 3.0 * jacobian_derivative(chain, theta, b, frame)
-        assert np.allclose(lhs, rhs, atol=1e-12)
+        # linear in θ̇ exactly; rounding relative to the two terms' size (rhs is a difference of them)
+        assert close(lhs, rhs, scale=float(np.abs(2.0 * jacobian_derivative(chain, theta, a, frame)).max()
+                                           + np.abs(3.0 * jacobian_derivative(chain, theta, b, frame)).max()))
         k = 2
         dJk = jac.numerical_jacobian(lambda t, frame=frame: jac.jacobian(chain, t, frame), theta)[..., k]
-        assert np.allclose(jacobian_derivative(chain, theta, np.eye(5)[k], frame), dJk, atol=1e-6)
+        assert within(jacobian_derivative(chain, theta, np.eye(5)[k], frame), dJk,
+                      fd_tol(lambda t, frame=frame: jac.jacobian(chain, t, frame), theta))   # FD bound of ∂J/∂θ
 
 
 @settings(max_examples=20, deadline=None)
@@ -84,7 +89,7 @@ def test_batched_equals_loop_and_broadcasts(seed, shape):
         got = jacobian_derivative(chain, theta, thd, frame)
         assert got.shape == shape + (6, chain.dof)
         for idx in np.ndindex(*shape):
-            assert np.allclose(got[idx], jacobian_derivative(chain, theta[idx], thd[idx], frame), atol=1e-12)
+            assert close(got[idx], jacobian_derivative(chain, theta[idx], thd[idx], frame))
         # one rate for the whole batch broadcasts
         one = jacobian_derivative(chain, theta, thd[(0,) * len(shape)], frame)
         assert one.shape == got.shape
@@ -112,14 +117,22 @@ def test_acceleration_against_second_differences_of_fk(seed):
             return lie.matrix_to_twist(np.linalg.inv(T) @ dT)
         return np.concatenate([lie.unskew(dT[:3, :3] @ T[:3, :3].T), dT[:3, 3]])
 
+    # The twist is itself a central difference (step 1e-5) of T(t): each entry of dT/dt is within fd_tol of the
+    # derivative, a twist entry sums a row or column of dT times T⁻¹ (or Rᵀ): within inner = fd_tol · sum |T⁻¹|.
+    # That error is not smooth in t, so the outer difference (step h) may divide it by h; the outer difference of
+    # the computed twist adds its own truncation and rounding (fd_tol of twist(t) with step h).
+    T0 = chain.fk(th)
+    inner = fd_tol(lambda s: chain.fk(th + s[0] * thd + 0.5 * s[0] ** 2 * thdd), np.zeros(1), 1e-5)
+    inner *= float(np.abs(np.linalg.inv(T0)).sum())
     for frame in FRAMES:
         fd = (twist(h, frame) - twist(-h, frame)) / (2 * h)
         got = acceleration(chain, th, thd, thdd, frame)
-        assert np.allclose(got, fd, atol=1e-4, rtol=1e-4), (frame, got, fd)
-    # p̈ straight from positions: no twist in between
+        bound = fd_tol(lambda s, frame=frame: twist(s[0], frame), np.zeros(1), h) + inner / h
+        assert within(got, fd, bound), (frame, got, fd, bound)
+    # p̈ straight from positions: no twist in between; second difference h²/12·max|p''''| + rounding (fd2_tol)
     p = lambda t: chain.fk(th + t * thd + 0.5 * t * t * thdd)[:3, 3]
     pdd = (p(h) - 2 * p(0.0) + p(-h)) / h**2
-    assert np.allclose(acceleration(chain, th, thd, thdd)[3:], pdd, atol=1e-4, rtol=1e-4)
+    assert within(acceleration(chain, th, thd, thdd)[3:], pdd, fd2_tol(p, 0.0, h))
 
 
 def test_acceleration_batched():
@@ -130,7 +143,7 @@ def test_acceleration_batched():
     got = acceleration(chain, th, thd, thdd, "body")
     assert got.shape == (4, 6)
     for k in range(4):
-        assert np.allclose(got[k], acceleration(chain, th[k], thd[k], thdd[k], "body"))
+        assert close(got[k], acceleration(chain, th[k], thd[k], thdd[k], "body"))
 
 
 def test_against_pinocchio_time_variation():
@@ -140,7 +153,6 @@ def test_against_pinocchio_time_variation():
     rng = np.random.default_rng(11)
     refs = {"space": pin.ReferenceFrame.WORLD, "body": pin.ReferenceFrame.LOCAL,
             "geometric": pin.ReferenceFrame.LOCAL_WORLD_ALIGNED}
-    worst = 0.0
     chains = [jac.robots.ur5(), jac.robots.spatial_rrp(), jac.robots.scara()] + [
         random_chain(rng, pitch_probability=0.0) for _ in range(6)]
     for chain in chains:
@@ -152,9 +164,8 @@ def test_against_pinocchio_time_variation():
             pin.updateFramePlacements(model, data)
             for frame, ref in refs.items():
                 theirs = SWAP @ np.reshape(pin.getFrameJacobianTimeVariation(model, data, fid, ref), (6, chain.dof))
-                diff = np.abs(theirs - jacobian_derivative(chain, q, v, frame)).max()
-                worst = max(worst, diff)
-    assert worst < 1e-10
+                # two exact computations of the same well-conditioned products: TOL relative (close)
+                assert close(theirs, jacobian_derivative(chain, q, v, frame)), (frame, q, v)
 
 
 def test_validation():

@@ -32,7 +32,7 @@ from jacobians.acceleration import acceleration, jacobian_derivative
 from jacobians.dynamics import gravity_torques, potential_energy
 from jacobians.ik import ik
 from jacobians.redundancy import manipulability_gradient
-from jacobians.testing import random_chain, random_theta
+from jacobians.testing import close, fd2_tol, fd_tol, random_chain, random_theta, within
 
 # ---------------------------------------------------------------- mutants
 
@@ -139,7 +139,10 @@ def check_jdot_against_finite_differences():
         for frame in ("space", "body", "geometric"):
             h = 1e-6
             fd = (jac.jacobian(chain, th + h * thd, frame) - jac.jacobian(chain, th - h * thd, frame)) / (2 * h)
-            assert np.allclose(jacobian_derivative(chain, th, thd, frame), fd, atol=1e-6)
+            # central difference along θ + sθ̇: truncation h²/6·max|J'''| + rounding (fd_tol, from J itself)
+            bound = fd_tol(lambda s, chain=chain, th=th, thd=thd, frame=frame: jac.jacobian(chain, th + s[0] * thd, frame),
+                           np.zeros(1), h)
+            assert within(jacobian_derivative(chain, th, thd, frame), fd, bound)
 
 
 def check_acceleration_against_fk():
@@ -149,7 +152,8 @@ def check_acceleration_against_fk():
         th, thd, thdd = random_theta(chain, rng), rng.normal(size=n), rng.normal(size=n)
         h = 1e-3
         p = lambda t, th=th, thd=thd, thdd=thdd, chain=chain: chain.fk(th + t * thd + 0.5 * t * t * thdd)[:3, 3]
-        assert np.allclose(acceleration(chain, th, thd, thdd)[3:], (p(h) - 2 * p(0.0) + p(-h)) / h**2, atol=1e-4)
+        # second difference: truncation h²/12·max|p''''| + rounding 4·512·EPS·max|p|/h² (fd2_tol)
+        assert within(acceleration(chain, th, thd, thdd)[3:], (p(h) - 2 * p(0.0) + p(-h)) / h**2, fd2_tol(p, 0.0, h))
 
 
 def check_jdot_against_pinocchio():
@@ -167,7 +171,7 @@ def check_jdot_against_pinocchio():
         pin.updateFramePlacements(model, data)
         for frame, ref in refs.items():
             theirs = SWAP @ np.reshape(pin.getFrameJacobianTimeVariation(model, data, fid, ref), (6, chain.dof))
-            assert np.allclose(theirs, jacobian_derivative(chain, q, v, frame), atol=1e-9)
+            assert close(theirs, jacobian_derivative(chain, q, v, frame))     # exact algebra both sides: TOL
 
 
 def check_gravity_against_potential_energy():
@@ -176,7 +180,8 @@ def check_gravity_against_potential_energy():
         m, c, g = rng.uniform(0.5, 2, chain.dof), 0.3 * rng.normal(size=(chain.dof, 3)), rng.normal(size=3)
         th = random_theta(chain, rng)
         fd = jac.numerical_jacobian(lambda t, chain=chain, m=m, g=g, c=c: potential_energy(chain, t, m, g, c), th)
-        assert np.allclose(gravity_torques(chain, th, m, g, c), fd, atol=1e-6)
+        bound = fd_tol(lambda t, chain=chain, m=m, g=g, c=c: potential_energy(chain, t, m, g, c), th)   # FD bound
+        assert within(gravity_torques(chain, th, m, g, c), fd, bound)
 
 
 def check_gravity_against_modern_robotics():
@@ -190,7 +195,9 @@ def check_gravity_against_modern_robotics():
     for _ in range(3):
         q = random_theta(ur, rng)
         theirs = mr.GravityForces(q, [0, 0, -9.81], Mlist, Glist, ur.screw_axes)
-        assert np.allclose(theirs, gravity_torques(ur, q, m), atol=1e-9)
+        # sums of terms m_i g · (lever arm): rounding relative to their size, not to τ (close with that scale)
+        lever = max(1.0, float(np.abs(ur.link_poses(q)[:, :3, 3]).max()))
+        assert close(theirs, gravity_torques(ur, q, m), scale=9.81 * float(m.sum()) * lever)
 
 
 def check_manipulability_gradient():
@@ -199,7 +206,7 @@ def check_manipulability_gradient():
         th = random_theta(chain, rng)
         w = lambda t, chain=chain: jac.analysis.manipulability(jac.geometric_jacobian(chain, t)[3:])
         fd = jac.numerical_jacobian(w, th)
-        assert np.allclose(manipulability_gradient(chain, th, rows=[3, 4, 5]), fd, atol=1e-6)
+        assert within(manipulability_gradient(chain, th, rows=[3, 4, 5]), fd, fd_tol(w, th))   # FD bound
 
 
 CHECKS = {f.__name__: f for f in [
@@ -247,7 +254,7 @@ def test_the_public_exp_se3_mutant_is_wrong_and_the_kernel_untouched():
     rng = np.random.default_rng(0)
     X = rng.normal(size=6)
     assert np.abs(_wrong_public_exp_se3(X) - _PUBLIC_EXP(X)).max() > 1e-2
-    assert np.allclose(_wrong_public_exp_se3(X)[:3, :3], _PUBLIC_EXP(X)[:3, :3])
+    assert close(_wrong_public_exp_se3(X)[:3, :3], _PUBLIC_EXP(X)[:3, :3])
 
 
 # ---------------------------------------------------------------- the chapters' hidden checks

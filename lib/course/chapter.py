@@ -358,16 +358,22 @@ def fd_body_jacobian(chain: jac.SerialChain, theta: ArrayLike) -> NDArray[np.flo
     return _fd_twists(chain, theta, "body")
 
 
-def fd_jacobian_tol(chain: jac.SerialChain, theta: ArrayLike) -> float:
+def fd_jacobian_tol(chain: jac.SerialChain, theta: ArrayLike, link: int | None = None) -> float:
     """Bound on each entry's error of :func:`fd_space_jacobian` and :func:`fd_body_jacobian`.
 
     ``jacobians.testing.fd_tol`` bounds each entry of ``dT/dθ_i`` (truncation
     and rounding of the central difference). A twist entry of
     ``dT/dθ_i T⁻¹`` (or ``T⁻¹ dT/dθ_i``) is a sum over a column (row) of T⁻¹,
-    so its error is at most ``sum |T⁻¹|`` times that bound.
+    so its error is at most ``sum |T⁻¹|`` times that bound. With ``link=i``
+    (0-based), T is the pose of link frame i (``chain.link_poses``) instead
+    of the tool's.
     """
     th = np.asarray(theta, dtype=float)
-    return fd_tol(chain.fk, th) * float(np.abs(lie.inverse_transform(chain.fk(th))).sum())
+
+    def pose(t: NDArray[np.float64]) -> NDArray[np.float64]:
+        return chain.fk(t) if link is None else chain.link_poses(t)[link]
+
+    return fd_tol(pose, th) * float(np.abs(lie.inverse_transform(pose(th))).sum())
 
 
 def d_dt(f: Callable[[float], ArrayLike], t0: float = 0.0) -> NDArray[np.float64]:

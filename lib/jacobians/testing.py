@@ -9,7 +9,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -19,7 +19,8 @@ from .chain import SerialChain
 from .lie import _exp_se3, _exp_so3
 
 __all__ = ["random_rotation", "random_transform", "random_chain", "random_theta",
-           "EPS", "TOL", "close", "within", "fd_tol"]
+           "EPS", "TOL", "close", "within", "fd_tol", "fd2_tol", "root_tol", "ode_tol",
+           "pose_tol"]
 
 #: What the ``rng`` arguments accept: a generator, a seed, or None for a fresh one.
 RngLike: TypeAlias = "np.random.Generator | int | None"
@@ -196,3 +197,111 @@ def fd_tol(f: Callable[[NDArray[np.float64]], ArrayLike], x: ArrayLike, h: float
     truncation = h * h / 6.0 * M3
     rounding = ops * EPS * F / h + EPS * (xmax + h) / (2 * h) * M1 + (2 + ops) * EPS * M1
     return truncation + rounding
+
+
+def fd2_tol(f: Callable[[float], ArrayLike], t: float, h: float = 1e-4, scale: float = 1.0,
+            ops: float = 512.0) -> float:
+    """Bound on ``max |(f(t+h) - 2 f(t) + f(t-h)) / h² - f″(t)|``: truncation plus rounding.
+
+    Taylor's theorem (the odd terms cancel): the truncation is at most
+    ``h² / 12 · M4``, ``M4 = max |f⁗|`` near t. Each value of f is off by at
+    most ``δ = ops · EPS · F`` (``F = max(scale, max |f|)`` on the stencil, as
+    in :func:`fd_tol`), so the combination by ``4 δ / h²``; the closed form
+    it is compared with is accurate to ``ops · EPS · M2``. M4 comes from the
+    fourth central difference with the wider step ``H = 0.05``, taken twice
+    (as M3 in :func:`fd_tol`), M2 from the second difference itself.
+
+    >>> bound = fd2_tol(np.sin, 0.3, ops=4)
+    >>> within((np.sin(0.3 + 1e-4) - 2 * np.sin(0.3) + np.sin(0.3 - 1e-4)) / 1e-8, -np.sin(0.3), bound)
+    True
+    >>> round(bound / 1e-7, 1)                # 4 · 4 EPS / h²: the rounding dominates
+    3.6
+    """
+    t, h = float(t), float(h)
+    H = 0.05
+
+    def val(s: float) -> NDArray[np.float64]:
+        return np.asarray(f(s), dtype=float)
+
+    stencil = [val(t - h), val(t), val(t + h)]
+    F = max([float(scale)] + [float(np.max(np.abs(v), initial=0.0)) for v in stencil])
+    M2 = float(np.max(np.abs(stencil[2] - 2 * stencil[1] + stencil[0]), initial=0.0)) / h**2
+    d4 = (val(t + 2 * H) - 4 * val(t + H) + 6 * val(t) - 4 * val(t - H) + val(t - 2 * H)) / H**4
+    M4 = 2.0 * float(np.max(np.abs(d4), initial=0.0))
+    return h * h / 12.0 * M4 + 4.0 * ops * EPS * F / (h * h) + (2 + ops) * EPS * M2
+
+
+def root_tol(J: ArrayLike, residual: float, scale: float = 1.0, ops: float = 512.0) -> float:
+    """Bound on ``|x - x*|`` for an iterate x of a root finder stopped at ``|F(x)| <= residual``, F(x*) = 0.
+
+    ``J = DF(x*)`` (m×n, m >= n, full column rank, smallest singular value
+    σ). Taylor: ``F(x) = J (x - x*) + r``, ``|r| <= M2 |x - x*|² / 2``, so
+    ``σ |x - x*| <= |F(x)| + M2 |x - x*|² / 2``. Where Newton's method has
+    converged, the second-order term is below half the first
+    (``M2 |x - x*| <= σ``: quadratic convergence holds there), hence
+    ``|x - x*| <= 2 |F(x)| / σ``: the stopping residual times the condition
+    of the Jacobian at the solution, not an observed error. The residual
+    was computed, so the true one is larger by up to ``δ = ops · EPS · scale``
+    (the rounding of F's terms, as in :func:`fd_tol`); the closed form x* it
+    is compared with is off by ``δ / σ`` (the same conditioning). In all,
+    ``(2 residual + 3 δ) / σ``. A singular J gives ``inf``: there is no bound.
+
+    >>> round(root_tol(np.eye(2), 1e-9) / 1e-9, 3)
+    2.0
+    >>> root_tol([[1.0, 0.0], [0.0, 0.0]], 1e-9)
+    inf
+    """
+    sigma = float(np.linalg.svd(np.asarray(J, dtype=float), compute_uv=False)[-1])
+    delta = ops * EPS * float(scale)
+    return float("inf") if sigma <= 0.0 else (2.0 * float(residual) + 3.0 * delta) / sigma
+
+
+def ode_tol(sol: Any, rtol: float, atol: float, growth: float = 1.0) -> float:
+    """Bound on ``max |y_computed(t) - y(t)|`` for a ``scipy.integrate.solve_ivp`` result ``sol``.
+
+    The solver keeps each step's local error estimate under
+    ``atol + rtol |y|`` in the root mean square over the n components, so
+    each component's under ``sqrt(n) (atol + rtol max |y|)``; the dense
+    output (``sol.sol``) interpolates to the same order: twice that at an
+    interpolated time. The global error is the sum over the steps of the
+    local errors, each carried to t by the flow: at most
+    ``growth = max ||∂y(t)/∂y(s)||`` times that sum (1 for a contracting
+    flow; the caller derives it, e.g. ``max_t ||e^{At}||`` for a linear
+    error dynamics ``ė = A e``). The steps are counted from the dense
+    output's breakpoints (``sol.sol.ts``), else bounded by ``sol.nfev``
+    (each step takes at least one evaluation). The local error estimate is the
+    embedded pair's (asymptotically exact; the solution carried on is of
+    the higher order), which holds for the smooth right-hand sides used here.
+
+    >>> from scipy.integrate import solve_ivp
+    >>> sol = solve_ivp(lambda t, y: -y, (0, 2), [1.0], rtol=1e-8, atol=1e-10, dense_output=True)
+    >>> bound = ode_tol(sol, 1e-8, 1e-10)          # y' = -y contracts: growth 1
+    >>> t = np.linspace(0, 2, 9)
+    >>> within(sol.sol(t)[0], np.exp(-t), bound), within(sol.sol(t)[0], np.exp(-1.001 * t), bound)
+    (True, False)
+    """
+    y = np.asarray(sol.y, dtype=float)
+    dense = getattr(sol, "sol", None)
+    steps = len(dense.ts) - 1 if dense is not None else int(sol.nfev)
+    local = float(np.sqrt(y.shape[0])) * (float(atol) + float(rtol) * float(np.max(np.abs(y), initial=0.0)))
+    return 2.0 * float(growth) * steps * local
+
+
+def pose_tol(T_d: ArrayLike, eps_omega: float, eps_v: float) -> float:
+    """Bound on ``max |T - T_d|`` for a pose T whose body error twist ``log(T⁻¹ T_d)^∨ = (ω, v)`` has
+    ``|ω| <= eps_omega``, ``|v| <= eps_v`` (the stopping test of ``ik.ik``).
+
+    ``T = T_d e^{-[V]}``, so ``T - T_d = T_d (e^{-[V]} - I)``. An entry is a row
+    of T_d (norm at most ``sqrt(1 + |p_d|²)``) times a column of
+    ``e^{-[V]} - I`` (norm at most ``‖[V]‖ e^{‖[V]‖}``, with
+    ``‖[V]‖₂ <= |ω| + |v|``). The forward kinematics that gives T adds its
+    rounding, ``TOL`` relative to ``max(1, max |T_d|)`` (:func:`close`).
+
+    >>> T_d = np.eye(4); T_d[:3, 3] = [3.0, 0.0, 4.0]
+    >>> round(pose_tol(T_d, 1e-9, 1e-9) / 1e-9, 2)     # sqrt(26) · 2e-9 + 4e-12
+    10.2
+    """
+    T_d = np.asarray(T_d, dtype=float)
+    size = float(eps_omega) + float(eps_v)
+    row = float(np.sqrt(1.0 + np.sum(T_d[..., :3, 3] ** 2, axis=-1).max()))
+    return row * size * float(np.exp(size)) + TOL * max(1.0, float(np.max(np.abs(T_d))))
