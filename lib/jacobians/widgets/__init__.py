@@ -1,6 +1,6 @@
 r"""The live views of the course: one ES module per view, the same code in the book, the decks and JupyterLab.
 
-Each view is a module ``lib/jacobians/widgets/static/live/<view>.js`` (anywidget's
+Each view is a module ``lib/jacobians/widgets/live/<view>.js`` (anywidget's
 ``render({model, el})``) that computes in the browser, with no kernel:
 
 * ``planar_explorer`` (chapters 2 and 5): a planar arm, its Jacobian in the frame

@@ -20,11 +20,11 @@
 // ([x0, x1, y0, y1] m), box_right, scale, theta_dot, vel_scale, axis_len, q. In a deck,
 // course_decks.js presses Play when the slide is shown and Pause when it is left.
 
-import { evaluate, makeChain } from "./kinematics.js";
+import { evaluate, makeChain } from "../kinematics.js";
 import {
   BASE_CSS, PALETTE, columnColor, fixed, graphic, html, injectStyle, ink, legendItem, makeArrow, setArrow, sub,
   suppressShortcuts, svg, text as setText,
-} from "./ui.js";
+} from "../ui.js";
 
 export const STORIES = ["fixed_axis", "body_columns", "three_velocities"];
 // the palette's colours as the page's mode draws them (palette.js)

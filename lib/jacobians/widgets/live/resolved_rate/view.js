@@ -13,14 +13,14 @@
 // rate_limit (rad/s, the plot's range); writes path, drawn, method, damping
 // and step back and redraws on their "change:" events.
 
-import { dlsRates, evaluate, makeChain, resolvedRate } from "./kinematics.js";
+import { dlsRates, evaluate, makeChain, resolvedRate } from "../kinematics.js";
 import {
   BASE_CSS, PALETTE, announcer, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub,
   suppressShortcuts, svg,
   toWorld,
-} from "./ui.js";
+} from "../ui.js";
 
-/** @typedef {import("./ui.js").Point2} Point2 */
+/** @typedef {import("../ui.js").Point2} Point2 */
 
 const RUN_HELP = "Keys in the view: P play/pause, → or . one step on, ← or , one step back.";
 const PEN_HELP = "Drawing: drag on the picture, or with the picture focused move the pen (+) with the arrow keys "

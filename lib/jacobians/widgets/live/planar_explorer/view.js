@@ -16,11 +16,11 @@
 // model.set + model.save_changes and redraws on "change:theta" / "change:frame".
 // Returns a cleanup function. Never throws at a singularity, never shows NaN.
 
-import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "./kinematics.js";
+import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "../kinematics.js";
 import {
   BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, announcer, capture, ink, columnColor, fixed, html, injectStyle, legendItem,
   makeArrow, planarCanvas, setArrow, setEllipse, sub, holdTouch, suppressShortcuts, svg, text as setText, toWorld,
-} from "./ui.js";
+} from "../ui.js";
 
 export { fixed };
 export const FRAMES = ["space", "body", "geometric", "analytic"];

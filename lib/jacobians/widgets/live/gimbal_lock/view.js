@@ -18,15 +18,15 @@
 
 import {
   analyticJacobian, coordinatesFromRotation, evaluate, makeChain, rateToAngularVelocity, singularValues,
-} from "./kinematics.js";
+} from "../kinematics.js";
 import {
   BASE_CSS, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, ink, matrixTable, put, sub, suppressShortcuts, svg,
   text,
-} from "./ui.js";
-import { CSS as CSS3D, FONT, createView3D, frameItems } from "./view3d.js";
+} from "../ui.js";
+import { CSS as CSS3D, FONT, createView3D, frameItems } from "../view3d.js";
 
-/** @typedef {import("./ui.js").SubText} SubText */
-/** @typedef {import("./ui.js").MatrixTable} MatrixTable */
+/** @typedef {import("../ui.js").SubText} SubText */
+/** @typedef {import("../ui.js").MatrixTable} MatrixTable */
 const REPS = { zyx: "ZYX (yaw, pitch, roll)", zyz: "ZYZ Euler" };
 const DET = { zyx: "−cos φ", zyz: "−sin φ" };
 const DEFAULT_PALETTE = { analytic: PALETTE.analytic, geometric: PALETTE.geometric, link: PALETTE.link,
