@@ -38,7 +38,7 @@ ALL_FRAMES_JS = """(el) => {
 
 STATE_AT_JS = """async ([url, model, times]) => {
   const St = await import(url);
-  const K = await import(new URL("kinematics.js", url).href);
+  const K = await import(new URL("../kinematics.js", url).href);
   const chain = K.makeChain(model.S, model.M, model.Q);
   return times.map((t) => St.storyState(chain, model, t));
 }"""
