@@ -20,10 +20,6 @@ from tools import build_slides
 
 from jacobians.widgets.live import VIEWS, LiveView, ViewSpec, live_dir, module_source
 
-#: an option text for each option some view takes, valid for every view that takes it
-SAMPLE = {"robot": None, "theta": None, "frame": "body", "sweep": "0", "path": "circle", "method": "dls",
-          "damping": "0.05", "column": "2", "rep": "zyz", "story": "body_columns"}
-
 
 def test_the_registry_is_the_folders():
     folders = sorted(p.parent.name for p in live_dir().glob("*/__init__.py") if p.parent.name != "__pycache__")
@@ -48,7 +44,7 @@ def test_a_views_folder_and_spec(name):
     # the directive: the spec's model with no options, and with every option it takes
     model = live_views.model_for(name, {})
     assert model == spec.model() and json.loads(json.dumps(model, allow_nan=False)) == model
-    options = {k: SAMPLE[k] for k in spec.options if SAMPLE[k] is not None}
+    options = dict(spec.example)  # an example text for every option (ViewSpec checks there is one)
     assert live_views.model_for(name, options) == spec.model(**{k: spec.options[k](v) for k, v in options.items()})
     with pytest.raises(ValueError, match=f"Expected options .* for {name}"):
         live_views.model_for(name, {"no_such_option": "1"})
@@ -72,7 +68,10 @@ def test_a_spec_names_its_own_folder():
     spec = VIEWS["story"]
     with pytest.raises(ValueError, match="in a folder of that name"):
         ViewSpec(name="other", model=spec.model, options=spec.options, widget=spec.widget, probe=spec.probe,
+                 example=spec.example, folder=spec.folder)
+    with pytest.raises(ValueError, match="an example text for each option"):
+        ViewSpec(name="story", model=spec.model, options=spec.options, widget=spec.widget, probe=spec.probe,
                  folder=spec.folder)
     with pytest.raises(ValueError, match="letters, digits and _"):
         ViewSpec(name="../story", model=spec.model, options=spec.options, widget=spec.widget, probe=spec.probe,
-                 folder=spec.folder)
+                 example=spec.example, folder=spec.folder)

@@ -76,7 +76,8 @@ class ViewSpec:
     ``model``'s keyword argument; ``widget`` is the :class:`LiveView` subclass whose properties give
     the library's numbers of what the view shows (the library check the browser tests compare with);
     ``probe`` is a slider of the view (a CSS selector) and a value for it: the deck test moves it and
-    compares the numbers shown with ``widget``'s.
+    compares the numbers shown with ``widget``'s; ``example`` gives every option a text the directive
+    accepts (the registry's test builds the model from it).
     """
 
     name: str
@@ -84,6 +85,7 @@ class ViewSpec:
     options: Mapping[str, Callable[[str], Any]]
     widget: type
     probe: tuple[str, float]
+    example: Mapping[str, str] = field(default_factory=dict)
     folder: Path = field(default=HERE)
 
     def __post_init__(self) -> None:
@@ -91,6 +93,9 @@ class ViewSpec:
             raise ValueError(f"Expected a view name of letters, digits and _, got {self.name!r}")
         if self.folder.name != self.name:
             raise ValueError(f"Expected the spec of {self.name!r} in a folder of that name, got {self.folder}")
+        if set(self.example) != set(self.options):
+            raise ValueError(f"Expected an example text for each option of {self.name} ({', '.join(self.options)}), "
+                             f"got {sorted(self.example)}")
 
     @property
     def module(self) -> Path:

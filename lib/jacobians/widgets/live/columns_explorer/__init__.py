@@ -131,4 +131,6 @@ class ColumnsExplorer(LiveView):
 
 SPEC = ViewSpec(name="columns_explorer", model=columns_model, widget=ColumnsExplorer,
                 options={"robot": text, "theta": angles, "column": whole},
-                probe=("input.jl-theta:nth-of-type(2)", -0.85), folder=Path(__file__).resolve().parent)
+                probe=("input.jl-theta:nth-of-type(2)", -0.85),
+                example={"robot": "spatial_5r", "theta": "0.1 0.2 0.3 0.4 0.5", "column": "2"},
+                folder=Path(__file__).resolve().parent)

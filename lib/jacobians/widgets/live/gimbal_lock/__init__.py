@@ -122,4 +122,6 @@ class GimbalLock(LiveView):
 
 SPEC = ViewSpec(name="gimbal_lock", model=gimbal_model, widget=GimbalLock,
                 options={"robot": text, "theta": angles, "rep": text},
-                probe=("input.jl-theta:nth-of-type(2)", 89), folder=Path(__file__).resolve().parent)
+                probe=("input.jl-theta:nth-of-type(2)", 89),
+                example={"robot": "zyx_wrist", "theta": "0.1 1.5 -0.2", "rep": "zyz"},
+                folder=Path(__file__).resolve().parent)

@@ -77,4 +77,6 @@ class PlanarExplorer(LiveView):
 
 SPEC = ViewSpec(name="planar_explorer", model=planar_model, widget=PlanarExplorer,
                 options={"robot": text, "theta": angles, "frame": text, "sweep": whole},
-                probe=("input.jl-theta", 0.35), folder=Path(__file__).resolve().parent)
+                probe=("input.jl-theta", 0.35),
+                example={"robot": "planar_3r", "theta": "0.1 0.2 0.3", "frame": "body", "sweep": "0"},
+                folder=Path(__file__).resolve().parent)

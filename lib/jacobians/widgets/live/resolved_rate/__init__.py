@@ -141,4 +141,6 @@ class ResolvedRate(LiveView):
 
 SPEC = ViewSpec(name="resolved_rate", model=resolved_rate_model, widget=ResolvedRate,
                 options={"robot": text, "path": text, "method": text, "damping": number},
-                probe=("input.jr-step", 80), folder=Path(__file__).resolve().parent)
+                probe=("input.jr-step", 80),
+                example={"robot": "planar_3r", "path": "circle", "method": "dls", "damping": "0.05"},
+                folder=Path(__file__).resolve().parent)

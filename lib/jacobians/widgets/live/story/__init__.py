@@ -115,4 +115,6 @@ class StoryView(LiveView):
 
 
 SPEC = ViewSpec(name="story", model=story_model, widget=StoryView, options={"story": text},
-                probe=("input.js-time", 10), folder=Path(__file__).resolve().parent)
+                probe=("input.js-time", 10),
+                example={"story": "body_columns"},
+                folder=Path(__file__).resolve().parent)
