@@ -40,6 +40,7 @@ from typing import Any
 from ._base import (
     LIMIT,
     ROBOTS,
+    VIEWS,
     LiveView,
     ViewSpec,
     angles,
@@ -73,8 +74,7 @@ def _discover() -> dict[str, ViewSpec]:
     return found
 
 
-#: view name -> its spec: the one registry of the live views
-VIEWS: dict[str, ViewSpec] = _discover()
+VIEWS.update(_discover())  # the registry (defined in _base, where LiveView reads it)
 #: view name -> function of keyword options returning the view's model
 MODELS: dict[str, Callable[..., dict[str, Any]]] = {name: spec.model for name, spec in VIEWS.items()}
 

@@ -116,6 +116,10 @@ class ViewSpec:
         return self.model(**{k: self.options[k](v) for k, v in options.items()})
 
 
+#: view name -> its spec: the one registry of the live views (the package fills it from its folders)
+VIEWS: dict[str, ViewSpec] = {}
+
+
 # ---------------------------------------------------------------- the modules' text
 def live_dir() -> Path:
     """The folder of the view modules: ``$JACOBIANS_LIVE_DIR``, else this package's folder.
@@ -221,8 +225,6 @@ class LiveView(_base()):  # type: ignore[misc]
         import traitlets
 
         if model is None:
-            from . import VIEWS
-
             if view not in VIEWS:
                 raise ValueError(f"Expected a model for view {view!r} (no builder in MODELS: {sorted(VIEWS)})")
             model = VIEWS[view].model(**options)
