@@ -6,7 +6,7 @@ import globals from "globals";
 export default [
   js.configs.recommended,
   {
-    files: ["lib/jacobians/widgets/static/live/**/*.js", "_ext/exercise_checks/**/*.js"],
+    files: ["lib/jacobians/widgets/live/**/*.js", "_ext/exercise_checks/**/*.js"],
     languageOptions: { ecmaVersion: 2022, sourceType: "module", globals: { ...globals.browser } },
     rules: {
       "no-unused-vars": ["error", { argsIgnorePattern: "^_" }],

@@ -391,6 +391,8 @@ def _equations_without_punctuation(node: nodes.Element) -> None:
 _LIVE_MODULE = re.compile(r'<script type="module">.*?</script>', re.S)
 _LIVE_NOSCRIPT = re.compile(r"<noscript>.*?</noscript>", re.S)
 LIVE_BUNDLE = "live/jac-live.js"
+#: the live views' own rules on a slide (each view's ``deck.css``), bundled beside it
+LIVE_STYLE = "live/jac-live.css"
 
 
 def live_fallback(view: str) -> str:
@@ -804,7 +806,7 @@ def configure(app: Sphinx, config: Any) -> None:
     config.revealjs_html_theme = "revealjs-basic"
     config.revealjs_style_theme = "white"
     config.revealjs_static_path = [str(STATIC)]
-    config.revealjs_css_files = ["course_decks.css", "plugins/chalkboard/style.css"]
+    config.revealjs_css_files = ["course_decks.css", LIVE_STYLE, "plugins/chalkboard/style.css"]
     config.revealjs_js_files = [("course_decks.js", {}), (LIVE_BUNDLE, {})]
     config.revealjs_script_conf = {
         "width": WIDTH, "height": HEIGHT, "margin": 0.04, "minScale": 0.2, "maxScale": 2.0,

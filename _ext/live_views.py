@@ -8,68 +8,42 @@ A MyST page writes::
     :frame: space
     ```
 
-or ``{live-view} resolved_rate`` with ``:path:``, ``:method:``, ``:damping:``,
-and, for any view, ``:caption:`` (MyST inline text) and ``:name:`` (a label):
-the view then sits in a numbered figure (``<figure>`` with "Fig. 2.4" and the
+with the options of that view's spec (``jacobians.widgets.live.VIEWS[view].options``: each option's text
+is parsed into the view's model builder's keyword), and, for any view, ``:caption:`` (MyST inline text)
+and ``:name:`` (a label): the view then sits in a numbered figure (``<figure>`` with "Fig. 2.4" and the
 caption, which is also the figure's accessible name) that the text refers to
 with ``{numref}`label```. A live view without a caption is an error,
 and gets a host ``<div class="jac-live" data-view=... data-model='JSON'>``
-holding the model computed here by the library at build time
-(``jacobians.widgets.live.MODELS[view]``: screw axes, home, joint axis points,
-the initial state), plus one ``<script type="module">`` that imports
-``_static/live/host.js`` and ``_static/live/<view>.js`` (``lib/jacobians/widgets/static/live/`` is
-copied there by ``html_static_path``) relative to the page and renders the
-view. Nothing loads from another host. A new view registers its model
-builder in ``MODELS`` and its options in ``OPTIONS``; the 3-D views
-(``columns_explorer``, ``gimbal_lock``) take theirs from ``jacobians.widgets.live_spatial``
-(``SPATIAL_MODELS``) through ``live_views_spatial``, which reads their option texts.
+holding the model computed here by the library at build time (the spec's ``model``: screw axes, home,
+joint axis points, the initial state), plus one ``<script type="module">`` that imports
+``_static/live/host.js`` and ``_static/live/<view>/view.js`` relative to the page and renders the
+view. The package's tree of modules (``jacobians/widgets/live/``, without its Python) is copied to
+``_static/live/`` when the build ends. Nothing loads from another host. A new view is a new folder of
+that package; nothing here changes.
 """
 
 from __future__ import annotations
 
 import html
 import json
+import shutil
+from pathlib import Path
 from typing import Any
 
 from docutils import nodes
 from docutils.parsers.rst import directives
-from live_views_spatial import SPATIAL_VIEWS, spatial_model  # the 3-D views (chapters 4, 6), models from the library
 from sphinx.application import Sphinx
 from sphinx.util.docutils import SphinxDirective
 
-from jacobians.widgets.live import LIMIT, MODELS, ROBOTS, planar_model, resolved_rate_model
+from jacobians.widgets.live import LIMIT, ROBOTS, VIEWS, angles, live_dir, planar_model, resolved_rate_model
 
-__all__ = ["VIEWS", "ROBOTS", "LIMIT", "planar_model", "resolved_rate_model", "host_html", "LiveView", "setup"]
+__all__ = ["VIEWS", "ROBOTS", "LIMIT", "planar_model", "resolved_rate_model", "host_html", "model_for", "LiveView",
+           "setup"]
 
-VIEWS = (*MODELS, *SPATIAL_VIEWS)
 LIVE_DIR = "_static/live"
-
-
-def _angles(text: str) -> list[float]:
-    try:
-        return [float(t) for t in text.replace(",", " ").split()]
-    except ValueError as exc:
-        raise ValueError(f"Expected :theta: as angles in rad separated by spaces, got {text!r}") from exc
-
-
-def _int(text: str) -> int:
-    try:
-        return int(text)
-    except ValueError as exc:
-        raise ValueError(f"Expected a whole number, got {text!r}") from exc
-
-
-def _float(text: str) -> float:
-    try:
-        return float(text)
-    except ValueError as exc:
-        raise ValueError(f"Expected a number, got {text!r}") from exc
-
-
-#: Directive option -> how its text becomes the model builder's keyword argument.
-OPTIONS: dict[str, Any] = {"robot": str, "theta": _angles, "frame": str, "sweep": _int, "path": str,
-                           "method": str, "damping": _float, "column": str, "rep": str,
-                           "story": str}
+_angles = angles  # the :theta: parser (tests call it by this name)
+#: every option some view takes (a view rejects the others: ViewSpec.model_from_options)
+OPTIONS = sorted({k for spec in VIEWS.values() for k in spec.options})
 
 
 def host_html(view: str, model: dict[str, Any], depth: int, uid: str) -> str:
@@ -82,7 +56,7 @@ def host_html(view: str, model: dict[str, Any], depth: int, uid: str) -> str:
         f'<div class="jac-live" id="{uid}" data-view="{view}" data-model="{data}">'
         f"<noscript>This live figure needs JavaScript.</noscript></div>\n"
         f'<script type="module">import {{ mount }} from "{base}/host.js";\n'
-        f'import view from "{base}/{view}.js";\n'
+        f'import view from "{base}/{view}/view.js";\n'
         f'mount(document.getElementById("{uid}"), view);</script>'
     )
 
@@ -91,17 +65,22 @@ def model_for(view: str, options: dict[str, str]) -> dict[str, Any]:
     """The model of ``view`` from the directive's option texts (ValueError on a bad one)."""
     if view not in VIEWS:
         raise ValueError(f"Expected a live view one of {', '.join(VIEWS)}, got {view!r}")
-    if view in SPATIAL_VIEWS:  # their models read the option texts themselves (_ext/live_views_spatial.py)
-        return spatial_model(view, options)
-    kwargs = {k: OPTIONS[k](v) for k, v in options.items()}
-    try:
-        return MODELS[view](**kwargs)
-    except TypeError as exc:
-        raise ValueError(f"options {sorted(options)} do not all apply to {view}: {exc}") from exc
+    return VIEWS[view].model_from_options(options)
+
+
+def copy_modules(app: Sphinx, exception: Exception | None) -> None:
+    """The views' ES modules (``*.js`` of ``jacobians/widgets/live/``, no Python) into the HTML's ``_static/live``."""
+    if exception is not None or app.builder.format != "html" or app.builder.name == "revealjs":
+        return
+    src, dest = live_dir(), Path(app.outdir) / LIVE_DIR
+    for module in sorted(src.rglob("*.js")):
+        target = dest / module.relative_to(src)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(module, target)
 
 
 class LiveView(SphinxDirective):
-    """``{live-view} <view>`` with the options of ``OPTIONS`` that its model builder takes."""
+    """``{live-view} <view>`` with the options of its spec (``OPTIONS`` is every view's)."""
 
     required_arguments = 1
     option_spec = {**{k: directives.unchanged for k in OPTIONS},
@@ -147,4 +126,5 @@ def drop_captions_on_slides(app: Sphinx, doctree: nodes.document, docname: str) 
 def setup(app: Sphinx) -> dict[str, Any]:
     app.add_directive("live-view", LiveView)
     app.connect("doctree-resolved", drop_captions_on_slides, priority=400)
+    app.connect("build-finished", copy_modules)
     return {"version": "1.1", "parallel_read_safe": True, "parallel_write_safe": True}

@@ -198,20 +198,18 @@ def _split(body: str) -> tuple[dict[str, str], str]:
 
 
 def live_view_code(view: str, options: dict[str, str]) -> str:
-    """The notebook code that shows a ``{live-view}`` as the same view in a Jupyter widget."""
-    def floats(text: str) -> list[float]:
-        return [float(t) for t in text.split()]
+    """The notebook code that shows a ``{live-view}`` as the same view in a Jupyter widget (its spec's)."""
+    from jacobians.widgets.live import VIEWS
 
-    kw: dict[str, object] = {}
-    for key, text in options.items():
-        kw[key] = (floats(text) if key == "theta" else int(text) if key in ("sweep", "column")
-                   else float(text) if key == "damping" else text)
-    args = ", ".join(f"{k}={v!r}" for k, v in kw.items())
-    if view == "columns_explorer":
-        return f"from jacobians.widgets.live_spatial import ColumnsExplorer\nColumnsExplorer({args})"
-    if view == "gimbal_lock":
-        return f"from jacobians.widgets.live_spatial import GimbalLock\nGimbalLock({args})"
-    return f"from jacobians.widgets.live import LiveView\nLiveView({view!r}{', ' + args if args else ''})"
+    if view not in VIEWS:
+        raise ValueError(f"Expected a live view one of {', '.join(VIEWS)}, got {view!r}")
+    spec = VIEWS[view]
+    unknown = sorted(set(options) - set(spec.options))
+    if unknown:
+        raise ValueError(f"Expected options {', '.join(spec.options)} for {view}, got {unknown}")
+    args = ", ".join(f"{k}={spec.options[k](text)!r}" for k, text in options.items())
+    widget = spec.widget
+    return f"from {widget.__module__} import {widget.__name__}\n{widget.__name__}({args})"
 
 
 def plain_markdown(source: str) -> tuple[str, list[tuple[str, str]]]:
@@ -258,9 +256,11 @@ def plain_markdown(source: str) -> tuple[str, list[tuple[str, str]]]:
     return out.strip("\n"), views
 
 
-#: the widget class that shows each live view in a notebook
-VIEW_CLASSES = {"planar_explorer": "PlanarExplorer", "resolved_rate": "ResolvedRate",
-                "columns_explorer": "ColumnsExplorer", "gimbal_lock": "GimbalLock", "story": "LiveView"}
+def view_class(view: str) -> str:
+    """The name of the widget class that shows a live view in a notebook (its spec's ``widget``)."""
+    from jacobians.widgets.live import VIEWS
+
+    return VIEWS[view].widget.__name__ if view in VIEWS else "LiveView"
 
 
 def displayed_widgets(nb: NotebookNode) -> set[str]:
@@ -291,7 +291,7 @@ def reader_notebook(path: Path, course: str | None) -> NotebookNode:
                 cell.source = text
                 cells.append(cell)
             cells.extend(nbformat.v4.new_code_cell(code) for view, code in views
-                         if VIEW_CLASSES.get(view, "LiveView") not in shown - {"LiveView"})
+                         if view_class(view) not in shown - {"LiveView"})
         else:
             cells.append(cell)
     nb.cells = [install_cell(imported_modules(nb), course), *cells]

@@ -1,7 +1,7 @@
 """The live views' colours on their own ground, light and dark: lines >= 3:1, text >= 4.5:1 (WCAG 1.4.11, 1.4.3).
 
 The views draw the library's Okabe–Ito palette through one table,
-``lib/jacobians/widgets/static/live/palette.js`` (``SWATCHES``): each colour
+``lib/jacobians/widgets/live/palette.js`` (``SWATCHES``): each colour
 has a shade for a line and one for text, on the light ground and on the dark
 one. The view paints its ground itself (``THEME_CSS``), so the ratios below are
 the ratios a reader sees in either mode. The browser side (the computed colours
@@ -20,7 +20,7 @@ import pytest
 from jacobians.plotting.style import COLUMN_COLORS, PALETTE
 from jacobians.widgets import live
 
-LIVE = Path(__file__).resolve().parents[1] / "lib" / "jacobians" / "widgets" / "static" / "live"
+LIVE = Path(__file__).resolve().parents[1] / "lib" / "jacobians" / "widgets" / "live"
 SOURCE = (LIVE / "palette.js").read_text(encoding="utf-8")
 HEX = r'"(#[0-9A-Fa-f]{6})"'
 

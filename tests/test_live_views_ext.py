@@ -52,12 +52,12 @@ def test_angles_option():
 def test_host_html_paths_follow_the_page_depth(depth, prefix):
     model = live_views.planar_model("planar_2r", [0.0, 1.2])
     out = live_views.host_html("planar_explorer", model, depth, "jac-live-x-0")
-    assert f'from "{prefix}/host.js"' in out and f'from "{prefix}/planar_explorer.js"' in out
+    assert f'from "{prefix}/host.js"' in out and f'from "{prefix}/planar_explorer/view.js"' in out
     assert 'id="jac-live-x-0"' in out and 'getElementById("jac-live-x-0")' in out
     data = re.search(r'data-model="([^"]*)"', out)
     assert data is not None and json.loads(html.unescape(data.group(1))) == model
     assert "http" not in out  # nothing from another host
-    with pytest.raises(ValueError, match=r"Expected a live view one of planar_explorer, .*got 'gimbal'"):
+    with pytest.raises(ValueError, match=r"Expected a live view one of columns_explorer, .*planar_explorer, .*got 'gimbal'"):
         live_views.host_html("gimbal", model, 0, "x")
 
 
@@ -92,7 +92,7 @@ def test_module_source_inlines_relative_imports_recursively():
     from jacobians.widgets.live import module_source
 
     src = module_source("planar_explorer")
-    assert not re.search(r"""from\s*["']\./""", src)  # a blob: URL module cannot resolve ./kinematics.js
+    assert not re.search(r"""from\s*["']\.\.?/""", src)  # a blob: URL module cannot resolve ../kinematics.js
     urls = re.findall(r'from "data:text/javascript;base64,([A-Za-z0-9+/=]+)"', src)
     inner = [base64.b64decode(u).decode("utf-8") for u in urls]
     kin = next(t for t in inner if "export function makeChain" in t)
@@ -120,7 +120,7 @@ def test_live_view_widget_state_and_library_values():
     with pytest.raises(TypeError, match="either a model or options"):
         LiveView("planar_explorer", live_views.planar_model("planar_2r"), robot="planar_2r")
     with pytest.raises(ValueError, match="no builder in MODELS"):
-        LiveView("columns_explorer")
+        LiveView("columns_explorer_nope")
 
 
 def test_every_live_view_is_a_numbered_figure_the_text_refers_to():

@@ -1,4 +1,4 @@
-"""_ext/live_views_spatial.py: the models of the 3-D live views, and their errors on bad options."""
+"""The models of the 3-D live views (jacobians.widgets.live_spatial), and the directive's errors on bad options."""
 
 from __future__ import annotations
 
@@ -8,14 +8,16 @@ import math
 import re
 
 import live_views
-import live_views_spatial as spatial
 import numpy as np
 import pytest
 
 import jacobians as jac
 from jacobians.plotting.style import PALETTE
 from jacobians.testing import random_chain
+from jacobians.widgets import live_spatial as spatial
 from jacobians.widgets.live_spatial import VIEW_MARGIN, reach_bounds
+
+SPATIAL_VIEWS = ("columns_explorer", "gimbal_lock")
 
 
 def test_columns_model_is_the_library_chain():
@@ -76,32 +78,31 @@ def test_gimbal_model_holds_both_wrists():
     (lambda: spatial.gimbal_model("puma"), "Expected robot one of zyz_wrist, zyx_wrist, got 'puma'"),
     (lambda: spatial.gimbal_model(rep="exp"), "Expected rep one of zyx, zyz, got 'exp'"),
     (lambda: spatial.gimbal_model(theta=[0.0, float("nan"), 0.0]), "Expected theta as finite angles"),
-    (lambda: spatial.spatial_model("columns_explorer", {"column": "three"}), "Expected :column: as an integer"),
-    (lambda: spatial.spatial_model("columns_explorer", {"rep": "zyx"}), "Expected options robot, theta, column"),
-    (lambda: spatial.spatial_model("gimbal_lock", {"column": "1"}), "Expected options robot, theta, rep"),
-    (lambda: spatial.spatial_model("planar", {}), "Expected a 3-D live view one of columns_explorer, gimbal_lock"),
+    (lambda: live_views.model_for("columns_explorer", {"column": "three"}), "Expected a whole number, got 'three'"),
+    (lambda: live_views.model_for("columns_explorer", {"rep": "zyx"}), "Expected options robot, theta, column"),
+    (lambda: live_views.model_for("gimbal_lock", {"column": "1"}), "Expected options robot, theta, rep"),
+    (lambda: live_views.model_for("planar", {}), "Expected a live view one of columns_explorer, gimbal_lock"),
 ])
 def test_bad_options_say_what_was_expected(call, message):
     with pytest.raises(ValueError, match=re.escape(message)):
         call()
 
 
-@pytest.mark.parametrize("view", spatial.SPATIAL_VIEWS)
+@pytest.mark.parametrize("view", SPATIAL_VIEWS)
 def test_host_html_loads_the_view_module(view):
-    model = spatial.spatial_model(view, {"theta": "0.1 0.2 0.3" if view == "gimbal_lock" else "0 0 0 0 0"})
+    model = live_views.model_for(view, {"theta": "0.1 0.2 0.3" if view == "gimbal_lock" else "0 0 0 0 0"})
     out = live_views.host_html(view, model, 1, "jac-live-x-0")
-    assert f'from "../_static/live/{view}.js"' in out and "http" not in out
+    assert f'from "../_static/live/{view}/view.js"' in out and "http" not in out
     data = re.search(r'data-model="([^"]*)"', out)
     assert data is not None and json.loads(html.unescape(data.group(1))) == model
 
 
 def test_the_directive_takes_the_models_from_the_library():
-    from jacobians.widgets import live_spatial
+    from jacobians.widgets.live import VIEWS
 
-    assert spatial.columns_model is live_spatial.columns_model and spatial.gimbal_model is live_spatial.gimbal_model
-    assert spatial.SPATIAL_MODELS is live_spatial.SPATIAL_MODELS and set(spatial.SPATIAL_VIEWS) == set(live_spatial.SPATIAL_MODELS)
-    assert spatial.spatial_model("columns_explorer", {"theta": "0.1 0.2 0.3 0.4 0.5", "column": "2"}) == \
-        live_spatial.columns_model("spatial_5r", [0.1, 0.2, 0.3, 0.4, 0.5], 2)
+    assert VIEWS["columns_explorer"].model is spatial.columns_model and VIEWS["gimbal_lock"].model is spatial.gimbal_model
+    assert live_views.model_for("columns_explorer", {"theta": "0.1 0.2 0.3 0.4 0.5", "column": "2"}) == \
+        spatial.columns_model("spatial_5r", [0.1, 0.2, 0.3, 0.4, 0.5], 2)
 
 
 def test_columns_widget_state_and_library_values():

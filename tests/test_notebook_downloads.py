@@ -25,7 +25,7 @@ CHAPTERS = sorted((ROOT / "chapters").glob("[0-9][0-9]_*.md"))
 EXERCISES = sorted((ROOT / "exercises").glob("[0-9][0-9]_*.md"))
 REPO = "https://github.com/example/manipulator-jacobians"
 MYST_LEFT = re.compile(r"(`{3,}|:{3,})\{[\w:-]+\}|\{(doc|ref|numref|prf:ref)\}`|^\([\w:-]+\)=", re.M)
-WIDGET_CELL = re.compile(r"^(?:\w+\s*=\s*)?(LiveView|PlanarExplorer|ResolvedRate|ColumnsExplorer|GimbalLock)\(", re.M)
+WIDGET_CELL = re.compile(r"^(?:\w+\s*=\s*)?(LiveView|PlanarExplorer|ResolvedRate|ColumnsExplorer|GimbalLock|StoryView)\(", re.M)
 
 
 @pytest.mark.parametrize("path", CHAPTERS, ids=lambda p: p.stem)
@@ -66,8 +66,8 @@ def test_plain_markdown_of_theorems_roles_and_slides():
     assert "> **Theorem (Columns).** Text $x$." in text
     assert "Theorem *columns* (chapter 2)" in text and "the chapter *body jacobian*" in text and "words" in text
     assert "slide words" not in text and "(lab)=" not in text
-    assert views == [("planar_explorer", "from jacobians.widgets.live import LiveView\n"
-                      "LiveView('planar_explorer', robot='planar_2r', theta=[0.1, 0.2])")]
+    assert views == [("planar_explorer", "from jacobians.widgets.live.planar_explorer import PlanarExplorer\n"
+                      "PlanarExplorer(robot='planar_2r', theta=[0.1, 0.2])")]
     assert live_view_code("gimbal_lock", {"robot": "zyz_wrist", "rep": "zyx"}).endswith(
         "GimbalLock(robot='zyz_wrist', rep='zyx')")
 

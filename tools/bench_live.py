@@ -2,7 +2,7 @@
 
 One update of a planar 3R arm: forward kinematics, the geometric Jacobian (with
 the other two in the same sweep) and the velocity and force ellipse axes of its
-x, y rows, by ``lib/jacobians/widgets/static/live/kinematics.js``. Timed over 2000 random
+x, y rows, by ``lib/jacobians/widgets/live/kinematics.js``. Timed over 2000 random
 configurations (seeded), each one alone with ``performance.now()`` (the page
 is cross-origin isolated, so the clock is fine-grained), in two forms:
 
@@ -19,7 +19,7 @@ the resolved-rate view on a step (a Play frame) and on a damping change (the
 whole 160-step run again), the story views of chapters 1, 3 and 7 on a time
 slider input (one frame of the replay).
 
-Also prints the size of every module under ``lib/jacobians/widgets/static/live/`` and the modules
+Also prints the size of every module under ``lib/jacobians/widgets/live/`` and the modules
 each view's page loads (its import graph). Budgets: one update,
 compute plus redraw with forced layout, median <= 4 ms and worst <= 16 ms;
 live modules <= 150 KB per page.
@@ -44,7 +44,7 @@ from typing import Any
 import jacobians as jac
 
 ROOT = Path(__file__).resolve().parent.parent
-LIVE = ROOT / "lib" / "jacobians" / "widgets" / "static" / "live"
+LIVE = ROOT / "lib" / "jacobians" / "widgets" / "live"
 HARNESS = "tests/browser/live_harness.html"
 VIEW_HARNESS = "tests/browser/live_view_harness.html"
 CHROMIUM = "/usr/bin/chromium"
@@ -139,20 +139,21 @@ VIEW_JS = """({view, model, n, kind, seed}) => {
   return {times, sink};
 }"""
 
-_IMPORT = re.compile(r"""(?:\bfrom|\bimport)\s*["']\./([A-Za-z0-9_]+\.js)["']""")
+_IMPORT = re.compile(r"""(?:\bfrom|\bimport)\s*["']((?:\.\.?/)[A-Za-z0-9_]+\.js)["']""")
 
 
 def page_modules(view: str) -> dict[str, int]:
     """The modules a page with ``view`` loads: host.js and the view's import graph, with their bytes."""
     seen: dict[str, int] = {}
-    todo = ["host.js", f"{view}.js"]
+    todo = ["host.js", f"{view}/view.js"]
     while todo:
         name = todo.pop()
         if name in seen:
             continue
         text = (LIVE / name).read_text(encoding="utf-8")
         seen[name] = len(text.encode("utf-8"))
-        todo.extend(_IMPORT.findall(text))
+        here = (LIVE / name).parent
+        todo.extend((here / dep).resolve().relative_to(LIVE.resolve()).as_posix() for dep in _IMPORT.findall(text))
     return seen
 
 
@@ -169,8 +170,8 @@ class _IsolatedHandler(http.server.SimpleHTTPRequestHandler):
 
 
 def module_sizes() -> dict[str, int]:
-    """Bytes of each ES module under lib/jacobians/widgets/static/live/."""
-    return {p.name: p.stat().st_size for p in sorted(LIVE.glob("*.js"))}
+    """Bytes of each ES module under lib/jacobians/widgets/live/."""
+    return {p.relative_to(LIVE).as_posix(): p.stat().st_size for p in sorted(LIVE.rglob("*.js"))}
 
 
 def run(n: int) -> dict[str, Any]:
@@ -253,7 +254,7 @@ def main(argv: list[str] | None = None) -> int:
               f"{sum(mods.values()) / 1024:.1f} KB (budget 150 KB)")
     total = sum(out["sizes"].values())
     sizes = ", ".join(f"{k} {v / 1024:.1f} KB" for k, v in out["sizes"].items())
-    print(f"  modules under lib/jacobians/widgets/static/live/: {sizes}; total {total / 1024:.1f} KB")
+    print(f"  modules under lib/jacobians/widgets/live/: {sizes}; total {total / 1024:.1f} KB")
     print("  budgets: median <= 4 ms, worst <= 16 ms with redraw; <= 150 KB of live modules per page")
     return 0
 

@@ -1,7 +1,7 @@
 """How long does one update of the 3-D live views take in headless Chromium? Prints, never asserts.
 
 The real views, mounted on ``tests/browser/live_spatial_harness.html`` from the
-models of ``_ext/live_views_spatial.py``: ``columns_explorer`` (5R arm) and
+models of ``jacobians.widgets.live_spatial``: ``columns_explorer`` (5R arm) and
 ``gimbal_lock`` (ZYZ wrist). One update is ``model.set(...)`` (what a slider's
 input event does: the kinematics, the 3-D items projected and written, the
 tables and texts) followed by a forced layout (``getBoundingClientRect`` of the
@@ -33,13 +33,13 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path[:0] = [str(ROOT / "_ext")]
-spatial: Any = importlib.import_module("live_views_spatial")  # the model builders live in _ext (top-level for Sphinx)
+spatial: Any = importlib.import_module("jacobians.widgets.live_spatial")  # the 3-D views' model builders
 
-LIVE = ROOT / "lib" / "jacobians" / "widgets" / "static" / "live"
+LIVE = ROOT / "lib" / "jacobians" / "widgets" / "live"
 HARNESS = "tests/browser/live_spatial_harness.html"
 CHROMIUM = "/usr/bin/chromium"
-MODULES = {"columns_explorer": ["host.js", "kinematics.js", "view3d.js", "columns_explorer.js"],
-           "gimbal_lock": ["host.js", "kinematics.js", "view3d.js", "gimbal_lock.js"]}
+MODULES = {"columns_explorer": ["host.js", "kinematics.js", "view3d.js", "columns_explorer/view.js"],
+           "gimbal_lock": ["host.js", "kinematics.js", "view3d.js", "gimbal_lock/view.js"]}
 
 BENCH_JS = """({kind, n, seed}) => {
   const el = document.getElementById("host"), model = window.liveModel;

@@ -41,6 +41,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -75,7 +76,7 @@ PLUGINS = {
                                              *(f"chalk-{c}.png" for c in ("white", "blue", "green", "orange", "purple",
                                                                           "red", "yellow")))))),
 }
-#: the live views' bundle entry (esbuild): the views' ES modules of lib/jacobians/widgets/static/live
+#: the live views' bundle entry (esbuild): it mounts the views of jacobians.widgets.live.VIEWS
 LIVE_ENTRY = ROOT / "_ext" / "decks_live" / "entry.js"
 _URL = re.compile(r"""(?P<up>(?:\.\./)+)(?P<tree>_static|_images)/(?P<path>[^"'?#\s)<>]+)""")
 
@@ -190,22 +191,45 @@ def plugins_from_npm(dest: Path, node_modules: Path = NODE_MODULES) -> None:
             shutil.copyfile(src, dst)
 
 
-def bundle_live(out: Path, node_modules: Path = NODE_MODULES) -> None:
-    """The live views as one classic script (an IIFE), bundled by npm's esbuild from the views' ES modules.
+def live_views_module() -> str:
+    """The ES module ``jac-live-views`` of the decks' bundle: every registered view's module and deck style.
 
-    The book's pages import the modules (``_static/live/*.js``); a deck opened
+    It imports ``<view>/deck.css`` and ``<view>/view.js`` of each spec of :data:`jacobians.widgets.live.VIEWS`
+    and exports ``VIEWS`` (name -> module), so a view added as a folder is in the decks with no other edit.
+    """
+    from jacobians.widgets.live import VIEWS
+
+    lines = []
+    for name, spec in VIEWS.items():
+        lines.append(f"import {json.dumps(spec.deck_css.as_posix())};")
+        lines.append(f"import {name} from {json.dumps(spec.module.as_posix())};")
+    lines.append(f"export const VIEWS = {{ {', '.join(VIEWS)} }};")
+    return "\n".join(lines) + "\n"
+
+
+def bundle_live(out: Path, node_modules: Path = NODE_MODULES) -> None:
+    """The live views as one classic script (an IIFE) and one style sheet, bundled by npm's esbuild.
+
+    The book's pages import the modules (``_static/live/<view>/view.js``); a deck opened
     from disk cannot (browsers block module scripts over ``file://``), so the
-    decks load this bundle of the same modules (``_ext/decks_live/entry.js``).
+    decks load this bundle of the same modules (``_ext/decks_live/entry.js``), and
+    ``jac-live.css`` beside it: every view's ``deck.css`` (:func:`live_views_module`).
     """
     esbuild = node_modules / ".bin" / "esbuild"
     if not esbuild.is_file():
         raise FileNotFoundError(f"{esbuild} is missing: run `npm ci` (make does this) first")
     out.parent.mkdir(parents=True, exist_ok=True)
-    done = subprocess.run([str(esbuild), str(LIVE_ENTRY), "--bundle", "--format=iife", "--target=es2020",
-                           "--minify", "--legal-comments=none", "--log-level=warning", f"--outfile={out}"],
-                          cwd=ROOT, capture_output=True, text=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        views = Path(tmp) / "jac-live-views.js"
+        views.write_text(live_views_module(), encoding="utf-8")
+        done = subprocess.run([str(esbuild), str(LIVE_ENTRY), "--bundle", "--format=iife", "--target=es2020",
+                               f"--alias:jac-live-views={views}", "--minify", "--legal-comments=none",
+                               "--log-level=warning", f"--outfile={out}"],
+                              cwd=ROOT, capture_output=True, text=True)
     if done.returncode:
         raise RuntimeError(f"esbuild failed to bundle the live views:\n{done.stderr}")
+    if not out.with_suffix(".css").is_file():
+        raise RuntimeError(f"esbuild wrote no {out.with_suffix('.css').name}: the views' deck.css are missing")
 
 
 _MINUTES = re.compile(r'<p class="minutes">About (\d+(?:\.\d+)?) min\.</p>')

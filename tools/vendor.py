@@ -8,7 +8,7 @@ and that every copied tree is used):
 
 * the book (:data:`BOOK`, into ``_vendor/``, Sphinx's ``html_static_path``,
   served as ``_static/``): MathJax 3 only. The live views are the course's
-  own ES modules (``lib/jacobians/widgets/static/live/``, shipped inside the
+  own ES modules (``lib/jacobians/widgets/live/``, shipped inside the
   package), so there is no widget manager and no require.js;
   ``_ext/offline_fixes.py`` stops the build if a page ever shows a Jupyter
   widget. The book's pages load no MathJax: their math is typeset at build

@@ -4,14 +4,10 @@
 // decks do not import the views' modules as the book's pages do: this bundle, built
 // from the same modules, mounts every live view of the page once the page is parsed.
 // A view that cannot start keeps its static text and says why (see `fail`).
-import { mount } from "../../lib/jacobians/widgets/static/live/host.js";
-import columns_explorer from "../../lib/jacobians/widgets/static/live/columns_explorer.js";
-import gimbal_lock from "../../lib/jacobians/widgets/static/live/gimbal_lock.js";
-import planar_explorer from "../../lib/jacobians/widgets/static/live/planar_explorer.js";
-import resolved_rate from "../../lib/jacobians/widgets/static/live/resolved_rate.js";
-import story from "../../lib/jacobians/widgets/static/live/story.js";
-
-const VIEWS = { columns_explorer, gimbal_lock, planar_explorer, resolved_rate, story };
+import { mount } from "../../lib/jacobians/widgets/live/host.js";
+// every view's module and deck style, as registered (jacobians.widgets.live.VIEWS): tools/build_slides.py
+// writes this module and points esbuild at it
+import { VIEWS } from "jac-live-views";
 
 /** Leave the host's static content (written by the deck build) and add the reason the view did not start. */
 function fail(el, why) {

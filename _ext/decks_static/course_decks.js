@@ -6,7 +6,7 @@
     return slide ? slide.querySelectorAll('.animation button[onclick*="' + what + '"]') : [];
   }
   function stories(slide, pressed) {
-    // the story live views (lib/jacobians/widgets/static/live/story.js): their Play button, when (not) playing
+    // the story live views (lib/jacobians/widgets/live/story/view.js): their Play button, when (not) playing
     return slide ? slide.querySelectorAll('.jac-live[data-story] button.jl-play[aria-pressed="' + pressed + '"]') : [];
   }
   function play(slide) {

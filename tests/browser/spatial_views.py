@@ -2,7 +2,7 @@
 
 The 3-D views draw in SVG units: a world point p goes to
 ``x = s (p - c)·r``, ``y = -s (p - c)·u`` with ``s = 200 / extent``, c the
-centre, r and u the camera's right and up vectors (``lib/jacobians/widgets/static/live/view3d.js``).
+centre, r and u the camera's right and up vectors (``lib/jacobians/widgets/live/view3d.js``).
 :func:`project` is that map in numpy, so a test can say where the library's
 points must be drawn.
 """

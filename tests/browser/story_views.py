@@ -1,4 +1,4 @@
-"""The story live view (``lib/jacobians/widgets/static/live/story.js``) against the library: shared by test_live_story.py and
+"""The story live view (``lib/jacobians/widgets/live/story/view.js``) against the library: shared by test_live_story.py and
 test_live_views.py (the built chapter pages 1, 3 and 7).
 
 :func:`library_state` is what the view must draw at time t, from ``jacobians`` only;

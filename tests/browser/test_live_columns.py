@@ -1,7 +1,7 @@
-"""The live columns explorer (``lib/jacobians/widgets/static/live/columns_explorer.js``, chapter 4) in Chromium, no kernel.
+"""The live columns explorer (``lib/jacobians/widgets/live/columns_explorer/view.js``, chapter 4) in Chromium, no kernel.
 
 On the harness page (no book build needed) the view is mounted from the model
-``_ext/live_views_spatial.py`` writes for the book page; on the built chapter 4
+``jacobians.widgets.live_spatial`` builds for the book page; on the built chapter 4
 page as well. Checked: what the view computes and draws is the library's (200
 random configurations of the 5R arm: FK, J_s, J_b, the geometric J, the joint
 points, the drawn axes); a slider moved from the keyboard changes the tables to
@@ -15,12 +15,12 @@ from __future__ import annotations
 
 import json
 
-import live_views_spatial as spatial
 import numpy as np
 import pytest
 import spatial_views as sv
 
 import jacobians as jac
+from jacobians.widgets import live_spatial as spatial
 
 N_CONFIGS = 200
 TOL = 1e-12

@@ -1,7 +1,7 @@
-"""The live gimbal-lock view (``lib/jacobians/widgets/static/live/gimbal_lock.js``, chapter 6) in Chromium, no kernel.
+"""The live gimbal-lock view (``lib/jacobians/widgets/live/gimbal_lock/view.js``, chapter 6) in Chromium, no kernel.
 
 On the harness page (no book build needed) the view is mounted from the model
-``_ext/live_views_spatial.py`` writes for the book page; on the built chapter 6
+``jacobians.widgets.live_spatial`` builds for the book page; on the built chapter 6
 page as well. Checked: at 200 random configurations of each wrist (ZYZ, ZYX) in
 each coordinate choice (ZYX, ZYZ) the view's φ, B(φ), det B, J, J_a, σ_min of
 J's angular rows and the norms are the library's within 1e-12, and its lock
@@ -19,13 +19,13 @@ import json
 import math
 
 import fp_bounds
-import live_views_spatial as spatial
 import numpy as np
 import pytest
 import spatial_views as sv
 
 import jacobians as jac
 from jacobians import representations as reps
+from jacobians.widgets import live_spatial as spatial
 
 N_CONFIGS = 200
 TOL = 1e-12

@@ -1,4 +1,4 @@
-"""The live views' kinematics (``lib/jacobians/widgets/static/live/kinematics.js``) give the library's numbers, in Chromium.
+"""The live views' kinematics (``lib/jacobians/widgets/live/kinematics.js``) give the library's numbers, in Chromium.
 
 For 200 random configurations (seeded) of each teaching arm, the ES module's
 forward kinematics, space, body, geometric and analytic Jacobians, B(φ), DLS
@@ -445,11 +445,11 @@ def test_no_console_error_and_no_foreign_request(kin_page):
     host = urlsplit(base).netloc
     foreign = [u for u in seen["requests"] if urlsplit(u).scheme != "data" and urlsplit(u).netloc != host]
     assert not foreign, f"requests to another host: {foreign}"
-    assert any(u.endswith("lib/jacobians/widgets/static/live/kinematics.js") for u in seen["requests"])
+    assert any(u.endswith("lib/jacobians/widgets/live/kinematics.js") for u in seen["requests"])
     assert not seen["console"], f"console errors: {seen['console']}"
 
 
-# The resolved-rate view's own functions (lib/jacobians/widgets/static/live/resolved_rate.js): the preset paths, the start
+# The resolved-rate view's own functions (lib/jacobians/widgets/live/resolved_rate/view.js): the preset paths, the start
 # configuration and the whole run of a preset, against jacobians.widgets.live and velocity.
 RR_JS = """({S, M, reach, cases, targets}) => {
   const K = window.K, RR = window.RR, chain = K.makeChain(S, M);

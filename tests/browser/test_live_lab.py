@@ -6,7 +6,7 @@ the test can run cells), opens a notebook in Chromium and runs its cells one
 by one:
 
 1. ``w = PlanarExplorer("planar_2r", theta=[0.3, 1.2])``, then ``w``: the view
-   (the same ``lib/jacobians/widgets/static/live/planar_explorer.js``, its ``./kinematics.js``
+   (the same ``lib/jacobians/widgets/live/planar_explorer/view.js``, its ``./kinematics.js``
    imports inlined as data: URLs) renders in the output, and shows the
    library's Jacobian at θ;
 2. a key press on the view's θ₁ slider (view -> Python): a traitlet observer in

@@ -1,4 +1,4 @@
-"""The story live view (``lib/jacobians/widgets/static/live/story.js``, chapters 1, 3 and 7) in Chromium, no kernel.
+"""The story live view (``lib/jacobians/widgets/live/story/view.js``, chapters 1, 3 and 7) in Chromium, no kernel.
 
 For every story: at every frame the slider reaches, and at 200 random times through the module's
 own ``storyState``, the numbers the view draws are the library's within 1e-12 (see story_views.py);
@@ -38,7 +38,7 @@ ALL_FRAMES_JS = """(el) => {
 
 STATE_AT_JS = """async ([url, model, times]) => {
   const St = await import(url);
-  const K = await import(new URL("kinematics.js", url).href);
+  const K = await import(new URL("../kinematics.js", url).href);
   const chain = K.makeChain(model.S, model.M, model.Q);
   return times.map((t) => St.storyState(chain, model, t));
 }"""
@@ -87,7 +87,7 @@ def test_the_modules_state_at_random_times_is_the_librarys(harness, story):
     open_story(story)
     rng = np.random.default_rng(13)
     times = np.r_[rng.uniform(-model["t_end"], 2 * model["t_end"], N_TIMES), 0.0, model["t_end"]]
-    states = page.evaluate(STATE_AT_JS, [base + "lib/jacobians/widgets/static/live/story.js", model, times.tolist()])
+    states = page.evaluate(STATE_AT_JS, [base + "lib/jacobians/widgets/live/story/view.js", model, times.tolist()])
     chain = sv.chain_of(model)
     worst = max(sv.largest_difference(model, chain, s) for s in states)
     assert worst <= sv.TOL, worst
@@ -157,7 +157,7 @@ def test_the_directive_embeds_the_model():
 
     for story in STORIES:
         html = live_views.host_html("story", live_views.model_for("story", {"story": story}), 1, f"x-{story}")
-        assert 'data-view="story"' in html and "_static/live/story.js" in html
+        assert 'data-view="story"' in html and "_static/live/story/view.js" in html
         assert json.loads(html.split('data-model="')[1].split('"')[0].replace("&quot;", '"'))["story"] == story
     with pytest.raises(ValueError, match="Expected story one of"):
         live_views.model_for("story", {"story": "spin"})

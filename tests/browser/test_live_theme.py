@@ -24,9 +24,9 @@ from pathlib import Path
 
 import bookcheck
 import live_views
-import live_views_spatial as spatial
 import pytest
 
+from jacobians.widgets import live_spatial as spatial
 from jacobians.widgets.live import story_model
 
 ROOT = Path(__file__).resolve().parents[2]

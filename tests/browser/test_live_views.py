@@ -1,4 +1,4 @@
-"""The live planar explorer (``lib/jacobians/widgets/static/live/planar_explorer.js``) in Chromium, no kernel.
+"""The live planar explorer (``lib/jacobians/widgets/live/planar_explorer/view.js``) in Chromium, no kernel.
 
 On a harness page served from the repository (no book build needed), the view
 is mounted from the model that ``_ext/live_views.py`` writes for the book page;

@@ -29,8 +29,8 @@ THEME_DIRS = {"scripts", "styles", "vendor", "images"}
 #: banks, _ext/exercise_checks)
 BUILT_DIRS = {"exercise-checks"}
 COURSE_THEME = Path(__file__).resolve().parents[2] / "_theme"
-# the live views ship inside the package (anywidget layout); the book copies them from there
-COURSE_STATIC = (COURSE_THEME, Path(__file__).resolve().parents[2] / "lib" / "jacobians" / "widgets" / "static")
+#: the live views ship inside the package (anywidget layout); _ext/live_views.py copies them to _static/live
+COURSE_LIVE = "live"
 #: file names by which a front-end package is recognised wherever it is copied, and a
 #: text its first kilobyte holds (MathJax has a TeX extension also named require.js)
 PACKAGE_FILES = {
@@ -96,8 +96,8 @@ def test_every_vendored_tree_is_loaded_by_a_page_or_deck(book_html):
             and bool(_referenced(menu, pages))
         assert _referenced(entry, pages) or by_menu, f"no page or deck loads {entry.relative_to(book_html)}"
     ours = {p.folder for p in vendor.BOOK}
-    # the course's own front-end trees (_theme/<dir>, widgets/static/live): each is loaded by some page
-    course_dirs = {p.name for d in COURSE_STATIC for p in d.iterdir() if p.is_dir()}
+    # the course's own front-end trees (_theme/<dir>, the live views): each is loaded by some page
+    course_dirs = {p.name for p in COURSE_THEME.iterdir() if p.is_dir()} | {COURSE_LIVE}
     for name in sorted(course_dirs):
         files = sorted((static / name).glob("*.js"))
         assert files, f"{name}/ of the course was not copied into _static"

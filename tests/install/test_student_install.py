@@ -12,7 +12,7 @@
    verdict, and the same checker calls every exercise's reference answer correct.
 4. ``jupyter lab`` of that venv, driven by Chromium, mounts a live view from the
    installed wheel (its JavaScript read from the wheel's
-   ``jacobians/widgets/static/live``), and the view and the kernel agree both ways.
+   ``jacobians/widgets/live``), and the view and the kernel agree both ways.
 5. A second fresh venv gets the bare wheel: numpy and nothing else; the library
    works, and ``import course`` says which extra it needs.
 
@@ -165,9 +165,12 @@ def test_the_course_is_imported_from_the_wheel_with_its_live_views(student, work
     site = _site_packages(student)
     for key in ("jacobians", "course", "live"):
         assert Path(got[key]).is_relative_to(site), (key, got[key])
-    shipped = {p.name for p in Path(got["live"]).glob("*.js")}
-    in_checkout = {p.name for p in (ROOT / "lib" / "jacobians" / "widgets" / "static" / "live").glob("*.js")}
-    assert shipped == in_checkout and "kinematics.js" in shipped
+    def modules(live: Path) -> set[str]:  # the views' ES modules and deck styles, in their folders
+        return {p.relative_to(live).as_posix() for p in live.rglob("*") if p.suffix in (".js", ".css")}
+
+    shipped = modules(Path(got["live"]))
+    in_checkout = modules(ROOT / "lib" / "jacobians" / "widgets" / "live")
+    assert shipped == in_checkout and {"kinematics.js", "planar_explorer/view.js", "story/deck.css"} <= shipped
     assert got["n"] == len(__import__("course.exercises", fromlist=["x"]).exercise_ids())
 
 

@@ -32,8 +32,8 @@ import { readFileSync } from "node:fs";
 import {
   bodyJacobian, dlsRates, expSE3, fk, geometricJacobian, jointPositions, makeChain, pinvRates,
   singularValues, spaceJacobian,
-} from "../../lib/jacobians/widgets/static/live/kinematics.js";
-import { EPS, matrix, vector } from "../../lib/jacobians/widgets/static/live/linalg.js";
+} from "../../lib/jacobians/widgets/live/kinematics.js";
+import { EPS, matrix, vector } from "../../lib/jacobians/widgets/live/linalg.js";
 
 const path = process.env.JS_FIXTURES;
 if (!path) throw new Error("Set JS_FIXTURES to the file written by `python -m tools.js_fixtures` (make test-js does)");

@@ -153,14 +153,19 @@ SVG_LABELS = """() => {
 MIN_LABEL_PX = 24 - 0.5   # 24 px on a slide, less half a pixel of rounding
 
 
-#: view -> (the slider moved, its value before the key press, the check of the numbers shown)
-VIEWS = {
-    "planar_explorer": ("input.jl-theta", 0.35, _planar),
-    "columns_explorer": ("input.jl-theta:nth-of-type(2)", -0.85, _columns),
-    "gimbal_lock": ("input.jl-theta:nth-of-type(2)", 89, _gimbal),
-    "resolved_rate": ("input.jr-step", 80, _resolved_rate),
-    "story": ("input.js-time", 10, _story),
-}
+#: view -> the check of the numbers it shows against the library (its spec's widget)
+CHECKS = {"planar_explorer": _planar, "columns_explorer": _columns, "gimbal_lock": _gimbal,
+          "resolved_rate": _resolved_rate, "story": _story}
+
+
+def _views() -> dict[str, tuple[str, float, Any]]:
+    """view -> (the slider moved, its value before the key press: the spec's probe; the check)."""
+    from jacobians.widgets.live import VIEWS as SPECS
+
+    return {name: (*spec.probe, CHECKS.get(name)) for name, spec in SPECS.items()}
+
+
+VIEWS = _views()
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=[s.stem for s in SOURCES])
@@ -214,10 +219,14 @@ def test_live_view_slides_show_the_librarys_numbers_and_arrows_still_move_on(dec
         page.close()
 
 
-def test_the_live_views_data_model_is_plain_json():
-    """What the slide's view reads is the model the library builds (no NaN), for each view here."""
-    from jacobians.widgets.live import planar_model, resolved_rate_model
-    from jacobians.widgets.live_spatial import columns_model, gimbal_model
+def test_every_registered_view_has_its_library_check():
+    """A view added to jacobians.widgets.live has its slide's numbers compared with its widget's here."""
+    assert set(CHECKS) == set(VIEWS), f"views without a check in CHECKS: {sorted(set(VIEWS) - set(CHECKS))}"
 
-    for model in (planar_model("planar_2r"), resolved_rate_model(), columns_model(), gimbal_model()):
-        json.dumps(model, allow_nan=False)
+
+def test_the_live_views_data_model_is_plain_json():
+    """What the slide's view reads is the model the library builds (no NaN), for each registered view."""
+    from jacobians.widgets.live import VIEWS as SPECS
+
+    for spec in SPECS.values():
+        json.dumps(spec.model(), allow_nan=False)

@@ -1,3 +1,4 @@
+// @ts-check
 // The planar arm explorer, live: a 2R or 3R arm the reader moves
 // with one slider per joint, by dragging a joint (it turns the joint before
 // it) or the tool (mouse, pen or touch: damped least squares on J_v), or with
@@ -16,15 +17,32 @@
 // model.set + model.save_changes and redraws on "change:theta" / "change:frame".
 // Returns a cleanup function. Never throws at a singularity, never shows NaN.
 
-import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "./kinematics.js";
+import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "../kinematics.js";
 import {
   BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, announcer, capture, ink, columnColor, fixed, html, injectStyle, legendItem,
   makeArrow, planarCanvas, setArrow, setEllipse, sub, holdTouch, suppressShortcuts, svg, text as setText, toWorld,
-} from "./ui.js";
+} from "../ui.js";
 
 export { fixed };
+
+/** @typedef {import("../host.js").Model} Model */
+/** @typedef {import("../kinematics.js").Chain} Chain */
+/** @typedef {import("../kinematics.js").Evaluation} Evaluation */
+/** @typedef {import("../linalg.js").Vec} Vec */
+/** @typedef {import("../linalg.js").Mat} Mat */
+/** @typedef {import("../ui.js").Arrow2} Arrow2 */
+/** @typedef {import("../ui.js").SubText} SubText */
+/** @typedef {"space" | "body" | "geometric" | "analytic"} Frame */
+/**
+ * What the view shows (el.jacLive, read by the tests).
+ * @typedef {{theta: Vec | null, frame: Frame | null, J: Mat | null, sigmaMin: number | null,
+ *   level: "ok" | "warning" | "singular" | null, force: "inf" | "clipped" | null}} PlanarState
+ */
+/** @type {Frame[]} */
 export const FRAMES = ["space", "body", "geometric", "analytic"];
+/** @type {Record<Frame, SubText>} */
 const SYMBOLS = { space: ["J", "s"], body: ["J", "b"], geometric: ["J", ""], analytic: ["J", "a"] };
+/** @type {ReadonlyArray<SubText>} */
 const ANALYTIC_ROWS = [["ẋ", ""], ["ẏ", ""], ["φ̇", ""]];
 const STEP = 0.01; // rad, as the matplotlib explorer's sliders
 const MAX_STEP = 0.2; // rad, largest joint change of one DLS iteration of a tool drag
@@ -32,8 +50,12 @@ const MAX_STEP = 0.2; // rad, largest joint change of one DLS iteration of a too
 const PLAY_STEP = 0.02; // rad per frame of Play: from -LIMIT it passes 0 exactly (the singularity of a stretched arm)
 const PLAY_MS = 30;
 
-const clamp = (x) => Math.min(LIMIT, Math.max(-LIMIT, x));
+const clamp = (/** @type {number} */ x) => Math.min(LIMIT, Math.max(-LIMIT, x));
 
+/**
+ * The linear parts of the shown Jacobian's columns as arrows: their tails P and vectors V (world, m).
+ * @param {Evaluation} e @param {Frame} frame @param {number} n @returns {{P: Vec[], V: Vec[]}}
+ */
 function linearColumns(e, frame, n) {
   // jacobians.plotting.planar.column_arrows: space at {s}'s origin; body turned into {s} axes; else ṗ columns
   const tip = [e.T[0][3], e.T[1][3]];
@@ -57,6 +79,7 @@ function linearColumns(e, frame, n) {
 
 
 // tool drag: θ moves by damped least-squares steps on J_v towards the pointer (never NaN: DLS is bounded)
+/** @param {Chain} chain @param {Vec} th @param {ArrayLike<number>} target @param {number} reach @returns {Vec} */
 function solve(chain, th, target, reach) {
   const damping = 0.05 * reach;
   const n = chain.n;
@@ -72,6 +95,10 @@ function solve(chain, th, target, reach) {
   return th;
 }
 // joint drag: joint k's point turns about joint k-1 towards the pointer (θ_{k-1} changes alone)
+/**
+ * @param {Chain} chain @param {Vec} th @param {number} k @param {ArrayLike<number>} target @param {number} reach
+ * @returns {Vec}
+ */
 function turn(chain, th, k, target, reach) {
   const pts = evaluate(chain, th).points;
   const a = pts[k - 1];
@@ -89,23 +116,28 @@ function turn(chain, th, k, target, reach) {
 /**
  * Dragging the tool's ring or a joint (bind): the pointer's world point sets theta through solve or turn.
  * Returns the remover of the listeners.
+ * @param {{root: SVGSVGElement, handle: SVGCircleElement, joints: SVGCircleElement[]}} parts
+ * @param {{chain: Chain, reach: number, readTheta: () => Vec, setTheta: (th: Vec) => void, stop: () => void}} run
+ * @returns {() => void}
  */
 function bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop }) {
+/** @type {number | null} */
 let drag = null;
-const onDown = (ev) => {
-  const k = ev.currentTarget === handle ? -1 : Number(ev.currentTarget.dataset.joint) - 1;
+const onDown = (/** @type {PointerEvent} */ ev) => {
+  const h = /** @type {SVGElement} */ (ev.currentTarget);
+  const k = h === handle ? -1 : Number(h.dataset.joint) - 1;
   drag = k;
   stop();
-  capture(ev.currentTarget, ev);
+  capture(h, ev);
   ev.preventDefault();
 };
-const onMove = (ev) => {
+const onMove = (/** @type {PointerEvent} */ ev) => {
   if (drag === null) return;
   const target = toWorld(root, ev);
   if (!target) return;
   setTheta(drag < 0 ? solve(chain, readTheta(), target, reach) : turn(chain, readTheta(), drag, target, reach));
 };
-const onUp = (ev) => {
+const onUp = (/** @type {PointerEvent} */ ev) => {
   if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
   drag = null;
 };
@@ -128,6 +160,7 @@ for (const h of draggable) {
   };
 }
 
+/** @param {{model: Model, el: HTMLElement}} args */
 function render({ model, el }) {
   const doc = el.ownerDocument;
   injectStyle(doc, "jac-live-style", BASE_CSS);
@@ -164,6 +197,7 @@ function render({ model, el }) {
     "stroke-linecap": "round", "vector-effect": "non-scaling-stroke", class: "jl-link" }, world);
   const bx = makeArrow(world, PALETTE.muted, 1.5);
   const by = makeArrow(world, PALETTE.muted, 1.5);
+  /** @type {SVGCircleElement[]} */
   const joints = [];
   for (let i = 0; i < n; i++) {
     joints.push(svg("circle", { r: 0.045 * reach, fill: PALETTE.bg, stroke: PALETTE.joint, "stroke-width": 2.2,
@@ -171,6 +205,7 @@ function render({ model, el }) {
     if (i) svg("title", {}, joints[i]).textContent = `drag joint ${i + 1}: turns joint ${i}`;
   }
   const tool = svg("circle", { r: 0.025 * reach, fill: PALETTE.joint }, world);
+  /** @type {Arrow2[]} */
   const cols = [];
   for (let i = 0; i < n; i++) cols.push(makeArrow(world, columnColor(i), 3));
   cols.forEach((a, i) => a.g.setAttribute("class", `jl-col jl-col-${i + 1}`));
@@ -180,7 +215,9 @@ function render({ model, el }) {
   svg("title", {}, handle).textContent = "drag the tool (inverse kinematics by damped least squares)";
 
   // ---- the controls
+  /** @type {HTMLInputElement[]} */
   const sliders = [];
+  /** @type {HTMLOutputElement[]} */
   const values = [];
   const theta0 = model.get("theta");
   for (let i = 0; i < n; i++) {
@@ -209,8 +246,11 @@ function render({ model, el }) {
   html("th", { scope: "col" }, hr, "");
   for (let i = 0; i < n; i++) html("th", { scope: "col", style: `color:${ink(columnColor(i))}` }, hr, `col ${i + 1}`);
   const tbody = html("tbody", {}, table);
+  /** @type {HTMLTableCellElement[][]} */
   let cells = [];
+  /** @type {ReadonlyArray<SubText> | null} */
   let rowsFor = null;
+  /** @param {ReadonlyArray<SubText>} labels */
   function buildRows(labels) {
     tbody.textContent = "";
     cells = labels.map((lab) => {
@@ -238,10 +278,12 @@ function render({ model, el }) {
     const th = model.get("theta");
     return Array.from({ length: n }, (_, i) => (Number.isFinite(Number(th && th[i])) ? Number(th[i]) : 0));
   }
+  /** @returns {Frame} */
   function readFrame() {
     const f = model.get("frame");
     return FRAMES.includes(f) ? f : "space";
   }
+  /** @type {PlanarState} */
   const state = { theta: null, frame: null, J: null, sigmaMin: null, level: null, force: null };
 
   function draw() {
@@ -253,13 +295,13 @@ function render({ model, el }) {
     const pts = e.points;
     link.setAttribute("points", pts.map((p) => `${p[0]},${p[1]}`).join(" "));
     for (let i = 0; i < n; i++) {
-      joints[i].setAttribute("cx", pts[i][0]);
-      joints[i].setAttribute("cy", pts[i][1]);
+      joints[i].setAttribute("cx", String(pts[i][0]));
+      joints[i].setAttribute("cy", String(pts[i][1]));
     }
     const tip = [e.T[0][3], e.T[1][3]];
     for (const c of [tool, handle]) {
-      c.setAttribute("cx", tip[0]);
-      c.setAttribute("cy", tip[1]);
+      c.setAttribute("cx", String(tip[0]));
+      c.setAttribute("cy", String(tip[1]));
     }
     setArrow(bx, tip, [0.8 * L * e.T[0][0], 0.8 * L * e.T[1][0]], head, tiny);
     setArrow(by, tip, [0.8 * L * e.T[0][1], 0.8 * L * e.T[1][1]], head, tiny);
@@ -274,6 +316,7 @@ function render({ model, el }) {
     const drawn = f.axes.map((a) => Math.min(a * forceScale, forceClip));
     const clipped = f.axes.map((a) => !(a * forceScale <= forceClip));
     setEllipse(force, tip, drawn[0], drawn[1], f.directions, 1e-4 * reach);
+    /** @type {string[]} */
     const seg = [];
     clipped.forEach((c, i) => {
       if (!c) return;
@@ -283,13 +326,15 @@ function render({ model, el }) {
     clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
     clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
     const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
-    setText(forceItem.lastChild, forceState === "inf"
+    setText(/** @type {ChildNode} */ (forceItem.lastChild), forceState === "inf"
       ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
       : forceState === "clipped"
         ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
         : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
     const s = Math.max(axes[1], 0);
+    /** @type {"ok" | "warning" | "singular"} */
     let level;
+    /** @type {string} */
     let word;
     if (s < 1e-9) {
       level = "singular";
@@ -339,15 +384,16 @@ function render({ model, el }) {
   }
 
   // ---- input -> state
-  const setTheta = (th) => {
+  const setTheta = (/** @type {Vec} */ th) => {
     model.set("theta", th);
     model.save_changes();
   };
-  const onInput = (ev) => {
+  const onInput = (/** @type {Event} */ ev) => {
+    const slider = /** @type {HTMLInputElement} */ (ev.target);
     const th = readTheta();
-    const v = Number(ev.target.value);
+    const v = Number(slider.value);
     if (!Number.isFinite(v)) return;
-    th[Number(ev.target.dataset.joint) - 1] = v;
+    th[Number(slider.dataset.joint) - 1] = v;
     setTheta(th);
   };
   const onFrame = () => {
@@ -356,6 +402,7 @@ function render({ model, el }) {
   };
   const unbindDrags = bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop });
   // Play: sweep one joint, PLAY_STEP a frame, up to LIMIT, then from -LIMIT again
+  /** @type {ReturnType<typeof setInterval> | null} */
   let timer = null;
   function tick() {
     const th = readTheta();
@@ -383,7 +430,7 @@ function render({ model, el }) {
   model.on("change:frame", draw);
   draw();
   suppressShortcuts(el);
-  el.jacLive = state;
+  Object.assign(el, { jacLive: state });
   return () => {
     stop();
     model.off("change:theta", draw);

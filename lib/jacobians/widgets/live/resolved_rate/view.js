@@ -1,3 +1,4 @@
+// @ts-check
 // Resolved-rate motion of a planar arm, live: the tool follows a
 // path the reader picks (the presets of jacobians.widgets.live.planar_path) or
 // draws with the pointer, by θ̇ = J_v^# (ṗ_d + K (p_d − p)) with the
@@ -13,14 +14,31 @@
 // rate_limit (rad/s, the plot's range); writes path, drawn, method, damping
 // and step back and redraws on their "change:" events.
 
-import { dlsRates, evaluate, makeChain, resolvedRate } from "./kinematics.js";
+import { dlsRates, evaluate, makeChain, resolvedRate } from "../kinematics.js";
 import {
   BASE_CSS, PALETTE, announcer, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub,
   suppressShortcuts, svg,
   toWorld,
-} from "./ui.js";
+} from "../ui.js";
 
-/** @typedef {import("./ui.js").Point2} Point2 */
+/** @typedef {import("../ui.js").Point2} Point2 */
+/** @typedef {import("../host.js").Model} Model */
+/** @typedef {import("../kinematics.js").Chain} Chain */
+/** @typedef {import("../kinematics.js").RateMethod} RateMethod */
+/** @typedef {import("../kinematics.js").RateRun} RateRun */
+/** @typedef {import("../linalg.js").Vec} Vec */
+/** @typedef {{t: number[], x: Vec[], v: Vec[]}} PlanarPath times, desired positions, their velocities */
+/**
+ * What a run depends on (the model's choices, checked).
+ * @typedef {{path: string, drawn: Vec[] | null, method: RateMethod, damping: number, nSteps: number,
+ *   duration: number, gain: number, reach: number}} RunOptions
+ */
+/** @typedef {{t: number[], xd: Vec[], theta0: Vec, run: RateRun}} Simulation */
+/**
+ * What the view shows (el.jacLive, read by the tests).
+ * @typedef {{step: number, sim: Simulation | null, level: string | null, sigmaMin?: number, theta?: Vec,
+ *   drawn?: Vec[] | null}} RateState
+ */
 
 const RUN_HELP = "Keys in the view: P play/pause, → or . one step on, ← or , one step back.";
 const PEN_HELP = "Drawing: drag on the picture, or with the picture focused move the pen (+) with the arrow keys "
@@ -30,7 +48,11 @@ const METHODS = { pinv: "pseudo-inverse", dls: "damped least squares" };
 const KEYS_ON = new Set(["ArrowRight", "."]);
 const KEYS_BACK = new Set(["ArrowLeft", ","]);
 
-/** The preset paths of jacobians.widgets.live.planar_path: {t, x, v} (N times, N×2 positions and velocities). */
+/**
+ * The preset paths of jacobians.widgets.live.planar_path: {t, x, v} (N times, N×2 positions and velocities).
+ * @param {string} kind @param {number} reach @param {number} nSteps @param {number} [duration]
+ * @returns {PlanarPath}
+ */
 export function planarPath(kind, reach, nSteps, duration = 4.0) {
   const T = duration;
   const t = Array.from({ length: nSteps }, (_, k) => (nSteps > 1 ? (T * k) / (nSteps - 1) : 0));
@@ -39,15 +61,20 @@ export function planarPath(kind, reach, nSteps, duration = 4.0) {
     return { t, x: t.map((s) => [c[0] + r * Math.cos(w * s), c[1] + r * Math.sin(w * s)]),
       v: t.map((s) => [-r * w * Math.sin(w * s), r * w * Math.cos(w * s)]) };
   }
-  const ends = { "to full reach": [[0.3 * reach, 0.5 * reach], [reach, 0]],
-    "close past the base": [[0.6 * reach, 0.03 * reach], [-0.6 * reach, 0.03 * reach]] }[kind];
+  /** @type {Record<string, Vec[]>} */
+  const presets = { "to full reach": [[0.3 * reach, 0.5 * reach], [reach, 0]],
+    "close past the base": [[0.6 * reach, 0.03 * reach], [-0.6 * reach, 0.03 * reach]] };
+  const ends = presets[kind];
   if (!ends) throw new Error(`Expected path ${PATHS.map((p) => `"${p}"`).join(", ")}, got ${JSON.stringify(kind)}`);
   const [a, b] = ends;
   const d = [b[0] - a[0], b[1] - a[1]];
   return { t, x: t.map((s) => [a[0] + (s / T) * d[0], a[1] + (s / T) * d[1]]), v: t.map(() => [d[0] / T, d[1] / T]) };
 }
 
-/** A drawn polyline resampled to N points evenly spaced along its length (null if it has no length). */
+/**
+ * A drawn polyline resampled to N points evenly spaced along its length (null if it has no length).
+ * @param {Vec[]} points @param {number} nSteps @returns {Vec[] | null}
+ */
 export function resample(points, nSteps) {
   const P = points.filter((p) => Number.isFinite(p[0]) && Number.isFinite(p[1]));
   const s = [0];
@@ -65,7 +92,10 @@ export function resample(points, nSteps) {
   return out;
 }
 
-/** The run's start, as jacobians.widgets.live.start_configuration: 200 DLS (λ = 1 mm) Newton steps to x0. */
+/**
+ * The run's start, as jacobians.widgets.live.start_configuration: 200 DLS (λ = 1 mm) Newton steps to x0.
+ * @param {Chain} chain @param {ArrayLike<number>} x0 @returns {Vec}
+ */
 export function startConfiguration(chain, x0) {
   const n = chain.n;
   const th = [0.3, 0.9, 0.9, 0.9, 0.9, 0.9, 0.9].slice(0, n);
@@ -79,9 +109,19 @@ export function startConfiguration(chain, x0) {
   return th;
 }
 
-/** The whole run: {t, xd, theta0, run (velocity.resolved_rate's fields)}; presets use their exact velocity. */
+/**
+ * The whole run: {t, xd, theta0, run (velocity.resolved_rate's fields)}; presets use their exact velocity.
+ * @param {Chain} chain @param {RunOptions} options
+ * @param {Map<string, Vec> | null} [starts] the start of each path already computed (filled in)
+ * @returns {Simulation}
+ */
 export function simulate(chain, { path, drawn, method, damping, nSteps, duration, gain, reach }, starts = null) {
-  let t, x, v;
+  /** @type {number[]} */
+  let t = [];
+  /** @type {Vec[] | null} */
+  let x = null;
+  /** @type {Vec[] | null} */
+  let v = null;
   if (path === "drawn" && drawn) {
     x = resample(drawn, nSteps);
     t = Array.from({ length: nSteps }, (_, k) => (duration * k) / (nSteps - 1));
@@ -210,6 +250,7 @@ on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
   return on;
 }
 
+/** @param {{model: Model, el: HTMLElement}} args */
 function render({ model, el }) {
   const doc = el.ownerDocument;
   injectStyle(doc, "jac-live-style", BASE_CSS);
@@ -247,8 +288,8 @@ function render({ model, el }) {
 
   // the joint-rate plot: t on [0, duration], rates on [-rateLimit, rateLimit], in a 400 × 300 box
   const W = 400, H = 300, X0 = 52, X1 = 392, Y0 = 12, Y1 = 262;
-  const px = (t) => X0 + ((X1 - X0) * t) / duration;
-  const py = (r) => Y0 + ((Y1 - Y0) * (rateLimit - Math.max(-rateLimit, Math.min(rateLimit, r)))) / (2 * rateLimit);
+  const px = (/** @type {number} */ t) => X0 + ((X1 - X0) * t) / duration;
+  const py = (/** @type {number} */ r) => Y0 + ((Y1 - Y0) * (rateLimit - Math.max(-rateLimit, Math.min(rateLimit, r)))) / (2 * rateLimit);
   const rp = svg("svg", { viewBox: `0 0 ${W} ${H}`, role: "img", class: "jr-rates",
     "aria-label": "joint rates against time, as the run goes" }, right);
   const axes = svg("g", { stroke: PALETTE.muted, "stroke-width": 1, "font-size": 16, fill: PALETTE.fg }, rp);
@@ -304,7 +345,8 @@ function render({ model, el }) {
   void help;
 
   // ---- state
-  const get = (k, d) => (model.get(k) === undefined || model.get(k) === null ? d : model.get(k));
+  const get = (/** @type {string} */ k, /** @type {any} */ d) => (model.get(k) === undefined || model.get(k) === null ? d : model.get(k));
+  /** @returns {RunOptions} */
   const options = () => {
     const m = get("method", "pinv");
     const path = get("path", "close past the base");
@@ -313,9 +355,13 @@ function render({ model, el }) {
       method: m in METHODS ? m : "pinv", damping: Number.isFinite(l) && l >= 0 ? l : 0.1, nSteps, duration, gain,
       reach };
   };
+  /** @type {Simulation | null} */
   let sim = null;
+  /** @type {string | null} */
   let simKey = null;
+  /** @type {Map<string, Vec>} */
   const starts = new Map();
+  /** @type {RateState} */
   const state = { step: 0, sim: null, level: null };
   function ensure() {
     const o = options();
@@ -328,6 +374,7 @@ function render({ model, el }) {
   }
   function draw() {
     ensure();
+    if (!sim) return;
     const o = options();
     const k = Math.max(0, Math.min(nSteps - 1, Math.round(Number(get("step", 0))) || 0));
     const { run, t, xd } = sim;
@@ -335,8 +382,8 @@ function render({ model, el }) {
     const pts = evaluate(chain, th).points;
     link.setAttribute("points", pts.map((p) => `${p[0]},${p[1]}`).join(" "));
     for (let i = 0; i < n; i++) {
-      joints[i].setAttribute("cx", pts[i][0]);
-      joints[i].setAttribute("cy", pts[i][1]);
+      joints[i].setAttribute("cx", String(pts[i][0]));
+      joints[i].setAttribute("cy", String(pts[i][1]));
     }
     actLine.setAttribute("points", run.positions.slice(0, k + 1).map((p) => `${p[0]},${p[1]}`).join(" "));
     const c = xd[k], a = 0.05 * reach;
@@ -344,8 +391,8 @@ function render({ model, el }) {
     for (let i = 0; i < n; i++) {
       rateLines[i].setAttribute("points", run.rates.slice(0, k + 1).map((r, j) => `${px(t[j])},${py(r[i])}`).join(" "));
     }
-    cursor.setAttribute("x1", px(t[k]));
-    cursor.setAttribute("x2", px(t[k]));
+    cursor.setAttribute("x1", String(px(t[k])));
+    cursor.setAttribute("x2", String(px(t[k])));
     const s = run.sigmaMin[k];
     const now = Math.hypot(...run.rates[k]);
     let peak = 0;
@@ -381,11 +428,12 @@ function render({ model, el }) {
   }
 
   // ---- input -> state
-  const put = (key, value) => {
+  const put = (/** @type {string} */ key, /** @type {unknown} */ value) => {
     model.set(key, value);
     model.save_changes();
   };
-  const setStep = (k) => put("step", Math.max(0, Math.min(nSteps - 1, k)));
+  const setStep = (/** @type {number} */ k) => put("step", Math.max(0, Math.min(nSteps - 1, k)));
+  /** @type {ReturnType<typeof setInterval> | null} */
   let timer = null;
   function stop() {
     if (timer !== null) clearInterval(timer);
@@ -408,6 +456,7 @@ function render({ model, el }) {
     stop();
     put("step", 0);
   };
+  /** @type {[EventTarget, string, (ev: any) => void][]} */
   const on = [
     [pathSel, "change", () => { put("path", pathSel.value); restart(); }],
     [methodSel, "change", () => { put("method", methodSel.value); restart(); }],
@@ -416,7 +465,7 @@ function render({ model, el }) {
     [play, "click", toggle],
     [back, "click", () => { stop(); setStep(state.step - 1); }],
     [fwd, "click", () => { stop(); setStep(state.step + 1); }],
-    [el, "keydown", (ev) => {
+    [el, "keydown", (/** @type {KeyboardEvent & {target: HTMLElement}} */ ev) => {
       const tag = ev.target.tagName;
       if (ev.key === "p" || ev.key === "P" || ev.key === "k" || ev.key === "K") toggle();
       else if (tag !== "INPUT" && tag !== "SELECT" && KEYS_ON.has(ev.key)) { stop(); setStep(state.step + 1); }
@@ -429,7 +478,7 @@ function render({ model, el }) {
   on.push(...drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, {
     tool: () => (state.sim ? state.sim.run.positions[state.step] : null),
     stop,
-    use(pts) {
+    use(/** @type {Point2[]} */ pts) {
       model.set("drawn", pts.map((p) => [Math.round(p[0] * 1e4) / 1e4, Math.round(p[1] * 1e4) / 1e4]));
       put("path", "drawn");
       restart();
@@ -441,7 +490,7 @@ function render({ model, el }) {
   model.on(keys, draw);
   draw();
   suppressShortcuts(el);
-  el.jacLive = state;
+  Object.assign(el, { jacLive: state });
   return () => {
     stop();
     model.off(keys, draw);

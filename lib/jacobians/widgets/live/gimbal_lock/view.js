@@ -1,3 +1,4 @@
+// @ts-check
 // Gimbal lock, live: a spherical wrist, the coordinates φ
 // of its tool orientation (ZYX or ZYZ), B(φ) with ω_s = B(φ) φ̇, det B, and the
 // analytic Jacobian J_a = diag(B(φ)⁻¹, I) J blowing up next to the geometric J
@@ -18,16 +19,38 @@
 
 import {
   analyticJacobian, coordinatesFromRotation, evaluate, makeChain, rateToAngularVelocity, singularValues,
-} from "./kinematics.js";
+} from "../kinematics.js";
 import {
   BASE_CSS, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, ink, matrixTable, put, sub, suppressShortcuts, svg,
   text,
-} from "./ui.js";
-import { CSS as CSS3D, FONT, createView3D, frameItems } from "./view3d.js";
+} from "../ui.js";
+import { CSS as CSS3D, FONT, createView3D, frameItems } from "../view3d.js";
 
-/** @typedef {import("./ui.js").SubText} SubText */
-/** @typedef {import("./ui.js").MatrixTable} MatrixTable */
+/** @typedef {import("../ui.js").SubText} SubText */
+/** @typedef {import("../ui.js").MatrixTable} MatrixTable */
+/** @typedef {import("../host.js").Model} Model */
+/** @typedef {import("../kinematics.js").Chain} Chain */
+/** @typedef {import("../kinematics.js").Evaluation} Evaluation */
+/** @typedef {import("../kinematics.js").Representation} Representation */
+/** @typedef {import("../linalg.js").Vec} Vec */
+/** @typedef {import("../linalg.js").Mat} Mat */
+/** @typedef {{name?: string, S: Mat, M: Mat, Q?: Mat | null}} WristModel a wrist of the model's "wrists" */
+/**
+ * What build and update share: the model's numbers and names.
+ * @typedef {{uid: string, tool: number, pal: Record<string, string>, colColors: string[], limitDeg: number,
+ *   stepDeg: number, wristModels: Record<string, WristModel>, keys: string[], theta0: number[]}} Options
+ */
+/** @typedef {ReturnType<typeof buildScene>} Scene */
+/** @typedef {ReturnType<typeof buildChart>} Chart */
+/** @typedef {ReturnType<typeof buildControls>} Controls */
+/**
+ * What the view shows (el.jacLive, read by the tests), and the keys of what was last drawn.
+ * @typedef {{theta: Vec | null, wrist: string | null, rep: Representation | null, curveKey: string | null,
+ *   capKey?: string, statusKey?: string, [more: string]: unknown}} GimbalState
+ */
+/** @type {Record<Representation, string>} */
 const REPS = { zyx: "ZYX (yaw, pitch, roll)", zyz: "ZYZ Euler" };
+/** @type {Record<Representation, string>} */
 const DET = { zyx: "−cos φ", zyz: "−sin φ" };
 const DEFAULT_PALETTE = { analytic: PALETTE.analytic, geometric: PALETTE.geometric, link: PALETTE.link,
   joint: PALETTE.joint, singular: PALETTE.singular, warning: PALETTE.warning, space: PALETTE.space, muted: PALETTE.muted };
@@ -47,28 +70,34 @@ const CSS = `
 .jl-gimbal .jl-chart svg{width:100%;height:auto;display:block;margin-top:8px}
 `;
 
-const det3 = (A) => A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
+const det3 = (/** @type {Mat} */ A) => A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
   - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) + A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-/** The inverse of a 3×3 matrix by its adjugate (B(φ) away from the lock). */
+/** The inverse of a 3×3 matrix by its adjugate (B(φ) away from the lock). @param {Mat} A @returns {Mat} */
 function inverse3(A) {
   const d = det3(A);
-  const C = (i, j) => {
+  const C = (/** @type {number} */ i, /** @type {number} */ j) => {
     const r = [0, 1, 2].filter((k) => k !== i), c = [0, 1, 2].filter((k) => k !== j);
     return ((i + j) % 2 ? -1 : 1) * (A[r[0]][c[0]] * A[r[1]][c[1]] - A[r[0]][c[1]] * A[r[1]][c[0]]);
   };
   return [0, 1, 2].map((i) => [0, 1, 2].map((j) => C(j, i) / d));
 }
-const frob = (J) => Math.sqrt(J.reduce((s, row) => s + row.reduce((t, x) => t + x * x, 0), 0));
-const deg = (x) => (x * 180) / Math.PI;
+const frob = (/** @type {Mat} */ J) => Math.sqrt(J.reduce((s, row) => s + row.reduce((t, x) => t + x * x, 0), 0));
+const deg = (/** @type {number} */ x) => (x * 180) / Math.PI;
 
-/** A number for a table cell: 2 decimals, or 3 significant digits in exponent form when huge; never NaN. */
+/**
+ * A number for a table cell: 2 decimals, or 3 significant digits in exponent form when huge; never NaN.
+ * @param {number} x @returns {string}
+ */
 export function cell(x) {
   if (!Number.isFinite(x)) return "—";
   if (Math.abs(x) < 1e4) return fixed(x, 2);
   return x.toExponential(2).replace("-", "\u2212").replace("e+", "e");
 }
 
-/** The 3-D drawing of the wrist: its axes, rings, the frames, the columns of B(φ) (build). */
+/**
+ * The 3-D drawing of the wrist: its axes, rings, the frames, the columns of B(φ) (build).
+ * @param {HTMLElement} plot @param {Options} options
+ */
 function buildScene(plot, { uid, tool, pal, colColors }) {
   const R0 = 1.55 * tool; // the tool frame stays inside at every pose
   const view = createView3D(plot, {
@@ -89,21 +118,24 @@ function buildScene(plot, { uid, tool, pal, colColors }) {
   const bFrame = frameItems(view, "{b}", 0.4 * tool, { letters: true });
   const bCols = [0, 1, 2].map(() => view.arrow("solid", pal.analytic, 3, 12));
   bCols.forEach((a, k) => a.el.setAttribute("class", `jl-bcol jl-bcol-${k + 1}`));
-  bCols.forEach((a) => a.el.querySelector("line").setAttribute("stroke-dasharray", "7 5"));
+  bCols.forEach((a) => a.el.querySelector("line")?.setAttribute("stroke-dasharray", "7 5"));
   const bLabels = [0, 1, 2].map((k) => view.label("front", `φ${String.fromCharCode(0x2081 + k)}`,
     { fill: ink("plum"), "font-style": "italic" }));
 
   return { view, rings, axes, axisNums, link, centre, bFrame, bCols, bLabels };
 }
 
-/** The chart of ‖J_a‖, ‖J‖ and |det B| along θ2, log scale (build): its scales and the lines update() moves. */
+/**
+ * The chart of ‖J_a‖, ‖J‖ and |det B| along θ2, log scale (build): its scales and the lines update() moves.
+ * @param {HTMLElement} plot @param {Options} options
+ */
 function buildChart(plot, { pal, limitDeg }) {
   const chartBox = html("div", { class: "jl-chart" }, plot);
   const chart = svg("svg", { viewBox: `0 0 ${CHART.w} ${CHART.h}`, role: "img", "font-size": FONT - 2, fill: PALETTE.fg,
     "aria-label": "Along θ2 with θ1 and θ3 fixed: the size of J_a, of J, and |det B|, log scale; a line at the current θ2" },
   chartBox);
-  const X = (d) => CHART.left + ((d + limitDeg) / (2 * limitDeg)) * (CHART.w - CHART.left - CHART.right);
-  const Y = (v) => {
+  const X = (/** @type {number} */ d) => CHART.left + ((d + limitDeg) / (2 * limitDeg)) * (CHART.w - CHART.left - CHART.right);
+  const Y = (/** @type {number} */ v) => {
     const l = Math.log10(Math.max(v, 10 ** (CHART.lo - 0.5)));
     const t = (Math.min(l, CHART.hi + 0.5) - CHART.lo) / (CHART.hi - CHART.lo);
     return CHART.h - CHART.bottom - t * (CHART.h - CHART.top - CHART.bottom);
@@ -130,8 +162,10 @@ function buildChart(plot, { pal, limitDeg }) {
   const cursor = svg("line", { y1: CHART.top, y2: yBottom, stroke: PALETTE.fg, "stroke-width": 1.2, class: "jl-cursor" },
     chart);
   const legend = html("ul", { class: "jl-legend" }, chartBox);
-  for (const [colour, dash, words] of [[pal.analytic, "", ["‖J", "a‖ (Frobenius), undefined at the lock"]],
-    [pal.geometric, "dashed", ["‖J‖, the geometric Jacobian", ""]], [PALETTE.fg, "dotted", ["|det B(φ)|", ""]]]) {
+  /** @type {[string, string, SubText][]} */
+  const keys = [[pal.analytic, "", ["‖J", "a‖ (Frobenius), undefined at the lock"]],
+    [pal.geometric, "dashed", ["‖J‖, the geometric Jacobian", ""]], [PALETTE.fg, "dotted", ["|det B(φ)|", ""]]];
+  for (const [colour, dash, words] of keys) {
     const li = html("li", {}, legend);
     html("span", { class: "jl-key", style: dash ? `border-top:3px ${dash} ${colour};height:0` : `background:${colour}` },
       li);
@@ -141,7 +175,10 @@ function buildChart(plot, { pal, limitDeg }) {
   return { X, Y, curveA, curveJ, curveD, cursor };
 }
 
-/** The selects, the sliders, the banner and status, the tables of B, J and J_a (build). */
+/**
+ * The selects, the sliders, the banner and status, the tables of B, J and J_a (build).
+ * @param {HTMLElement} side @param {Options} options
+ */
 function buildControls(side, { uid, wristModels, keys, limitDeg, stepDeg, colColors, theta0 }) {
   const wristLabel = html("label", { for: `${uid}-wrist` }, side, "Wrist:");
   const wristSelect = html("select", { id: `${uid}-wrist`, class: "jl-wrist" }, wristLabel);
@@ -149,7 +186,9 @@ function buildControls(side, { uid, wristModels, keys, limitDeg, stepDeg, colCol
   const repLabel = html("label", { for: `${uid}-rep` }, side, "Coordinates φ:");
   const repSelect = html("select", { id: `${uid}-rep`, class: "jl-rep" }, repLabel);
   for (const [k, words] of Object.entries(REPS)) html("option", { value: k }, repSelect, words);
+  /** @type {HTMLInputElement[]} */
   const sliders = [];
+  /** @type {HTMLOutputElement[]} */
   const values = [];
   for (let i = 0; i < 3; i++) {
     const id = `${uid}-t${i + 1}`;
@@ -166,7 +205,9 @@ function buildControls(side, { uid, wristModels, keys, limitDeg, stepDeg, colCol
   const tables = html("div", { class: "jl-tables" }, side);
   /** @type {(cls: string, rows: ReadonlyArray<SubText>, cols: ReadonlyArray<SubText>) => MatrixTable} */
   const makeTable = (cls, rows, cols) => matrixTable(tables, cls, rows, cols);
+  /** @type {SubText[]} */
   const rateCols = [["φ̇", "1"], ["φ̇", "2"], ["φ̇", "3"]];
+  /** @type {SubText[]} */
   const jointCols = [["θ̇", "1"], ["θ̇", "2"], ["θ̇", "3"]];
   const tB = makeTable("jl-B", TWIST_ROWS.slice(0, 3), rateCols);
   const tJ = makeTable("jl-J", TWIST_ROWS, jointCols);
@@ -180,7 +221,12 @@ function buildControls(side, { uid, wristModels, keys, limitDeg, stepDeg, colCol
 
 // One sweep per point: J from evaluate, φ from its R, then J_a's angular rows B(φ)⁻¹ J_ω
 // (the same J_a as analyticJacobian; test_live_gimbal.py reads the curves back against the library).
+/**
+ * @param {Chain} chain @param {Vec} th @param {Representation} rep @param {number} limitDeg
+ * @param {Chart} chart
+ */
 function curves(chain, th, rep, limitDeg, { X, Y, curveA, curveJ, curveD }) {
+  /** @type {string[]} */
   const A = [], G = [], D = [];
   for (let k = 0; k < N_CURVE; k++) {
     const d = -limitDeg + (2 * limitDeg * k) / (N_CURVE - 1);
@@ -215,7 +261,10 @@ function curves(chain, th, rep, limitDeg, { X, Y, curveA, curveJ, curveD }) {
   put(curveD, "points", D.join(" "));
 }
 
-/** Put the wrist's axes, rings, B(φ)'s columns and the frames where e (evaluate) and B say, and redraw (update). */
+/**
+ * Put the wrist's axes, rings, B(φ)'s columns and the frames where e (evaluate) and B say, and redraw (update).
+ * @param {Scene} scene @param {Evaluation} e @param {Mat} B @param {number} tool
+ */
 function drawScene({ view, rings, axes, axisNums, link, centre, bFrame, bCols, bLabels }, e, B, tool) {
   const L = [0.95 * tool, 0.95 * tool, 0.95 * tool];
   const radius = [0.8 * tool, 0.66 * tool, 0.52 * tool];
@@ -235,7 +284,12 @@ function drawScene({ view, rings, axes, axisNums, link, centre, bFrame, bCols, b
   view.render();
 }
 
-/** The status lines: φ, det B(φ), σ_min of J's ω rows, ‖J‖ and ‖J_a‖ (update; rewritten only when they change). */
+/**
+ * The status lines: φ, det B(φ), σ_min of J's ω rows, ‖J‖ and ‖J_a‖ (update; rewritten only when they change).
+ * @param {HTMLElement} status @param {GimbalState} state
+ * @param {{rep: Representation, phi: Vec, detB: number, sigmaMin: number, wristSing: boolean, normJ: number,
+ *   normA: number | null}} numbers
+ */
 function writeStatus(status, state, { rep, phi, detB, sigmaMin, wristSing, normJ, normA }) {
   const statusKey = [rep, ...phi.map((x) => fixed(deg(x), 1)), fixed(detB, 4), fixed(sigmaMin, 3), wristSing,
     fixed(normJ, 2), normA === null ? "u" : cell(normA)].join("|");
@@ -258,12 +312,16 @@ function writeStatus(status, state, { rep, phi, detB, sigmaMin, wristSing, normJ
 /**
  * The reader's input -> the model: a slider sets theta (degrees shown, radians kept), the selects the wrist and the
  * coordinates; a change of the model redraws (bind). Returns the remover of all of it.
+ * @param {Model} model
+ * @param {{wristSelect: HTMLSelectElement, repSelect: HTMLSelectElement, sliders: HTMLInputElement[]}} controls
+ * @param {() => Vec} readTheta @param {() => void} draw @returns {() => void}
  */
 function bind(model, { wristSelect, repSelect, sliders }, readTheta, draw) {
-const onInput = (ev) => {
+const onInput = (/** @type {Event} */ ev) => {
+  const slider = /** @type {HTMLInputElement} */ (ev.target);
   const th = readTheta();
-  const i = Number(ev.target.dataset.joint) - 1;
-  const v = Number(ev.target.value);
+  const i = Number(slider.dataset.joint) - 1;
+  const v = Number(slider.value);
   if (!Number.isFinite(v)) return;
   th[i] = (v * Math.PI) / 180;
   model.set("theta", th);
@@ -289,18 +347,22 @@ for (const k of ["theta", "wrist", "rep"]) model.on(`change:${k}`, draw);
   };
 }
 
+/** @param {{model: Model, el: HTMLElement}} args */
 function render({ model, el }) {
   const doc = el.ownerDocument;
   injectStyle(doc, "jac-live-style", BASE_CSS);
   injectStyle(doc, "jac-live-style-3d", CSS3D);
   injectStyle(doc, "jac-live-style-gimbal", CSS);
   el.classList.add("jac-live", "jl-gimbal");
+  /** @type {Record<string, WristModel>} */
   const wristModels = model.get("wrists");
+  /** @type {Record<string, Chain>} */
   const chains = {};
   for (const [k, w] of Object.entries(wristModels)) chains[k] = makeChain(w.S, w.M, w.Q || null);
   const keys = Object.keys(chains);
   const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
   // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
+  /** @type {Record<string, string>} */
   const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
   /** @type {string[]} */
   const colColors = (model.get("column_colors") || DEFAULT_COLUMNS).map(graphic);
@@ -327,6 +389,7 @@ function render({ model, el }) {
     const w = model.get("wrist");
     return keys.includes(w) ? w : keys[0];
   }
+  /** @returns {Representation} */
   function readRep() {
     const r = model.get("rep");
     return r in REPS ? r : "zyx";
@@ -339,6 +402,7 @@ function render({ model, el }) {
       return Number.isFinite(v) ? Math.max(-lim, Math.min(lim, v)) : 0;
     });
   }
+  /** @type {GimbalState} */
   const state = { theta: null, wrist: null, rep: null, curveKey: null };
 
   function draw() {
@@ -353,7 +417,7 @@ function render({ model, el }) {
     const sv = singularValues([e.Jg[0], e.Jg[1], e.Jg[2]]);
     const sigmaMin = sv[2];
     const normJ = frob(e.Jg);
-    const normA = a.singular ? null : frob(a.J);
+    const normA = a.singular || !a.J ? null : frob(a.J);
     drawScene(scene, e, B, tool);
     // chart
     // Along θ2 the three norms do not depend on θ1: joint 1 turns the whole wrist about z, which turns J's
@@ -372,7 +436,7 @@ function render({ model, el }) {
     for (let r = 0; r < 6; r++) {
       for (let c = 0; c < 3; c++) {
         text(tJ.cells[r][c], cell(e.Jg[r][c]));
-        text(tA.cells[r][c], a.singular ? "—" : cell(a.J[r][c]));
+        text(tA.cells[r][c], a.singular || !a.J ? "—" : cell(a.J[r][c]));
       }
     }
     const capKey = a.singular ? "lock" : rep;
@@ -381,7 +445,9 @@ function render({ model, el }) {
       sub(tA.caption, ["J", "a"]).append(a.singular ? "(θ): undefined at the lock" : `(θ), ${rep.toUpperCase()}`);
       state.capKey = capKey;
     }
+    /** @type {string} */
     let level;
+    /** @type {string} */
     let word;
     const margin = a.margin;
     if (a.singular) {
@@ -423,8 +489,7 @@ function render({ model, el }) {
   const unbind = bind(model, { wristSelect, repSelect, sliders }, readTheta, draw);
   draw();
   suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
-  el.jacLive = state;
-  el.jacView = view;
+  Object.assign(el, { jacLive: state, jacView: view });
   return () => {
     unbind();
     view.destroy();

@@ -17,20 +17,20 @@
 // "change:column". _ext/live_views_spatial.py writes the model from the library.
 // Never throws on a reachable input, never shows NaN.
 
-import { evaluate, makeChain } from "./kinematics.js";
+import { evaluate, makeChain } from "../kinematics.js";
 import {
   BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, matrixTable, put, sub, suppressShortcuts, text,
   tint,
-} from "./ui.js";
-import { CSS as CSS3D, createView3D, frameItems, groundGrid } from "./view3d.js";
+} from "../ui.js";
+import { CSS as CSS3D, createView3D, frameItems, groundGrid } from "../view3d.js";
 
-/** @typedef {import("./host.js").Model} Model */
-/** @typedef {import("./linalg.js").Mat} Mat */
-/** @typedef {import("./ui.js").SubText} SubText */
-/** @typedef {import("./ui.js").MatrixTable} MatrixTable */
-/** @typedef {import("./view3d.js").Segment} Segment */
-/** @typedef {import("./view3d.js").Dot} Dot */
-/** @typedef {import("./view3d.js").Label} Label */
+/** @typedef {import("../host.js").Model} Model */
+/** @typedef {import("../linalg.js").Mat} Mat */
+/** @typedef {import("../ui.js").SubText} SubText */
+/** @typedef {import("../ui.js").MatrixTable} MatrixTable */
+/** @typedef {import("../view3d.js").Segment} Segment */
+/** @typedef {import("../view3d.js").Dot} Dot */
+/** @typedef {import("../view3d.js").Label} Label */
 /**
  * What the view shows, and what changed when a joint last moved (el.jacLive, read by the tests).
  * @typedef {object} ColumnsState

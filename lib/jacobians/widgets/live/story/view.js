@@ -1,3 +1,4 @@
+// @ts-check
 // Story animations as a live view: a motion replayed with a Play /
 // Pause button and a time slider (a labelled <input>, one frame per arrow
 // key), drawn in SVG from the chain and the motion embedded at build time by
@@ -20,12 +21,39 @@
 // ([x0, x1, y0, y1] m), box_right, scale, theta_dot, vel_scale, axis_len, q. In a deck,
 // course_decks.js presses Play when the slide is shown and Pause when it is left.
 
-import { evaluate, makeChain } from "./kinematics.js";
+import { evaluate, makeChain } from "../kinematics.js";
 import {
   BASE_CSS, PALETTE, columnColor, fixed, graphic, html, injectStyle, ink, legendItem, makeArrow, setArrow, sub,
   suppressShortcuts, svg, text as setText,
-} from "./ui.js";
+} from "../ui.js";
 
+/** @typedef {import("../host.js").Model} Model */
+/** @typedef {import("../kinematics.js").Chain} Chain */
+/** @typedef {import("../linalg.js").Vec} Vec */
+/** @typedef {import("../linalg.js").Mat} Mat */
+/** @typedef {import("../ui.js").Arrow2} Arrow2 */
+/** @typedef {import("../ui.js").SubText} SubText */
+/**
+ * The story's model (the keys render reads): the motion θ_i(t) = offset_i + rate_i t + Σ amp sin(freq t + phase),
+ * its frames, and what is drawn where.
+ * @typedef {{story: string, offset: number[], rate: number[], waves: number[][][], t_end: number, frames: number,
+ *   closed: boolean, speed: number, box: number[], box_right: number[], scale: number, theta_dot: number[],
+ *   vel_scale: number, axis_len: number, q: number[]}} StoryModel
+ */
+/**
+ * Everything a story draws at time t: the pose, and the story's vectors.
+ * @typedef {{t: number, theta: Vec, p: Vec, xb: Vec, yb: Vec, points: Vec[], vb?: Vec[], vs?: Vec[],
+ *   thetaDot?: Vec, omegaS?: Vec, vS?: Vec, omegaB?: Vec, vB?: Vec, pDot?: Vec}} StoryFrame
+ */
+/**
+ * A drawing of a box (m, y up), with its labels (their size follows the drawn scale).
+ * @typedef {{root: SVGSVGElement, world: SVGGElement, font: number, base: number, box: number[],
+ *   texts: SVGTextElement[], text: (x: number, y: number, s: string, cls?: string, index?: string) => SVGTextElement}}
+ *   Panel
+ */
+/** @typedef {Record<string, Vec[] | Vec[][]>} Arrows the arrows drawn: [tail, vector] (world m), or a list of them */
+
+/** @type {string[]} */
 export const STORIES = ["fixed_axis", "body_columns", "three_velocities"];
 // the palette's colours as the page's mode draws them (palette.js)
 const C = { orange: graphic("orange"), blue: graphic("blue"), vermillion: graphic("vermillion"), green: graphic("green"),
@@ -39,13 +67,19 @@ const CSS = `
 .jac-live .js-panel{flex:1 1 260px;min-width:0}
 `;
 
-/** The time of frame k (s): closed motions do not repeat t_end (= t_0). */
+/**
+ * The time of frame k (s): closed motions do not repeat t_end (= t_0).
+ * @param {{frames: number, closed: boolean, t_end: number}} m @param {number} k @returns {number}
+ */
 export function frameTime(m, k) {
   const n = m.frames;
   return k * (m.closed ? m.t_end / n : m.t_end / (n - 1));
 }
 
-/** θ(t) of the motion (rad). */
+/**
+ * θ(t) of the motion (rad).
+ * @param {{offset: number[], rate: number[], waves: number[][][]}} m @param {number} t @returns {Vec}
+ */
 export function storyTheta(m, t) {
   return m.offset.map((o, i) => {
     let x = o + m.rate[i] * t;
@@ -54,7 +88,10 @@ export function storyTheta(m, t) {
   });
 }
 
-/** dθ/dt of the motion at t (rad/s). */
+/**
+ * dθ/dt of the motion at t (rad/s).
+ * @param {{rate: number[], waves: number[][][]}} m @param {number} t @returns {Vec}
+ */
 export function storyThetaDot(m, t) {
   return m.rate.map((r, i) => {
     let x = r;
@@ -63,19 +100,25 @@ export function storyThetaDot(m, t) {
   });
 }
 
+/** Rows `rows` of J times qd. @type {(J: Mat, rows: number[], qd: ArrayLike<number>) => Vec} */
 const mulJ = (J, rows, qd) => rows.map((r) => J[r].reduce((s, x, i) => s + x * qd[i], 0));
 
-/** Everything a story draws at time t, from the library's formulas (kinematics.js). */
+/**
+ * Everything a story draws at time t, from the library's formulas (kinematics.js).
+ * @param {Chain} chain @param {StoryModel} m @param {number} t @returns {StoryFrame}
+ */
 export function storyState(chain, m, t) {
   const theta = storyTheta(m, t);
   const e = evaluate(chain, theta);
   const T = e.T;
   const p = [T[0][3], T[1][3]];
   const R2 = [[T[0][0], T[0][1]], [T[1][0], T[1][1]]];
+  /** @type {StoryFrame} */
   const out = { t, theta, p, xb: [R2[0][0], R2[1][0]], yb: [R2[0][1], R2[1][1]], points: e.points.map((q) => [q[0], q[1]]) };
   if (m.story === "body_columns") {
-    out.vb = [0, 1, 2].map((i) => [e.Jb[3][i], e.Jb[4][i]]); // right: linear parts of J_b's columns, in {b}
-    out.vs = out.vb.map((v) => [R2[0][0] * v[0] + R2[0][1] * v[1], R2[1][0] * v[0] + R2[1][1] * v[1]]); // left, in {s}
+    const vb = [0, 1, 2].map((i) => [e.Jb[3][i], e.Jb[4][i]]); // right: linear parts of J_b's columns, in {b}
+    out.vb = vb;
+    out.vs = vb.map((v) => [R2[0][0] * v[0] + R2[0][1] * v[1], R2[1][0] * v[0] + R2[1][1] * v[1]]); // left, in {s}
   } else {
     const qd = m.story === "fixed_axis" ? storyThetaDot(m, t) : m.theta_dot;
     const Vs = mulJ(e.Js, [0, 1, 2, 3, 4, 5], qd);
@@ -90,7 +133,10 @@ export function storyState(chain, m, t) {
   return out;
 }
 
-/** An SVG drawing of box [x0, x1, y0, y1] (m, y up): {root, world (y flipped), label(x, y, text)}. */
+/**
+ * An SVG drawing of box [x0, x1, y0, y1] (m, y up): {root, world (y flipped), label(x, y, text)}.
+ * @param {Element} parent @param {number[]} box @param {string} label @returns {Panel}
+ */
 function panel(parent, box, label) {
   const [x0, x1, y0, y1] = box;
   const root = svg("svg", { viewBox: `${x0} ${-y1} ${x1 - x0} ${y1 - y0}`, role: "img", "aria-label": label,
@@ -102,7 +148,8 @@ function panel(parent, box, label) {
   for (let k = Math.ceil(x0); k <= x1; k++) svg("line", { x1: k, y1: y0, x2: k, y2: y1, "vector-effect": "non-scaling-stroke" }, grid);
   for (let k = Math.ceil(y0); k <= y1; k++) svg("line", { x1: x0, y1: k, x2: x1, y2: k, "vector-effect": "non-scaling-stroke" }, grid);
   const font = 0.045 * (x1 - x0); // ≥ 14 px when the drawing is ≥ 312 px wide
-  const P = { root, world, font, base: font, box, texts: [] };
+  /** @type {Panel} */
+  const P = { root, world, font, base: font, box, texts: [], text: () => { throw new Error("set below"); } };
   P.text = (x, y, s, cls = "", index = "") => {
     const t = svg("text", { x, y: -y, "font-size": P.font, class: cls }, root);
     t.textContent = s;
@@ -110,13 +157,14 @@ function panel(parent, box, label) {
     P.texts.push(t);
     return t;
   };
-  root.jsPanel = P;
+  Object.assign(root, { jsPanel: P });
   return P;
 }
 
 /**
  * Labels at least `--js-label-px` CSS px as shown (a deck sets 24: text on a slide), whatever the
  * drawing's width: the font size in metres follows the drawn scale. True when a size changed.
+ * @param {Panel} P @returns {boolean}
  */
 function fitLabels(P) {
   const want = parseFloat(getComputedStyle(P.root).getPropertyValue("--js-label-px"));
@@ -126,32 +174,39 @@ function fitLabels(P) {
   if (Math.abs(f - P.font) <= 1e-9 * f) return false;
   P.font = f;
   for (const t of P.texts) {
-    t.setAttribute("font-size", f);
+    t.setAttribute("font-size", String(f));
     const sub = t.querySelector("tspan");
-    if (sub) sub.setAttribute("font-size", 0.85 * f);
+    if (sub) sub.setAttribute("font-size", String(0.85 * f));
   }
   return true;
 }
 
+/**
+ * A polyline of the drawing. @param {Element} parent @param {string} color @param {number} width
+ * @param {import("../ui.js").Attrs} [extra] @returns {SVGPolylineElement}
+ */
 function line(parent, color, width, extra = {}) {
   return svg("polyline", { fill: "none", stroke: color, "stroke-width": width, "stroke-linejoin": "round",
     "stroke-linecap": "round", "vector-effect": "non-scaling-stroke", ...extra }, parent);
 }
 
-const pts = (P) => P.map((q) => `${q[0]},${q[1]}`).join(" ");
+const pts = (/** @type {ArrayLike<number>[]} */ P) => P.map((q) => `${q[0]},${q[1]}`).join(" ");
 
 
-const vec = (v, d = 2) => `(${v.map((x) => fixed(x, d)).join(", ")})`;
+const vec = (/** @type {number[]} */ v, d = 2) => `(${v.map((x) => fixed(x, d)).join(", ")})`;
 
+/** @param {{model: Model, el: HTMLElement}} args */
 function render({ model, el }) {
   const doc = el.ownerDocument;
   injectStyle(doc, "jac-live-style", BASE_CSS);
   injectStyle(doc, "jac-story-style", CSS);
   el.classList.add("jac-live");
-  const get = (k) => model.get(k);
-  const m = {};
+  const get = (/** @type {string} */ k) => model.get(k);
+  /** @type {Record<string, any>} */
+  const keys = {};
   for (const k of ["story", "offset", "rate", "waves", "t_end", "frames", "closed", "speed", "box", "box_right",
-    "scale", "theta_dot", "vel_scale", "axis_len", "q"]) m[k] = get(k);
+    "scale", "theta_dot", "vel_scale", "axis_len", "q"]) keys[k] = get(k);
+  const m = /** @type {StoryModel} */ (keys);
   if (!STORIES.includes(m.story)) throw new Error(`Expected story one of ${STORIES.join(", ")}, got ${JSON.stringify(m.story)}`);
   const chain = makeChain(get("S"), get("M"), get("Q") || null);
   const n = chain.n;
@@ -165,14 +220,21 @@ function render({ model, el }) {
   const head = 0.06 * reach;
   const tiny = 1e-9;
   const legend = html("ul", { class: "jl-legend" });
+  /** @type {((s: StoryFrame) => Arrows)[]} */
   const draw = []; // per-frame drawing functions of the story
   const table = html("table", { class: "js-numbers" });
   const caption = html("caption", {}, table);
   const tbody = html("tbody", {}, table);
+  /** @type {Record<string, HTMLTableCellElement[]>} */
   const rows = {};
+  /**
+   * The table's head and rows: a row per [key, label], a column per name (coloured as colColors).
+   * @param {[string, SubText][]} labels @param {string[]} cols @param {string[] | null} [colColors]
+   */
   function tableRows(labels, cols, colColors = null) {
-    const hr = html("tr", {}, html("thead", {}, table));
-    table.insertBefore(hr.parentNode, tbody);
+    const thead = html("thead", {}, table);
+    const hr = html("tr", {}, thead);
+    table.insertBefore(thead, tbody);
     html("th", { scope: "col" }, hr, "");
     cols.forEach((c, i) => html("th", { scope: "col", style: colColors ? `color:${ink(colColors[i])}` : "" }, hr, c));
     for (const [key, lab] of labels) {
@@ -181,8 +243,8 @@ function render({ model, el }) {
       rows[key] = cols.map(() => html("td", {}, tr, ""));
     }
   }
-  const setRow = (key, v, d = 2) => v.forEach((x, i) => setText(rows[key][i], fixed(x, d)));
-  const arrowsOf = (a, cls) => a.g.setAttribute("class", cls);
+  const setRow = (/** @type {string} */ key, /** @type {number[]} */ v, d = 2) => v.forEach((x, i) => setText(rows[key][i], fixed(x, d)));
+  const arrowsOf = (/** @type {Arrow2} */ a, /** @type {string} */ cls) => a.g.setAttribute("class", cls);
 
   if (m.story === "fixed_axis") {
     const P = panel(plot, m.box, "A body frame {b} turning about a vertical axis through q: v_s at the origin of {s}, ṗ at the origin of {b}");
@@ -195,6 +257,7 @@ function render({ model, el }) {
     line(P.world, C.black, 2.5, { points: `${q[0] - d},${q[1] - d} ${q[0] + d},${q[1] + d}` });
     line(P.world, C.black, 2.5, { points: `${q[0] - d},${q[1] + d} ${q[0] + d},${q[1] - d}` });
     P.text(q[0] + 0.1, q[1] + 0.1, "q");
+    /** @type {Vec[]} */
     const circle = [];
     for (let k = 0; k <= 96; k++) circle.push(storyState(chain, m, (2 * Math.PI * k) / 96).p); // where {b}'s origin goes
     line(P.world, C.sky, 2, { points: pts(circle), "stroke-dasharray": "2 4", class: "js-path" });
@@ -214,16 +277,17 @@ function render({ model, el }) {
     caption.textContent = "velocities (m/s)";
     tableRows([["vs", ["v", "s"]], ["pd", ["ṗ", ""]]], ["x", "y", "‖·‖"]);
     draw.push((s) => {
+      const vS = /** @type {Vec} */ (s.vS), pDot = /** @type {Vec} */ (s.pDot);
       const a = m.axis_len;
       setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
       setArrow(by, s.p, [a * s.yb[0], a * s.yb[1]], 0.07, tiny);
-      blabel.setAttribute("x", s.p[0] + 0.05);
-      blabel.setAttribute("y", -(s.p[1] - 0.25));
-      setArrow(vs, [0, 0], [s.vS[0], s.vS[1]], 0.12, tiny);
-      setArrow(pd, s.p, [s.pDot[0], s.pDot[1]], 0.12, tiny);
-      setRow("vs", [s.vS[0], s.vS[1], Math.hypot(...s.vS)]);
-      setRow("pd", [s.pDot[0], s.pDot[1], Math.hypot(...s.pDot)]);
-      return { vs: [[0, 0], [s.vS[0], s.vS[1]]], pdot: [s.p, [s.pDot[0], s.pDot[1]]] };
+      blabel.setAttribute("x", String(s.p[0] + 0.05));
+      blabel.setAttribute("y", String(-(s.p[1] - 0.25)));
+      setArrow(vs, [0, 0], [vS[0], vS[1]], 0.12, tiny);
+      setArrow(pd, s.p, [pDot[0], pDot[1]], 0.12, tiny);
+      setRow("vs", [vS[0], vS[1], Math.hypot(...vS)]);
+      setRow("pd", [pDot[0], pDot[1], Math.hypot(...pDot)]);
+      return { vs: [[0, 0], [vS[0], vS[1]]], pdot: [s.p, [pDot[0], pDot[1]]] };
     });
   } else {
     // the planar 3R arm: links, joints, {s} and the tool axes
@@ -238,7 +302,9 @@ function render({ model, el }) {
     P.text(L + 0.02, -P.font * 1.1, "x");
     P.text(-P.font * 0.9, L + 0.02, "y");
     const link = line(P.world, PALETTE.muted, 7, { class: "jl-link" });
+    /** @type {SVGCircleElement[]} */
     const joints = [];
+    /** @type {SVGTextElement[]} */
     const jl = [];
     for (let i = 0; i < n; i++) {
       joints.push(svg("circle", { r: 0.05, fill: PALETTE.bg, stroke: C.black, "stroke-width": 2, "vector-effect": "non-scaling-stroke" }, P.world));
@@ -252,24 +318,24 @@ function render({ model, el }) {
       t.setAttribute("text-anchor", "middle");
       t.setAttribute("dominant-baseline", "middle");
     }
-    const arm = (s) => {
+    const arm = (/** @type {StoryFrame} */ s) => {
       link.setAttribute("points", pts(s.points));
       for (let i = 0; i < n; i++) {
-        joints[i].setAttribute("cx", s.points[i][0]);
-        joints[i].setAttribute("cy", s.points[i][1]);
+        joints[i].setAttribute("cx", String(s.points[i][0]));
+        joints[i].setAttribute("cy", String(s.points[i][1]));
         if (jl[i]) {
-          jl[i].setAttribute("x", s.points[i][0] + 0.08);
-          jl[i].setAttribute("y", -(s.points[i][1] - 0.28));
+          jl[i].setAttribute("x", String(s.points[i][0] + 0.08));
+          jl[i].setAttribute("y", String(-(s.points[i][1] - 0.28)));
         }
       }
       const a = m.axis_len;
       setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
       by.setAttribute("points", `${s.p[0]},${s.p[1]} ${s.p[0] + a * s.yb[0]},${s.p[1] + a * s.yb[1]}`);
       const r = a + 0.9 * P.font; // the labels just beyond the axes' tips, centred on their line
-      xbl.setAttribute("x", s.p[0] + r * s.xb[0]);
-      xbl.setAttribute("y", -(s.p[1] + r * s.xb[1]));
-      ybl.setAttribute("x", s.p[0] + r * s.yb[0]);
-      ybl.setAttribute("y", -(s.p[1] + r * s.yb[1]));
+      xbl.setAttribute("x", String(s.p[0] + r * s.xb[0]));
+      xbl.setAttribute("y", String(-(s.p[1] + r * s.xb[1])));
+      ybl.setAttribute("x", String(s.p[0] + r * s.yb[0]));
+      ybl.setAttribute("y", String(-(s.p[1] + r * s.yb[1])));
     };
     if (m.story === "body_columns") {
       const right = html("div", { class: "js-panel" }, plot);
@@ -280,7 +346,9 @@ function render({ model, el }) {
       // anchored at the right and top edges, so that a larger font (a slide) grows into the drawing
       Rp.text(m.box_right[1] - 0.3 * Rp.font, -0.3 * Rp.font, "x", "", "b").setAttribute("text-anchor", "end");
       Rp.text(0.08, m.box_right[3] - 0.2 * Rp.font, "y", "", "b").setAttribute("dominant-baseline", "hanging");
+      /** @type {Arrow2[]} */
       const colsL = [];
+      /** @type {Arrow2[]} */
       const colsR = [];
       for (let i = 0; i < 3; i++) {
         colsL.push(makeArrow(P.world, columnColor(i), 3.5));
@@ -295,15 +363,16 @@ function render({ model, el }) {
       caption.append(", in {b} (m/rad)");
       tableRows([["x", ["x", "b"]], ["y", ["y", "b"]]], ["col 1", "col 2", "col 3"], [0, 1, 2].map(columnColor));
       draw.push((s) => {
+        const vsL = /** @type {Vec[]} */ (s.vs), vbR = /** @type {Vec[]} */ (s.vb);
         arm(s);
         const k = m.scale;
         for (let i = 0; i < 3; i++) {
-          setArrow(colsL[i], s.p, [k * s.vs[i][0], k * s.vs[i][1]], head, tiny);
-          setArrow(colsR[i], [0, 0], s.vb[i], 0.09, tiny);
+          setArrow(colsL[i], s.p, [k * vsL[i][0], k * vsL[i][1]], head, tiny);
+          setArrow(colsR[i], [0, 0], vbR[i], 0.09, tiny);
         }
-        setRow("x", s.vb.map((v) => v[0]));
-        setRow("y", s.vb.map((v) => v[1]));
-        return { left: s.vs.map((v) => [s.p, [k * v[0], k * v[1]]]), right: s.vb.map((v) => [[0, 0], v]) };
+        setRow("x", vbR.map((v) => v[0]));
+        setRow("y", vbR.map((v) => v[1]));
+        return { left: vsL.map((v) => [s.p, [k * v[0], k * v[1]]]), right: vbR.map((v) => [[0, 0], v]) };
       });
     } else {
       const pd = makeArrow(P.world, C.green, 4);
@@ -318,16 +387,17 @@ function render({ model, el }) {
         ["x", "y", "z", "‖·‖"]);
       const vsc = m.vel_scale;
       draw.push((s) => {
+        const [vS, pDot, omegaS, omegaB, vB] = /** @type {Vec[]} */ ([s.vS, s.pDot, s.omegaS, s.omegaB, s.vB]);
         arm(s);
-        setArrow(pd, s.p, [vsc * s.pDot[0], vsc * s.pDot[1]], head, tiny);
-        setArrow(vs, [0, 0], [vsc * s.vS[0], vsc * s.vS[1]], head, tiny);
-        const nrm = (v) => Math.hypot(...v);
-        setRow("ws", [...s.omegaS, nrm(s.omegaS)]);
-        setRow("wb", [...s.omegaB, nrm(s.omegaB)]);
-        setRow("pd", [...s.pDot, nrm(s.pDot)]);
-        setRow("vs", [...s.vS, nrm(s.vS)]);
-        setRow("vb", [...s.vB, nrm(s.vB)]);
-        return { pdot: [s.p, [vsc * s.pDot[0], vsc * s.pDot[1]]], vs: [[0, 0], [vsc * s.vS[0], vsc * s.vS[1]]] };
+        setArrow(pd, s.p, [vsc * pDot[0], vsc * pDot[1]], head, tiny);
+        setArrow(vs, [0, 0], [vsc * vS[0], vsc * vS[1]], head, tiny);
+        const nrm = (/** @type {number[]} */ v) => Math.hypot(...v);
+        setRow("ws", [...omegaS, nrm(omegaS)]);
+        setRow("wb", [...omegaB, nrm(omegaB)]);
+        setRow("pd", [...pDot, nrm(pDot)]);
+        setRow("vs", [...vS, nrm(vS)]);
+        setRow("vb", [...vB, nrm(vB)]);
+        return { pdot: [s.p, [vsc * pDot[0], vsc * pDot[1]]], vs: [[0, 0], [vsc * vS[0], vsc * vS[1]]] };
       });
     }
   }
@@ -359,7 +429,7 @@ function render({ model, el }) {
     Object.assign(state, { frame: k, ...s, arrows });
     el.dataset.frame = String(k);
   }
-  const setFrame = (k) => {
+  const setFrame = (/** @type {number} */ k) => {
     model.set("frame", k);
     model.save_changes();
   };
@@ -367,6 +437,7 @@ function render({ model, el }) {
     stop();
     setFrame(Number(slider.value));
   };
+  /** @type {ReturnType<typeof setInterval> | null} */
   let timer = null;
   const frameMs = (1000 * m.t_end) / (m.closed ? m.frames : m.frames - 1) / (m.speed || 1);
   function stop() {
@@ -390,9 +461,11 @@ function render({ model, el }) {
   redraw();
   el.dataset.playing = "0";
   suppressShortcuts(el);
-  el.jacLive = state;
+  Object.assign(el, { jacLive: state });
   // labels at slide size once the drawing has its width (a deck's slide is laid out when shown)
-  const panels = [...el.querySelectorAll("svg")].map((r) => r.jsPanel).filter(Boolean);
+  /** @type {Panel[]} */
+  const panels = [...el.querySelectorAll("svg")].map((r) => /** @type {{jsPanel?: Panel}} */ (r).jsPanel)
+    .filter((P) => P !== undefined);
   const fit = () => { if (panels.map(fitLabels).some(Boolean)) redraw(); };
   const watch = typeof ResizeObserver === "function" ? new ResizeObserver(fit) : null;
   if (watch) panels.forEach((P) => watch.observe(P.root));
