@@ -14,8 +14,10 @@ committed).
 from __future__ import annotations
 
 import base64
+import html
 import io
 import json
+import os
 import re
 import urllib.parse
 from pathlib import Path
@@ -276,6 +278,37 @@ def test_deck_is_built_and_listed(usb, source):
     assert chapter.is_file()
     # slide text and speaker notes are the deck's: not on the book's page
     assert "Key point:" in html and "Key point:" not in chapter.read_text(encoding="utf-8")
+
+
+def test_title_slides_carry_course_lecturer_and_date(usb):
+    """Every deck's and lecture's title slide names the course, the lecturer and the date or term: the
+    settings of ``_config.yml`` (``decks_course``, ``decks_lecturer``, ``decks_date``), the environment,
+    else the book's title and author and the month and year of the build (``decks.title_date``)."""
+    import yaml
+
+    book = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
+    conf = book["sphinx"]["config"]
+    course = conf.get("decks_course") or os.environ.get("COURSE_TITLE") or book["title"]
+    lecturer = conf.get("decks_lecturer") or os.environ.get("COURSE_LECTURER") or book["author"]
+    date = (conf.get("decks_date") or os.environ.get("COURSE_DATE") or "").strip()
+    when = re.escape(html.escape(date)) if date else r"(?:January|February|March|April|May|June|July|August|" \
+        r"September|October|November|December) \d{4}"
+    pages = [d["file"] for d in json.loads((usb / "decks.json").read_text())]
+    pages += [lec["file"] for lec in json.loads((usb / "lectures.json").read_text())]
+    bad = []
+    for rel in pages:
+        page = (usb / rel).read_text(encoding="utf-8")
+        title = re.search(r'<section\b[^>]*class="[^"]*title-slide.*?</section>', page, re.S)
+        if title is None:
+            bad.append(f"{rel}: no title slide")
+            continue
+        if f'<p class="deck-course">{html.escape(course)}</p>' not in title.group(0):
+            bad.append(f"{rel}: no course {course!r} on the title slide")
+        if not re.search(rf'<p class="deck-lecturer">{re.escape(html.escape(lecturer))} \u00b7 {when}</p>',
+                         title.group(0)):
+            bad.append(f"{rel}: no lecturer and date on the title slide: "
+                       f"{re.findall(r'<p class=.deck-lecturer.>.*?</p>', title.group(0))}")
+    assert not bad, "\n".join(bad)
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
