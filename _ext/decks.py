@@ -164,7 +164,7 @@ def _patch_slide_players() -> None:
         return original(self, data)
 
     render_mime_type._decks = True  # type: ignore[attr-defined]
-    NbElementRenderer.render_mime_type = render_mime_type  # type: ignore[method-assign]
+    NbElementRenderer.render_mime_type = render_mime_type
 
 
 def _patch_markdown_cells() -> None:
