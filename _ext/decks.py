@@ -49,6 +49,8 @@ from sphinx.application import Sphinx
 from sphinx.util import logging
 from sphinx.util.docutils import SphinxDirective
 
+from jacobians.plotting.animation import SLIDE_MIME
+
 logger = logging.getLogger(__name__)
 
 BUILDER = "revealjs"
@@ -127,6 +129,42 @@ class SlideNotesDirective(SphinxDirective):
 
 
 # ---------------------------------------------------------------- cell markers
+
+
+_MONTHS = ("January", "February", "March", "April", "May", "June", "July", "August", "September", "October",
+           "November", "December")
+
+
+def title_date(setting: str, environ: dict[str, str] | None = None) -> str:
+    """The date or term on a deck's title slide: ``decks_date`` (``_config.yml``), else ``COURSE_DATE`` from
+    the environment, else the month and year of the build (``SOURCE_DATE_EPOCH`` when set, as the book's
+    footer: ``_ext/publishing.py``), e.g. "November 2026"."""
+    import publishing
+
+    env = dict(os.environ) if environ is None else environ
+    chosen = str(setting or env.get("COURSE_DATE") or "").strip()
+    if chosen:
+        return chosen
+    year, month, _ = publishing.build_date(env).split("-")
+    return f"{_MONTHS[int(month) - 1]} {year}"
+
+
+def _patch_slide_players() -> None:
+    """An animation's player drawn for the slides (:data:`SLIDE_MIME`, ``jacobians.plotting.animation``) is
+    HTML to myst-nb: the decks pick it before the book's player (:func:`configure`), the book never does."""
+    from myst_nb.core.render import NbElementRenderer
+
+    original = NbElementRenderer.render_mime_type
+    if getattr(original, "_decks", False):
+        return
+
+    def render_mime_type(self: Any, data: Any) -> Any:
+        if data.mime_type == SLIDE_MIME:
+            return self.render_text_html(data)
+        return original(self, data)
+
+    render_mime_type._decks = True  # type: ignore[attr-defined]
+    NbElementRenderer.render_mime_type = render_mime_type
 
 
 def _patch_markdown_cells() -> None:
@@ -532,8 +570,9 @@ def to_slides(app: Sphinx, doctree: nodes.document, docname: str) -> None:
     new_top += title
     new_top += nodes.paragraph("", app.config.decks_course or app.config.html_title or app.config.project,
                                classes=["deck-course"])
-    who = " \N{MIDDLE DOT} ".join(t for t in (app.config.decks_lecturer or app.config.author,
-                                               app.config.decks_date) if t)
+    who = " \N{MIDDLE DOT} ".join(t for t in (
+        app.config.decks_lecturer or os.environ.get("COURSE_LECTURER") or app.config.author,
+        title_date(app.config.decks_date)) if t)
     if who:
         new_top += nodes.paragraph("", who, classes=["deck-lecturer"])
     kept: list[_Slide] = []
@@ -796,7 +835,8 @@ def deck_assets(app: Sphinx, pagename: str, templatename: str, context: dict[str
 def configure(app: Sphinx, config: Any) -> None:
     """Settings of the deck build; the same in both builds, so the environment is shared."""
     html = [("revealjs", mime, prio) for mime, prio in (
-        ("application/vnd.jupyter.widget-view+json", 10), ("application/javascript", 20), ("text/html", 30),
+        ("application/vnd.jupyter.widget-view+json", 10), ("application/javascript", 20), (SLIDE_MIME, 25),
+        ("text/html", 30),
         ("image/svg+xml", 40), ("image/png", 50), ("image/gif", 60), ("image/jpeg", 70),
         ("text/markdown", 80), ("text/latex", 90), ("text/plain", 100))]
     # a chapter's figure carries a PNG (the book's) and an SVG drawn for the slides, its text enlarged
@@ -838,6 +878,7 @@ def configure(app: Sphinx, config: Any) -> None:
 def setup(app: Sphinx) -> dict[str, Any]:
     app.setup_extension("sphinx_revealjs")
     _patch_markdown_cells()
+    _patch_slide_players()
     visitors: dict[str, Any] = {"html": (_skip, None), "latex": (_skip, None), "text": (_skip, None),
                 "man": (_skip, None), "texinfo": (_skip, None)}
     app.add_node(slide_cell, **visitors)
@@ -846,7 +887,9 @@ def setup(app: Sphinx) -> dict[str, Any]:
     app.add_node(slide_notes, **{**visitors, "html": (_visit_notes, _depart_notes),
                                  BUILDER: (_visit_notes, _depart_notes)})
     # the title slide's course, lecturer and date: _config.yml (sphinx: config:) or the environment
-    # (COURSE_TITLE, COURSE_LECTURER, COURSE_DATE: `make slides COURSE_LECTURER=...`); no rebuild on change
+    # (COURSE_TITLE, COURSE_LECTURER, COURSE_DATE: `make slides COURSE_LECTURER=...`); no rebuild on change;
+    # an empty setting falls back to the environment, then to the book's title and author and the month and
+    # year of the build (title_date)
     app.add_config_value("decks_course", os.environ.get("COURSE_TITLE", ""), "")
     app.add_config_value("decks_lecturer", os.environ.get("COURSE_LECTURER", ""), "")
     app.add_config_value("decks_date", os.environ.get("COURSE_DATE", ""), "")

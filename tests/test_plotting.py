@@ -435,3 +435,54 @@ def test_animation_html_drops_frames_beyond_the_limit_with_a_warning():
     with pytest.warns(UserWarning, match="dropped"):
         html = P.animation_html(source, embed_limit_mb=1e-4).data
     assert html.count("data:image/png;base64") < 4
+
+
+def test_animation_html_draws_frames_for_the_slides_when_asked_with_text_large_enough():
+    from jacobians.plotting import animation
+
+    def source():
+        fig, ax = plt.subplots(figsize=(8.0, 5.0), dpi=40, layout="constrained")
+        ax.set_xlim(0, 1)
+        ax.set_xlabel("x (m)", fontsize=10)
+        ax.tick_params(labelsize=9)
+        (dot,) = ax.plot([0.0], [0.0], "o")
+        label = ax.text(0.1, 0.5, "t = 0", fontsize=8)   # a moving text, the smallest of all
+
+        def draw(k):
+            dot.set_data([0.3 * k], [0.0])
+            label.set_text(f"t = {k}")
+        return P.FrameSource(fig, draw, 3, moving=[dot, label])
+
+    book = P.animation_html(source())
+    assert book._repr_mimebundle_() == {}   # not asked: the book's player only
+    animation.set_slide_frames((1280.0, 562.0), 27.0)
+    try:
+        both = P.animation_html(source())
+        # a target the book's frames already meet asks for no second player
+        animation.set_slide_frames((100.0, 50.0), 1.0)
+        small = P.animation_html(source())
+        with pytest.raises(ValueError):
+            animation.set_slide_frames((0.0, 562.0), 27.0)
+    finally:
+        animation.set_slide_frames(None)
+    assert small._repr_mimebundle_() == {}
+    slide = both._repr_mimebundle_()[animation.SLIDE_MIME]
+    frames = re.compile(r'frames\[\d+\] = "data:image/png;base64,([^"]*)"')
+    assert frames.findall(both.data) == frames.findall(book.data)   # the book's player is unchanged
+    import base64
+    import io
+
+    from PIL import Image
+
+    def first_frame(html):
+        data = re.search(r'frames\[0\] = "data:image/png;base64,([^"]*)"', html).group(1).replace("\\\n", "")
+        return Image.open(io.BytesIO(base64.b64decode(data)))
+
+    # the same pixels; the smallest text (the moving label, 8 pt) 27 px or more where the slide shows it
+    w, h = first_frame(slide).size
+    assert abs(w - 320) <= 1 and abs(h - 200) <= 1 and first_frame(book.data).size == (320, 200)
+    text_px = float(re.search(r'data-smallest-text-px="([\d.]+)"', slide).group(1))
+    shown = min(1280.0, 562.0 * w / h) / w
+    assert text_px * shown >= 27.0
+    assert float(re.search(r'data-smallest-text-px="([\d.]+)"', book.data).group(1)) * shown < 27.0
+    assert slide.count("data:image/png;base64") == 3 and "https://" not in slide

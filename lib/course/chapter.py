@@ -38,6 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 import jacobians as jac
 from jacobians import lie
 from jacobians.plotting import COLUMN_COLORS, PALETTE, animation_html, set_style, smallest_text_px
+from jacobians.plotting.animation import set_slide_frames
 from jacobians.symbolic import is_zero, is_zero_matrix
 from jacobians.testing import fd_tol
 from jacobians.verified import Verified
@@ -145,6 +146,8 @@ def _png_with_text_size() -> None:
         return slide_svg(fig)
 
     ip.display_formatter.formatters["image/png"].for_type(Figure, png)
+    # an animation too gets frames drawn for the slides, where its text would be too small there
+    set_slide_frames(SLIDE_ANIMATION_BOX, SLIDE_TEXT_PX)
     # the decks' copy of each figure (the book shows the PNG: _ext/decks.py orders the two)
     ip.display_formatter.formatters["image/svg+xml"].for_type(Figure, svg)
 
@@ -157,6 +160,9 @@ SLIDE_FIGURE_BOX = (1280.0, 600.0)
 #: 720/(1.04*720) = 0.962. 20 px on a 1024x768 screen is 20/0.769 = 26.0 px of the canvas, 24 px on a 1280x720
 #: screen 24/0.962 = 24.96 px; 27 px meets both with a pixel to spare for rounding.
 SLIDE_TEXT_PX = 27.0
+#: where a slide shows an animation's frames, in px of the canvas (``course_decks.css``: 562 px tall under a line
+#: of slide text, 600 px without; the player's buttons under it), at most as wide as the slide
+SLIDE_ANIMATION_BOX = (1280.0, 562.0)
 #: attribute of a slide figure's ``<svg>`` root: its smallest text, in the SVG's own units (its viewBox)
 SVG_TEXT_ATTR = "data-smallest-text"
 

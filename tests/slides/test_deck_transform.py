@@ -96,3 +96,11 @@ def test_a_statement_without_display_math_keeps_its_formulas_in_its_box():
     para += nodes.Text(" is invertible: for ZYX away from ")
     para += nodes.math("", r"\cos\phi_2 = 0")
     assert decks._formulas_of(para)[0].astext() == r"J_a is defined wherever B(\phi) is invertible."
+
+
+def test_the_title_slides_date_is_the_setting_else_the_environment_else_the_builds_month():
+    assert decks.title_date("Autumn term 2026", {"COURSE_DATE": "ignored"}) == "Autumn term 2026"
+    assert decks.title_date("", {"COURSE_DATE": "Spring 2027"}) == "Spring 2027"
+    # 1790812800 s after the epoch is 2026-10-01T00:00:00Z, and a second before it still September
+    assert decks.title_date("", {"SOURCE_DATE_EPOCH": "1790812800"}) == "October 2026"
+    assert decks.title_date("  ", {"SOURCE_DATE_EPOCH": "1790812799"}) == "September 2026"

@@ -14,8 +14,10 @@ committed).
 from __future__ import annotations
 
 import base64
+import html
 import io
 import json
+import os
 import re
 import urllib.parse
 from pathlib import Path
@@ -276,6 +278,36 @@ def test_deck_is_built_and_listed(usb, source):
     assert chapter.is_file()
     # slide text and speaker notes are the deck's: not on the book's page
     assert "Key point:" in html and "Key point:" not in chapter.read_text(encoding="utf-8")
+
+
+def test_title_slides_carry_course_lecturer_and_date(usb):
+    """Every deck's and lecture's title slide names the course, the lecturer and the date or term: the
+    settings of ``_config.yml`` (``decks_course``, ``decks_lecturer``, ``decks_date``), the environment,
+    else the book's title and author and the month and year of the build (``decks.title_date``)."""
+    import yaml
+
+    book = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
+    conf = book["sphinx"]["config"]
+    course = conf.get("decks_course") or os.environ.get("COURSE_TITLE") or book["title"]
+    lecturer = conf.get("decks_lecturer") or os.environ.get("COURSE_LECTURER") or book["author"]
+    date = (conf.get("decks_date") or os.environ.get("COURSE_DATE") or "").strip()
+    when = re.escape(html.escape(date)) if date else r"(?:January|February|March|April|May|June|July|August|" \
+        r"September|October|November|December) \d{4}"
+    pages = [d["file"] for d in json.loads((usb / "decks.json").read_text())]
+    pages += [lec["file"] for lec in json.loads((usb / "lectures.json").read_text())]
+    bad = []
+    for rel in pages:
+        page = (usb / rel).read_text(encoding="utf-8")
+        # the title slide: the first, before any slide's heading (the writer drops its section's class)
+        title = re.search(r'<p class="deck-course">(.*?)</p>\s*<p class="deck-lecturer">(.*?)</p>', page, re.S)
+        if title is None or ("<h2" in page and title.start() > page.index("<h2")):
+            bad.append(f"{rel}: no course, lecturer and date on the title slide")
+            continue
+        if title.group(1) != html.escape(course):
+            bad.append(f"{rel}: the course is {title.group(1)!r}, not {course!r}")
+        if not re.fullmatch(rf"{re.escape(html.escape(lecturer))} \u00b7 {when}", title.group(2)):
+            bad.append(f"{rel}: lecturer and date {title.group(2)!r}, not {lecturer!r} and {when!r}")
+    assert not bad, "\n".join(bad)
 
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)

@@ -22,6 +22,7 @@ from the internet, with palette PNG frames (:func:`compact_png`).
 from __future__ import annotations
 
 import base64
+import functools
 import io
 import re
 import tempfile
@@ -43,6 +44,34 @@ from numpy.typing import ArrayLike, NDArray
 from .style import smallest_text_px
 
 __all__ = ["FrameSource", "animation_html", "compact_png"]
+
+#: MIME type of an animation's second player, its frames drawn for a projected slide (:func:`set_slide_frames`):
+#: the lecture decks' build shows it; the book, JupyterLab and nbconvert show the ``text/html`` player
+SLIDE_MIME = "text/vnd.jacobians.slide-html"
+
+# where a slide shows an animation (px of the deck's canvas: width, height) and its smallest text there (px);
+# None: no second player (set_slide_frames)
+_SLIDE: dict[str, Any] = {"box": None, "text_px": None}
+
+
+def set_slide_frames(box: tuple[float, float] | None, text_px: float | None = None) -> None:
+    """Make :func:`animation_html` also draw each animation's frames for a projected slide (or stop, with None).
+
+    ``box`` is the largest picture a slide shows an animation in (width, height, in px of the deck's
+    canvas) and ``text_px`` the smallest text wanted there. An animation whose text, shown as large as
+    the box allows, is smaller gets a second player (:data:`SLIDE_MIME`): the same figure drawn at the
+    same pixel size, on a smaller canvas at a higher dpi, so that every text, line and marker grows by
+    the same factor until the smallest text reaches ``text_px``. Costs a second rendering of every frame,
+    so the course turns it on in a notebook kernel only (:func:`course.chapter.start_page`).
+    """
+    if box is None:
+        _SLIDE.update(box=None, text_px=None)
+        return
+    w, h = (float(v) for v in box)
+    if text_px is None or not (w > 0 and h > 0 and float(text_px) > 0):
+        raise ValueError(f"Expected a positive box and text size, got {box!r} and {text_px!r}")
+    _SLIDE.update(box=(w, h), text_px=float(text_px))
+
 
 
 @dataclass(eq=False)
@@ -245,11 +274,15 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
     :func:`compact_png`), about 4x lighter than matplotlib's; frames beyond
     ``embed_limit_mb`` are dropped with a warning. The figure of a
     :class:`FrameSource` is closed, so no stray static copy of it follows the
-    animation in a notebook.
+    animation in a notebook. After :func:`set_slide_frames`, a :class:`FrameSource`
+    whose text is too small for a projected slide also gets a second player,
+    its frames drawn with larger text, under :data:`SLIDE_MIME`.
 
     Returns
     -------
     IPython.display.HTML
+        The book's player (``.data``); displayed, it shows as ``text/html`` and
+        carries the slides' player, if any, as :data:`SLIDE_MIME`.
     """
     from IPython.display import HTML
 
@@ -277,7 +310,71 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
             text_px = f"{smallest_text_px(anim.fig):.2f}"
         except ValueError:  # no text at all
             text_px = "none"
+        slide = _slide_player(anim, default_mode, colors, limit)
     finally:
         plt.close(anim.fig)
     player = _strip_cdn(_player(frames, anim.interval, default_mode))
-    return HTML(f'<div class="jac-anim" data-smallest-text-px="{text_px}">{player}</div>')
+    return _animation_html_type()(f'<div class="jac-anim" data-smallest-text-px="{text_px}">{player}</div>', slide)
+
+
+@functools.cache
+def _animation_html_type() -> type:
+    """IPython's ``HTML`` (imported when first needed: the plotting extra has no IPython) with a second
+    player for the slides."""
+    from IPython.display import HTML
+
+    class AnimationHTML(HTML):
+        """The book's player (``text/html``), and where one was drawn, the slides' (:data:`SLIDE_MIME`)."""
+
+        def __init__(self, data: str, slide: str | None) -> None:
+            super().__init__(data)
+            self.slide = slide
+
+        def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, str]:
+            return {SLIDE_MIME: self.slide} if self.slide is not None else {}
+
+    return AnimationHTML
+
+
+def _moving_text_px(anim: FrameSource) -> float:
+    """The smallest text among the moving artists (``canvas.draw`` leaves animated artists out), px."""
+    from matplotlib.text import Text
+
+    sizes = [float(a.get_fontsize()) for a in anim.moving or () if isinstance(a, Text)]
+    return min(sizes) * float(anim.fig.dpi) / 72.0 if sizes else float("inf")
+
+
+def _slide_player(anim: FrameSource, default_mode: str, colors: int, limit: float) -> str | None:
+    """The slides' player of ``anim`` (:func:`set_slide_frames`), or None (not asked, not needed, or a
+    source that renders its frames itself)."""
+    box, want = _SLIDE["box"], _SLIDE["text_px"]
+    if box is None or anim.render is not None:
+        return None
+    fig = anim.fig
+    try:
+        smallest = min(smallest_text_px(fig), _moving_text_px(anim))
+    except ValueError:  # no text at all
+        return None
+    w, h = float(fig.bbox.width), float(fig.bbox.height)
+    shown = min(box[0], box[1] * w / h) / w   # the slide's scale of a frame pixel
+    if smallest * shown >= want:
+        return None   # the book's frames already read from the back row
+    # the same pixels, every text, line and marker grown by the same factor (2 % more: rounding of sizes)
+    grow = want / (smallest * shown) * 1.02
+    width_in, height_in = fig.get_size_inches()
+    fig.set_dpi(float(fig.dpi) * grow)
+    fig.set_size_inches(width_in / grow, height_in / grow)
+    anim.invalidate()
+    frames: list[str] = []
+    total = 0
+    for k in range(anim.n_frames):
+        data = base64.b64encode(compact_png(anim.frame(k), colors)).decode("ascii")
+        total += len(data)
+        if total >= limit:
+            warnings.warn(f"animation_html: slide frames beyond {limit / 1e6:.1f} MB were dropped",
+                          stacklevel=3)
+            break
+        frames.append(data)
+    text_px = min(smallest_text_px(fig), _moving_text_px(anim))
+    player = _strip_cdn(_player(frames, anim.interval, default_mode))
+    return f'<div class="jac-anim" data-smallest-text-px="{text_px:.2f}">{player}</div>'
