@@ -4,9 +4,7 @@ notebooks written by tools/make_exercises.py free of solutions and outputs."""
 
 from __future__ import annotations
 
-import importlib.util
 import re
-import sys
 from collections import Counter
 from pathlib import Path
 
@@ -313,11 +311,8 @@ def test_every_exercise_answers_garbage_with_feedback(eid):
 # ------------------------------------------------------------------ student notebooks
 
 def _load_tool():
-    spec = importlib.util.spec_from_file_location("make_exercises", ROOT / "tools" / "make_exercises.py")
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules["make_exercises"] = mod
-    spec.loader.exec_module(mod)
-    return mod
+    from tools import make_exercises
+    return make_exercises
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,5 @@
 """The exercise pages link to their student notebooks; the link itself never reaches the student version."""
 
-import importlib.util
 from pathlib import Path
 
 import jupytext
@@ -9,10 +8,8 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def _tool():
-    spec = importlib.util.spec_from_file_location("make_exercises", ROOT / "tools" / "make_exercises.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    from tools import make_exercises
+    return make_exercises
 
 
 def test_every_exercise_page_links_its_student_notebook_and_the_link_is_book_only():
