@@ -294,17 +294,8 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
     if not isinstance(anim, FrameSource):
         raise TypeError(f"Expected a FrameSource (or a matplotlib Animation), got {type(anim).__name__}")
     limit = float(embed_limit_mb) * 1024 * 1024
-    frames: list[str] = []
-    total = 0
     try:
-        for k in range(anim.n_frames):
-            data = base64.b64encode(compact_png(anim.frame(k), colors)).decode("ascii")
-            total += len(data)
-            if total >= limit:
-                warnings.warn(f"animation_html: frames beyond {limit / 1e6:.1f} MB were dropped; "
-                              "use fewer frames or a lower dpi", stacklevel=2)
-                break
-            frames.append(data)
+        frames = _encoded_frames(anim, colors, limit, "frames", stacklevel=3)
         # the smallest text of the frames, in frame pixels (the decks' tests scale it by the shown width)
         try:
             text_px = f"{smallest_text_px(anim.fig):.2f}"
@@ -313,8 +304,29 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
         slide = _slide_player(anim, default_mode, colors, limit)
     finally:
         plt.close(anim.fig)
-    player = _strip_cdn(_player(frames, anim.interval, default_mode))
-    return _animation_html_type()(f'<div class="jac-anim" data-smallest-text-px="{text_px}">{player}</div>', slide)
+    return _animation_html_type()(_jac_anim(frames, text_px, anim.interval, default_mode), slide)
+
+
+def _encoded_frames(anim: FrameSource, colors: int, limit: float, what: str, stacklevel: int) -> list[str]:
+    """``anim``'s frames as base64 palette PNGs, up to ``limit`` bytes in all (the rest dropped, with a warning
+    at the caller of :func:`animation_html`)."""
+    frames: list[str] = []
+    total = 0
+    for k in range(anim.n_frames):
+        data = base64.b64encode(compact_png(anim.frame(k), colors)).decode("ascii")
+        total += len(data)
+        if total >= limit:
+            warnings.warn(f"animation_html: {what} beyond {limit / 1e6:.1f} MB were dropped; "
+                          "use fewer frames or a lower dpi", stacklevel=stacklevel)
+            break
+        frames.append(data)
+    return frames
+
+
+def _jac_anim(frames: list[str], text_px: str, interval: float, default_mode: str) -> str:
+    """The player of ``frames``, marked with its smallest text in frame pixels (read by the decks' tests)."""
+    player = _strip_cdn(_player(frames, interval, default_mode))
+    return f'<div class="jac-anim" data-smallest-text-px="{text_px}">{player}</div>'
 
 
 @functools.cache
@@ -365,16 +377,6 @@ def _slide_player(anim: FrameSource, default_mode: str, colors: int, limit: floa
     fig.set_dpi(float(fig.dpi) * grow)
     fig.set_size_inches(width_in / grow, height_in / grow)
     anim.invalidate()
-    frames: list[str] = []
-    total = 0
-    for k in range(anim.n_frames):
-        data = base64.b64encode(compact_png(anim.frame(k), colors)).decode("ascii")
-        total += len(data)
-        if total >= limit:
-            warnings.warn(f"animation_html: slide frames beyond {limit / 1e6:.1f} MB were dropped",
-                          stacklevel=3)
-            break
-        frames.append(data)
+    frames = _encoded_frames(anim, colors, limit, "slide frames", stacklevel=4)
     text_px = min(smallest_text_px(fig), _moving_text_px(anim))
-    player = _strip_cdn(_player(frames, anim.interval, default_mode))
-    return f'<div class="jac-anim" data-smallest-text-px="{text_px:.2f}">{player}</div>'
+    return _jac_anim(frames, f"{text_px:.2f}", anim.interval, default_mode)
