@@ -15,6 +15,7 @@ The rule that splits ``make test-lib`` from the browser stages (``make test-brow
 from __future__ import annotations
 
 import shutil
+import sys
 from pathlib import Path
 
 import pytest
@@ -49,6 +50,16 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if Path(str(item.path)).resolve() in browser_modules and item.get_closest_marker("browser") is None:
             item.add_marker(pytest.mark.browser)
+
+
+@pytest.fixture(autouse=True)
+def _no_slide_frames_after_a_test():
+    """A chapter's ``start_page`` (run by some tests in-process) asks every later animation for a second set
+    of frames, drawn for the slides: a process-wide switch. Each test leaves it off, as it found it."""
+    yield
+    animation = sys.modules.get("jacobians.plotting.animation")   # never imported: nothing to switch off
+    if animation is not None:
+        animation.set_slide_frames(None)
 
 
 @pytest.fixture(scope="session")
