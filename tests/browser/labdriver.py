@@ -20,15 +20,17 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
+from live_data import with_data
+
 #: A matrix entry shown with two decimals is within half a unit of the last place of the exact value.
 HALF_ULP = 0.005 + 1e-9
 
 #: the planar views' state as the page shows it: angles, frame, and the Jacobian table's numbers
-READ_PLANAR = """(el) => ({
-  theta: JSON.parse(el.dataset.theta), frame: el.dataset.frame,
+READ_PLANAR = with_data("""{
+  theta: data.theta, frame: data.frame,
   table: [...el.querySelectorAll("table.jl-matrix tbody tr")].map(
     (tr) => [...tr.querySelectorAll("td")].map((td) => Number(td.textContent.replace("\\u2212", "-")))),
-})"""
+}""")
 
 
 def free_port() -> int:

@@ -12,6 +12,7 @@ import re
 from typing import Any
 
 import numpy as np
+from live_data import with_data
 
 import jacobians as jac
 from jacobians.widgets.live import story_theta, story_theta_dot, story_times
@@ -20,7 +21,7 @@ TOL = 1e-12
 HALF_ULP = 0.005 + 1e-9  # the table shows 2 decimals
 
 # The view's state (every number it drew) and the drawn SVG, read at once.
-READ_JS = """(el) => {
+READ_JS = with_data("""(() => {
   const s = el.jacLive;
   const arrow = (g) => {
     const l = g.querySelector("line"), h = g.querySelector("polygon");
@@ -31,7 +32,7 @@ READ_JS = """(el) => {
   const link = el.querySelector("polyline.jl-link");
   return {
     state: JSON.parse(JSON.stringify({...s, drawn: undefined})),
-    frame: +el.dataset.frame, playing: el.dataset.playing,
+    frame: data.step, playing: data.playing, theta: data.theta,
     link: link ? link.getAttribute("points").split(" ").map((p) => p.split(",").map(Number)) : null,
     vs: pick("g.js-vs"), pdot: pick("g.js-pdot"), left: pick("g.js-left"), right: pick("g.js-right"),
     xb: pick("g.js-xb"),
@@ -39,7 +40,7 @@ READ_JS = """(el) => {
     slider: el.querySelector("input.js-time").value, time: el.querySelector("output.js-time-value").textContent,
     text: el.innerText, markup: el.innerHTML,
   };
-}"""
+})()""")
 
 
 def chain_of(model: dict[str, Any]) -> jac.SerialChain:
@@ -86,6 +87,7 @@ def check_view(el: Any, model: dict[str, Any]) -> dict[str, Any]:
     s = got["state"]
     k = got["frame"]
     assert s["frame"] == k and int(got["slider"]) == k
+    assert got["theta"] == s["theta"]  # data-theta: the angles drawn, the same numbers (JSON keeps a double exactly)
     assert s["t"] == story_times(model)[k]
     assert got["time"] == f"t = {s['t']:.2f} s".replace("-", "\u2212")
     assert largest_difference(model, chain, s) <= TOL

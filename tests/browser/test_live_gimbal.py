@@ -22,6 +22,7 @@ import fp_bounds
 import numpy as np
 import pytest
 import spatial_views as sv
+from live_data import live_data, with_data
 
 import jacobians as jac
 from jacobians import representations as reps
@@ -32,16 +33,16 @@ TOL = 1e-12
 HALF_ULP = 0.005 + 1e-9
 STEP_DEG = 0.5
 
-READ_JS = """(el) => {
+READ_JS = with_data("""(() => {
   const rows = (sel) => [...el.querySelectorAll(sel + " tbody tr")].map((tr) => [...tr.querySelectorAll("td")]
     .map((c) => c.textContent));
   const b = el.querySelector(".jl-banner");
-  return { theta: JSON.parse(el.dataset.theta), wrist: el.dataset.wrist, rep: el.dataset.rep, level: el.dataset.level,
+  return { theta: data.theta, wrist: data.wrist, rep: data.rep, level: data.level,
     B: rows("table.jl-B"), J: rows("table.jl-J"), Ja: rows("table.jl-Ja"),
     caption: el.querySelector("table.jl-Ja caption").textContent,
     banner: b.hidden ? null : b.textContent, status: el.querySelector(".jl-status").innerText,
     text: el.innerText, markup: el.innerHTML };
-}"""
+})()""")
 
 SET_JS = """([el, i, v]) => {
   const s = el.querySelectorAll("input.jl-theta")[i];
@@ -325,7 +326,7 @@ def test_on_the_built_chapter_page(browser_context, book_html):
             assert got["theta"][1] == pytest.approx(model["theta"][1] + math.radians(STEP_DEG), abs=1e-9)
             page.evaluate(SET_JS, [el, 1, 90])
             assert _check_state(el, model)["level"] == "singular"
-            pts = _axis_points(WRISTS[got["wrist"]](), np.array(el.evaluate("(el) => JSON.parse(el.dataset.theta)")))
+            pts = _axis_points(WRISTS[got["wrist"]](), np.array(live_data(el)["theta"]))
             sv.check_turning(page, el, [0, 0, 0], 1.55 * spatial.WRIST_TOOL, pts, "line.jl-axis")
             page.set_viewport_size(bookcheck.PHONE)
             fit = el.evaluate(sv.FIT_JS)

@@ -42,6 +42,7 @@ from labdriver import HALF_ULP, READ_PLANAR, notebook, running_lab
 from labdriver import open_notebook as _open
 from labdriver import run_cell as _run_cell
 from labdriver import wait_file as _wait_file
+from live_data import live_data, with_data
 
 import jacobians as jac
 
@@ -101,13 +102,13 @@ CELLS_3D = [
     "g.rep = 'zyx'\ng.theta = [np.radians(30), np.pi / 2, 0.0]",
 ]
 
-READ_TABLES = """(el) => {
+READ_TABLES = with_data("""(() => {
   const rows = (sel) => [...el.querySelectorAll(sel + " tbody tr")].map((tr) => [...tr.querySelectorAll("td")]
     .map((c) => c.textContent));
-  return { theta: JSON.parse(el.dataset.theta), rep: el.dataset.rep || null, level: el.dataset.level || null,
+  return { theta: data.theta, rep: data.rep || null, level: data.level || null,
     Js: rows("table.jl-space"), Jb: rows("table.jl-body"), B: rows("table.jl-B"), J: rows("table.jl-J"),
     Ja: rows("table.jl-Ja") };
-}"""
+})()""")
 
 @pytest.fixture(scope="module")
 def lab():
@@ -140,7 +141,7 @@ def test_python_and_the_view_agree_both_ways(lab, browser_context):
         chain = jac.robots.planar_2r()
         # 1. the widget renders from Python's state
         _run_cell(page, 0)
-        el = page.wait_for_selector(".jp-OutputArea .jac-live[data-theta]", state="attached", timeout=90_000)
+        el = page.wait_for_selector(".jp-OutputArea .jac-live[data-view=planar_explorer]", state="attached", timeout=90_000)
         got = el.evaluate(READ_PLANAR)
         assert np.allclose(got["theta"], [0.3, 1.2]) and got["frame"] == "space"
         assert np.abs(np.array(got["table"]) - jac.space_jacobian(chain, [0.3, 1.2])).max() <= HALF_ULP
@@ -149,7 +150,7 @@ def test_python_and_the_view_agree_both_ways(lab, browser_context):
         slider = el.query_selector("input.jl-theta")
         slider.focus()
         page.keyboard.press("ArrowRight")  # the view sets data-lm-suppress-shortcuts: the key reaches the slider
-        page.wait_for_function("(el) => JSON.parse(el.dataset.theta)[0] > 0.305", arg=el, timeout=10_000)
+        page.wait_for_function(with_data("data.theta[0] > 0.305"), arg=el, timeout=10_000)
         state = _wait_file(nb / "py_state.json", lambda s: abs(s["theta"][0] - 0.31) < 1e-9)
         assert state["theta"][1] == pytest.approx(1.2)
         shown = np.array(el.evaluate(READ_PLANAR)["table"])
@@ -157,7 +158,7 @@ def test_python_and_the_view_agree_both_ways(lab, browser_context):
         assert np.allclose(state["J"], jac.space_jacobian(chain, [0.31, 1.2]), atol=1e-12)
         # 3. Python -> view
         _run_cell(page, 1)
-        page.wait_for_function("(el) => el.dataset.frame === 'body' && JSON.parse(el.dataset.theta)[0] === -0.7",
+        page.wait_for_function(with_data("data.frame === 'body' && data.theta[0] === -0.7"),
                                arg=el, timeout=30_000)
         got = el.evaluate(READ_PLANAR)
         assert np.allclose(got["theta"], [-0.7, 0.4])
@@ -166,15 +167,15 @@ def test_python_and_the_view_agree_both_ways(lab, browser_context):
         assert np.allclose(state["J"], jac.body_jacobian(chain, [-0.7, 0.4]), atol=1e-12)
         # 4. the resolved-rate view: a key in the view moves Python's step; Python's step moves the view
         _run_cell(page, 2)
-        rr = page.wait_for_selector(".jp-OutputArea .jac-live[data-step]", state="attached", timeout=60_000)
+        rr = page.wait_for_selector(".jp-OutputArea .jac-live[data-view=resolved_rate]", state="attached", timeout=60_000)
         rr.query_selector("button.jr-fwd").focus()
         page.keyboard.press(".")
         rstate = _wait_file(nb / "py_rr.json", lambda s: s["step"] == 1)
-        assert np.allclose(json.loads(rr.get_attribute("data-theta")), rstate["theta"], atol=1e-9)
+        assert np.allclose(live_data(rr)["theta"], rstate["theta"], atol=1e-9)
         _run_cell(page, 3)
-        page.wait_for_function("(el) => el.dataset.step === '40'", arg=rr, timeout=30_000)
+        page.wait_for_function(with_data("data.step === 40"), arg=rr, timeout=30_000)
         rstate = _wait_file(nb / "py_rr.json", lambda s: s["step"] == 40)
-        assert np.allclose(json.loads(rr.get_attribute("data-theta")), rstate["theta"], atol=1e-9)
+        assert np.allclose(live_data(rr)["theta"], rstate["theta"], atol=1e-9)
         host = urlsplit(base).netloc
         assert [u for u in requests if not u.startswith(("data:", "blob:")) and urlsplit(u).netloc != host] == []
         assert [e for e in errors if "jac" in e.lower() or "live" in e.lower() or "kinematics" in e.lower()] == []
@@ -201,7 +202,7 @@ def test_3d_views_python_and_the_view_agree_both_ways(lab, browser_context):
         th0 = [0.3, -0.5, 0.9, 0.4, 0.3]
         # columns explorer: renders the library's J_s and J_b from Python's state
         _run_cell(page, 0)
-        el = page.wait_for_selector(".jp-OutputArea .jac-live[data-column]", state="attached", timeout=90_000)
+        el = page.wait_for_selector(".jp-OutputArea .jac-live[data-view=columns_explorer]", state="attached", timeout=90_000)
         got = el.evaluate(READ_TABLES)
         assert np.allclose(got["theta"], th0)
         assert _shown_close(got["Js"], jac.space_jacobian(arm, th0)) and _shown_close(got["Jb"], jac.body_jacobian(arm, th0))
@@ -209,7 +210,7 @@ def test_3d_views_python_and_the_view_agree_both_ways(lab, browser_context):
         # view -> Python: a key on the slider of theta_4 (0.01 rad a step)
         el.query_selector_all("input.jl-theta")[3].focus()
         page.keyboard.press("ArrowRight")
-        page.wait_for_function("(el) => JSON.parse(el.dataset.theta)[3] > 0.405", arg=el, timeout=10_000)
+        page.wait_for_function(with_data("data.theta[3] > 0.405"), arg=el, timeout=10_000)
         state = _wait_file(nb / "py_cols.json", lambda s: abs(s["theta"][3] - 0.41) < 1e-9)
         th1 = [0.3, -0.5, 0.9, 0.41, 0.3]
         assert np.allclose(state["theta"], th1, atol=1e-12)
@@ -218,11 +219,11 @@ def test_3d_views_python_and_the_view_agree_both_ways(lab, browser_context):
         got = el.evaluate(READ_TABLES)
         assert _shown_close(got["Js"], state["Js"]) and _shown_close(got["Jb"], state["Jb"])  # the kernel's w.J is shown
         # theta_4 moved: the columns of J_s after 4 and of J_b before 4 changed
-        assert el.get_attribute("data-changed-s") == "5" and el.get_attribute("data-changed-b") == "1,2,3"
+        assert live_data(el)["changedS"] == [5] and live_data(el)["changedB"] == [1, 2, 3]
         # Python -> view
         _run_cell(page, 1)
         th2 = [-0.2, 0.7, -1.1, 0.5, 1.0]
-        page.wait_for_function("(el) => JSON.parse(el.dataset.theta)[0] === -0.2", arg=el, timeout=30_000)
+        page.wait_for_function(with_data("data.theta[0] === -0.2"), arg=el, timeout=30_000)
         got = el.evaluate(READ_TABLES)
         assert np.allclose(got["theta"], th2)
         assert _shown_close(got["Js"], jac.space_jacobian(arm, th2)) and _shown_close(got["Jb"], jac.body_jacobian(arm, th2))
@@ -234,7 +235,7 @@ def test_3d_views_python_and_the_view_agree_both_ways(lab, browser_context):
         # gimbal lock: the ZYZ wrist, ZYX coordinates
         wrist = jac.robots.zyz_wrist(0.3)
         _run_cell(page, 2)
-        g = page.wait_for_selector(".jp-OutputArea .jac-live[data-wrist]", state="attached", timeout=90_000)
+        g = page.wait_for_selector(".jp-OutputArea .jac-live[data-view=gimbal_lock]", state="attached", timeout=90_000)
         ga = [math.radians(30), math.radians(45), 0.0]
         got = g.evaluate(READ_TABLES)
         assert np.allclose(got["theta"], ga) and got["rep"] == "zyx"
@@ -253,7 +254,7 @@ def test_3d_views_python_and_the_view_agree_both_ways(lab, browser_context):
         assert _shown_close(got["B"], state["B"])
         # Python -> view: other angles, ZYZ coordinates
         _run_cell(page, 3)
-        page.wait_for_function("(el) => el.dataset.rep === 'zyz' && JSON.parse(el.dataset.theta)[1] === 1.2",
+        page.wait_for_function(with_data("data.rep === 'zyz' && data.theta[1] === 1.2"),
                                arg=g, timeout=30_000)
         gc = [0.2, 1.2, -0.4]
         got = g.evaluate(READ_TABLES)
@@ -263,7 +264,7 @@ def test_3d_views_python_and_the_view_agree_both_ways(lab, browser_context):
         assert _shown_close(got["B"], state["B"])
         # Python -> view: at the ZYX lock J_a does not exist: NaN in the kernel, "—" in the view, J still shown
         _run_cell(page, 4)
-        page.wait_for_function("(el) => el.dataset.rep === 'zyx' && el.dataset.level === 'singular'", arg=g,
+        page.wait_for_function(with_data("data.rep === 'zyx' && data.level === 'singular'"), arg=g,
                                timeout=30_000)
         state = _wait_file(nb / "py_gimbal.json", lambda s: s["rep"] == "zyx" and abs(s["theta"][1] - math.pi / 2) < 1e-12)
         assert np.isnan(np.array(state["Ja"], dtype=float)).all()

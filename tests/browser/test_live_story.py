@@ -17,6 +17,7 @@ import bookcheck
 import numpy as np
 import pytest
 import story_views as sv
+from live_data import DATA_JS, live_data, with_data
 from test_live_views import FIT_JS
 
 from jacobians.widgets.live import STORIES, story_model, story_times
@@ -111,13 +112,13 @@ def test_keyboard_steps_the_replay_and_play_runs_it(harness, story):
     page.keyboard.press("Tab")
     assert page.evaluate("() => document.activeElement.className") == "jl-play"
     page.keyboard.press("Space")
-    assert el.get_attribute("data-playing") == "1"
+    assert live_data(el)["playing"] == 1
     assert el.query_selector("button.jl-play").get_attribute("aria-pressed") == "true"
     page.wait_for_timeout(600)
     moved = sv.check_view(el, model)
     assert moved["frame"] > 0 and moved["state"]["t"] > first["state"]["t"]
     page.keyboard.press("Space")
-    assert el.get_attribute("data-playing") == "0"
+    assert live_data(el)["playing"] == 0
     stopped = sv.check_view(el, model)["frame"]
     page.wait_for_timeout(300)
     assert sv.check_view(el, model)["frame"] == stopped
@@ -125,14 +126,14 @@ def test_keyboard_steps_the_replay_and_play_runs_it(harness, story):
     el.query_selector("input.js-time").focus()
     page.keyboard.press("End")
     el.query_selector("button.jl-play").click()
-    page.wait_for_function("(el) => +el.dataset.frame < 5", arg=el, timeout=5_000)
+    page.wait_for_function(with_data("data.step < 5"), arg=el, timeout=5_000)
     el.query_selector("button.jl-play").click()
     sv.check_view(el, model)
     # moving the slider while it plays pauses the replay
     el.query_selector("button.jl-play").click()
     el.query_selector("input.js-time").focus()
     page.keyboard.press("ArrowRight")
-    assert el.get_attribute("data-playing") == "0"
+    assert live_data(el)["playing"] == 0
     assert seen["console"] == []
 
 
@@ -164,6 +165,7 @@ def test_the_directive_embeds_the_model():
 
 
 ESM_JS = """async ([src, state]) => {
+  const data = """ + DATA_JS + """;
   const url = URL.createObjectURL(new Blob([src], {type: "text/javascript"}));
   const mod = await import(url);
   const handlers = new Map();
@@ -177,7 +179,7 @@ ESM_JS = """async ([src, state]) => {
   const s = el.querySelector("input.js-time");
   s.value = "10";
   s.dispatchEvent(new Event("input"));
-  const out = {sets, frame: +el.dataset.frame, theta: el.jacLive.theta};
+  const out = {sets, frame: data(el).step, theta: el.jacLive.theta};
   el.remove();
   return out;
 }"""

@@ -21,6 +21,7 @@ import live_views
 import numpy as np
 import pytest
 import story_views
+from live_data import with_data
 
 import jacobians as jac
 from jacobians.plotting import arm_reach
@@ -29,8 +30,8 @@ ROOT = Path(__file__).resolve().parents[2]
 STEP = 0.01
 HALF_ULP = 0.005 + 1e-9  # the table shows 2 decimals
 
-READ_JS = """(el) => ({
-  theta: JSON.parse(el.dataset.theta), frame: el.dataset.frame, level: el.dataset.level,
+READ_JS = with_data("""{
+  theta: data.theta, frame: data.frame, level: data.level, playing: data.playing,
   table: [...el.querySelectorAll("table.jl-matrix tbody tr")].map(
     (tr) => [...tr.querySelectorAll("td")].map((td) => td.textContent)),
   link: el.querySelector("polyline.jl-link").getAttribute("points"),
@@ -39,7 +40,7 @@ READ_JS = """(el) => ({
   clip: el.querySelector("polyline.jl-force-clip").getAttribute("visibility"),
   banner: el.querySelector(".jl-banner").hidden ? null : el.querySelector(".jl-banner").textContent,
   text: el.innerText, markup: el.innerHTML,
-})"""
+}""")
 
 SET_JS = """([el, i, v]) => {
   const s = el.querySelectorAll("input.jl-theta")[i];
@@ -250,7 +251,7 @@ def test_play_sweeps_the_chosen_joint_through_the_singularity(harness):
     el.query_selector("select.jl-sweep").select_option("1")
     el.query_selector("button.jl-play").focus()
     page.keyboard.press("Enter")  # a button: Enter and Space work
-    page.wait_for_function("(el) => JSON.parse(el.dataset.theta)[1] > 0.05", arg=el, timeout=10_000)
+    page.wait_for_function(with_data("data.theta[1] > 0.05"), arg=el, timeout=10_000)
     page.keyboard.press("Space")
     assert el.query_selector("button.jl-play").get_attribute("aria-pressed") == "false"
     got = _check_state(el, "planar_3r")
@@ -259,19 +260,19 @@ def test_play_sweeps_the_chosen_joint_through_the_singularity(harness):
     assert abs(got["theta"][1] * 100 - round(got["theta"][1] * 100)) < 1e-6
     page.evaluate(SET_JS, [el, 1, -0.02])
     el.query_selector("button.jl-play").click()
-    page.wait_for_function("(el) => el.dataset.level === 'singular'", arg=el, timeout=10_000, polling=1)
+    page.wait_for_function(with_data("data.level === 'singular'"), arg=el, timeout=10_000, polling=1)
     el.query_selector("button.jl-play").click()
     assert seen["console"] == []
 
 
-RR_READ = """(el) => ({
-  step: Number(el.dataset.step), theta: JSON.parse(el.dataset.theta), level: el.dataset.level,
+RR_READ = with_data("""{
+  step: data.step, theta: data.theta, level: data.level, playing: data.playing,
   link: el.querySelector("polyline.jl-link").getAttribute("points"),
   desired: el.querySelector("polyline.jr-desired").getAttribute("points"),
   actual: el.querySelector("polyline.jr-actual").getAttribute("points"),
   rates: [...el.querySelectorAll("polyline.jr-rate")].map((p) => p.getAttribute("points")),
   text: el.innerText, markup: el.innerHTML,
-})"""
+}""")
 
 
 def _rr_check(el, model: dict) -> dict:
@@ -337,7 +338,7 @@ def test_resolved_rate_keys_step_and_play_and_the_run_is_the_librarys(harness):
     got = _rr_check(el, model)
     assert got["step"] == 159
     page.keyboard.press("p")  # play from the start again
-    page.wait_for_function("(el) => Number(el.dataset.step) > 3 && Number(el.dataset.step) < 159", arg=el,
+    page.wait_for_function(with_data("data.step > 3 && data.step < 159"), arg=el,
                            timeout=10_000)
     page.keyboard.press("p")
     _rr_check(el, model)

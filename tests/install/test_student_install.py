@@ -231,7 +231,7 @@ def test_a_live_view_mounts_in_jupyterlab_from_the_wheel(student, work, browser_
             lab.open_notebook(page, base, token, "live.ipynb")
             chain = jac.robots.planar_2r()
             lab.run_cell(page, 0)
-            el = page.wait_for_selector(".jp-OutputArea .jac-live[data-theta]", state="attached", timeout=120_000)
+            el = page.wait_for_selector(".jp-OutputArea .jac-live[data-view=planar_explorer]", state="attached", timeout=120_000)
             got = el.evaluate(lab.READ_PLANAR)
             assert np.allclose(got["theta"], [0.3, 1.2])
             assert np.abs(np.array(got["table"]) - jac.space_jacobian(chain, [0.3, 1.2])).max() <= lab.HALF_ULP
@@ -245,7 +245,7 @@ def test_a_live_view_mounts_in_jupyterlab_from_the_wheel(student, work, browser_
             assert np.allclose(state["J"], jac.space_jacobian(chain, [0.31, 1.2]), atol=1e-12)
             # and the kernel moves the view
             lab.run_cell(page, 1)
-            page.wait_for_function("(el) => JSON.parse(el.dataset.theta)[0] === -0.7", arg=el, timeout=30_000)
+            page.wait_for_function(lab.with_data("data.theta[0] === -0.7"), arg=el, timeout=30_000)
             got = el.evaluate(lab.READ_PLANAR)
             assert np.abs(np.array(got["table"]) - jac.space_jacobian(chain, [-0.7, 0.4])).max() <= lab.HALF_ULP
             assert [e for e in errors if "jac" in e.lower() or "live" in e.lower() or "kinematics" in e.lower()] == []

@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from live_data import with_data
 from tools import build_slides
 
 import jacobians as jac
@@ -38,17 +39,16 @@ MUST = {"01_twists": "story", "03_body_jacobian": "story", "07_conversions": "st
         "04_space_vs_body": "columns_explorer", "06_analytic_jacobian": "gimbal_lock",
         "09_using_the_jacobian": "resolved_rate"}
 
-READ = """(el) => {
+READ = with_data("""(() => {
   const rows = (sel) => [...el.querySelectorAll(sel + " tbody tr")].map((tr) => [...tr.querySelectorAll("td")]
     .map((c) => c.textContent));
-  return { view: el.dataset.view, model: JSON.parse(el.dataset.model),
-    theta: el.dataset.theta ? JSON.parse(el.dataset.theta) : null,
-    frame: el.dataset.frame || null, level: el.dataset.level || null, wrist: el.dataset.wrist || null, rep: el.dataset.rep || null,
-    step: el.dataset.step === undefined ? null : Number(el.dataset.step),
+  return { view: data.view, model: JSON.parse(el.dataset.model), theta: data.theta ?? null,
+    frame: data.frame ?? null, level: data.level ?? null, wrist: data.wrist ?? null, rep: data.rep ?? null,
+    step: data.step ?? null,
     planar: rows("table.jl-matrix:not(.jl-space):not(.jl-body):not(.jl-B):not(.jl-J):not(.jl-Ja)"),
     Js: rows("table.jl-space"), Jb: rows("table.jl-body"), B: rows("table.jl-B"), J: rows("table.jl-J"),
     Ja: rows("table.jl-Ja"), text: el.innerText, markup: el.innerHTML };
-}"""
+})()""")
 
 SET = """([el, sel, v]) => {
   const s = el.querySelector(sel);

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from live_data import DATA_JS
 from tools import build_slides
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -240,7 +241,7 @@ def walk(browser: Any, usb: Path, source: Path) -> dict[str, Any]:
             page.wait_for_timeout(60)
         if slides[i]["animations"]:
             src = ("() => [...Reveal.getCurrentSlide().querySelectorAll('.animation img')].map(im => im.src.length + ':' + im.src.slice(-40))"
-                   ".concat([...Reveal.getCurrentSlide().querySelectorAll('.jac-live[data-story]')].map(el => el.dataset.frame))")
+                   ".concat([...Reveal.getCurrentSlide().querySelectorAll('.jac-live[data-story]')].map(el => " + DATA_JS + "(el).step))")
             before = page.evaluate(src)
             page.wait_for_timeout(900)
             anims.append((i, before != page.evaluate(src)))

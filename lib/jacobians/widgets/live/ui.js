@@ -349,3 +349,181 @@ export function holdTouch(el) {
   el.addEventListener("touchstart", f, { passive: false });
   return () => el.removeEventListener("touchstart", f);
 }
+
+// ---- what every view's render shares: its start (build), its listeners (bind), its end
+
+/** @typedef {import("./host.js").Model} Model */
+/** @typedef {[EventTarget, string, (ev: any) => void]} Listener a listener to add: [target, type, handler] */
+
+/**
+ * The start of a view's build: the shared style and the view's own (each [id, css], added once to the page),
+ * the classes on `el` (jac-live first), and an id prefix for the labels' `for` (unique on the page).
+ * @param {HTMLElement} el
+ * @param {{classes?: string[], styles?: [string, string][], prefix?: string}} [options]
+ * @returns {{doc: Document, uid: string}}
+ */
+export function startView(el, { classes = [], styles = [], prefix = "jl" } = {}) {
+  const doc = el.ownerDocument;
+  injectStyle(doc, "jac-live-style", BASE_CSS);
+  for (const [id, css] of styles) injectStyle(doc, id, css);
+  el.classList.add("jac-live", ...classes);
+  return { doc, uid: `${prefix}${Math.random().toString(36).slice(2, 9)}` };
+}
+
+/**
+ * The common layout: <div class=jl-wrap> with a drawing box and a side box for the controls.
+ * @param {HTMLElement} el
+ * @param {string} [plotClass]
+ * @returns {{wrap: HTMLDivElement, plot: HTMLDivElement, side: HTMLDivElement}}
+ */
+export function layout(el, plotClass = "jl-plot") {
+  const wrap = html("div", { class: "jl-wrap" }, el);
+  const plot = html("div", { class: plotClass }, wrap);
+  const side = html("div", { class: "jl-side" }, wrap);
+  return { wrap, plot, side };
+}
+
+/** θ with the joint's subscript digit: jointName(0) is "θ₁". @param {number} i 0-based @returns {string} */
+export const jointName = (i) => `θ${String.fromCharCode(0x2081 + i)}`;
+
+/**
+ * One labelled slider a joint, in `parent`: <label for=id>[key] θᵢ = <output></label>, then
+ * <input type=range class=jl-theta data-joint=i+1> (its accent the joint's colour when `color` is given).
+ * @param {HTMLElement} parent
+ * @param {number} n
+ * @param {string} uid
+ * @param {{min: number, max: number, step: number, value: (i: number) => number, color?: (i: number) => string,
+ *   keys?: boolean}} options `keys`: a colour key in each label, coloured by the view
+ * @returns {{sliders: HTMLInputElement[], values: HTMLOutputElement[], keys: HTMLSpanElement[]}}
+ */
+export function jointSliders(parent, n, uid, { min, max, step, value, color, keys = false }) {
+  /** @type {HTMLInputElement[]} */
+  const sliders = [];
+  /** @type {HTMLOutputElement[]} */
+  const values = [];
+  /** @type {HTMLSpanElement[]} */
+  const keyed = [];
+  for (let i = 0; i < n; i++) {
+    const id = `${uid}-t${i + 1}`;
+    const label = html("label", { for: id }, parent);
+    if (keys) keyed.push(html("span", { class: "jl-key", "aria-hidden": "true" }, label));
+    label.append(`${jointName(i)} = `);
+    values.push(html("output", { for: id, class: "jl-value" }, label));
+    /** @type {Attrs} */
+    const attrs = { type: "range", id, min, max, step, class: "jl-theta", "data-joint": i + 1 };
+    if (color) attrs.style = `accent-color:${color(i)}`;
+    const s = html("input", attrs, parent);
+    s.value = String(value(i));
+    sliders.push(s);
+  }
+  return { sliders, values, keys: keyed };
+}
+
+/**
+ * A joint's angle shown (update): its output in degrees, the same words for a screen reader (not the slider's
+ * radians), and the slider moved to `sliderValue` unless the reader holds it or it is within `tol` already.
+ * @param {HTMLOutputElement} out
+ * @param {HTMLInputElement} slider
+ * @param {number} rad the angle
+ * @param {number} sliderValue what the slider holds for it (radians or degrees, as the view's slider)
+ * @param {number} [tol]
+ */
+export function showAngle(out, slider, rad, sliderValue, tol = 0) {
+  const d = fixed((rad * 180) / Math.PI, 1);
+  text(out, `${d}°`);
+  put(slider, "aria-valuetext", `${d} degrees`);
+  if (Math.abs(Number(slider.value) - sliderValue) > tol && slider.ownerDocument.activeElement !== slider) {
+    slider.value = String(sliderValue);
+  }
+}
+
+/**
+ * Play / Pause on `button` (▶ Play, ❚❚ Pause, aria-pressed): `tick` every `ms` while playing;
+ * `onChange(playing)` after each switch.
+ * @param {HTMLButtonElement} button
+ * @param {() => void} tick
+ * @param {number} ms
+ * @param {(playing: boolean) => void} [onChange]
+ * @returns {{start: () => void, stop: () => void, toggle: () => void, playing: () => boolean}}
+ */
+export function player(button, tick, ms, onChange = () => {}) {
+  /** @type {ReturnType<typeof setInterval> | null} */
+  let timer = null;
+  const stop = () => {
+    if (timer !== null) clearInterval(timer);
+    timer = null;
+    button.textContent = "▶ Play";
+    button.setAttribute("aria-pressed", "false");
+    onChange(false);
+  };
+  const start = () => {
+    if (timer !== null) return;
+    timer = setInterval(tick, ms);
+    button.textContent = "❚❚ Pause";
+    button.setAttribute("aria-pressed", "true");
+    onChange(true);
+  };
+  return { start, stop, toggle: () => (timer !== null ? stop() : start()), playing: () => timer !== null };
+}
+
+/**
+ * Write `value` to the model's `key` and send it (to the kernel, in JupyterLab).
+ * @param {Model} model
+ * @param {string} key
+ * @param {unknown} value
+ */
+export function save(model, key, value) {
+  model.set(key, value);
+  model.save_changes();
+}
+
+/**
+ * Add the listeners, and redraw on a change of the model's `keys` (bind); returns the remover of all of them.
+ * @param {Model} model
+ * @param {string[]} keys
+ * @param {() => void} redraw
+ * @param {Listener[]} listeners
+ * @returns {() => void}
+ */
+export function listen(model, keys, redraw, listeners) {
+  const names = keys.map((k) => `change:${k}`).join(" ");
+  for (const [t, type, f] of listeners) t.addEventListener(type, f);
+  model.on(names, redraw);
+  return () => {
+    model.off(names, redraw);
+    for (const [t, type, f] of listeners) t.removeEventListener(type, f);
+  };
+}
+
+/**
+ * What a view shows, for its readers (the tests, the bench, a deck's script), as the host element's data-*
+ * attributes: every view writes `view`, and `theta` (the joint angles shown, rad), `level`, `step`, `playing`
+ * when it has them; a view's own keys follow. A value is written as JSON, except a string, written bare
+ * (data-level="warning", data-theta="[0.5,1.2]", data-step="40"). AUTHORING.md "Adding a live view" lists the keys.
+ * @param {HTMLElement} el
+ * @param {Record<string, string | number | boolean | readonly number[]>} data camelCase keys, as el.dataset
+ */
+export function publish(el, data) {
+  for (const [k, v] of Object.entries(data)) {
+    const s = typeof v === "string" ? v : JSON.stringify(v);
+    if (el.dataset[k] !== s) el.dataset[k] = s;
+  }
+}
+
+/**
+ * The end of a view's render: the keys go to its controls in JupyterLab, the state (and the 3-D view) on `el` for
+ * the tests, `data-ready`; returns the cleanup, which undoes `unbind` and empties `el`.
+ * @param {HTMLElement} el
+ * @param {object} state what the view shows (el.jacLive)
+ * @param {() => void} unbind
+ * @param {Record<string, unknown>} [more] more properties for `el` (jacView)
+ * @returns {() => void}
+ */
+export function finishView(el, state, unbind, more = {}) {
+  suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
+  Object.assign(el, { jacLive: state, ...more });
+  return () => {
+    unbind();
+    el.textContent = "";
+  };
+}

@@ -1,5 +1,4 @@
 // @ts-check
-// @ts-check
 // The columns explorer, live: which joints move which
 // column of J_s and of J_b, on the spatial 5R arm of the notes. One slider per
 // joint; the arm and its joint (screw) axes in a 3-D view the reader turns;
@@ -19,8 +18,8 @@
 
 import { evaluate, makeChain } from "../kinematics.js";
 import {
-  BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, matrixTable, put, sub, suppressShortcuts, text,
-  tint,
+  LIMIT, PALETTE, TWIST_ROWS, finishView, fixed, graphic, html, jointSliders, layout, listen, matrixTable, publish, put,
+  save, showAngle, startView, sub, text, tint,
 } from "../ui.js";
 import { CSS as CSS3D, createView3D, frameItems, groundGrid } from "../view3d.js";
 
@@ -64,30 +63,32 @@ const CSS = `
 .jl-columns td.jl-watch,.jl-columns th.jl-watch{outline:2px solid var(--jl-ink);outline-offset:-2px}
 `;
 
-/** @param {{model: Model, el: HTMLElement}} args */
-function render({ model, el }) {
-  const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style", BASE_CSS);
-  injectStyle(doc, "jac-live-style-3d", CSS3D);
-  injectStyle(doc, "jac-live-style-columns", CSS);
-  el.classList.add("jac-live", "jl-columns");
+/**
+ * The model's numbers, checked, with their defaults (what build, update and bind share).
+ * @param {Model} model
+ */
+function options(model) {
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
   const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
-  // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
-  const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
-  const limit = Number(model.get("limit")) || LIMIT;
-  const step = Number(model.get("step")) || 0.01;
   const reach = Number(model.get("reach")) || 1;
-  const axisLen = Number(model.get("axis_length")) || 0.15 * reach;
-  const name = model.get("name") || `${n}-joint arm`;
-  const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
+  return {
+    chain, n, reach,
+    // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
+    pal: Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)])),
+    limit: Number(model.get("limit")) || LIMIT,
+    step: Number(model.get("step")) || 0.01,
+    axisLen: Number(model.get("axis_length")) || 0.15 * reach,
+    name: model.get("name") || `${n}-joint arm`,
+  };
+}
+/** @typedef {ReturnType<typeof options>} Options */
 
-  const wrap = html("div", { class: "jl-wrap" }, el);
-  const plot = html("div", { class: "jl-plot" }, wrap);
-  const side = html("div", { class: "jl-side" }, wrap);
-
-  // ---- the 3-D drawing
+/**
+ * The 3-D drawing (build): ground, {s}, the links, the joint axes, the joints, {b}, the axes' numbered dots.
+ * @param {HTMLElement} plot @param {Options} o @param {Model} model @param {string} uid
+ */
+function buildScene(plot, { n, reach, pal, name }, model, uid) {
   const view = createView3D(plot, {
     id: uid, center: model.get("center") || [0, 0, 0], extent: Number(model.get("extent")) || 1.3 * reach,
     azimuth: -1.05, elevation: 0.5,
@@ -121,29 +122,20 @@ function render({ model, el }) {
     axisNums.push(view.label("front", String(i + 1), { "font-weight": "bold", stroke: "none", class: "jl-axis-num" }));
     axisNums[i].anchor = axisDots[i]; // the number sits on its dot
   }
+  return { view, links, axes, joints, bFrame, axisDots, axisNums };
+}
 
-  // ---- the controls
+/**
+ * The controls and the numbers (build): the watched column, a slider a joint, the legend, what changed, J_s and J_b.
+ * @param {HTMLElement} side @param {Options} o @param {Model} model @param {string} uid
+ */
+function buildControls(side, { n, limit, step }, model, uid) {
   const colLabel = html("label", { for: `${uid}-col` }, side, "Watch column");
   const select = html("select", { id: `${uid}-col`, class: "jl-column" }, colLabel);
   for (let i = 1; i <= n; i++) html("option", { value: i }, select, `${i}`);
-  /** @type {HTMLInputElement[]} */
-  const sliders = [];
-  /** @type {HTMLOutputElement[]} */
-  const values = [];
-  /** @type {HTMLSpanElement[]} */
-  const keys = [];
   const theta0 = model.get("theta");
-  for (let i = 0; i < n; i++) {
-    const id = `${uid}-t${i + 1}`;
-    const lab = html("label", { for: id }, side);
-    keys.push(html("span", { class: "jl-key", "aria-hidden": "true" }, lab));
-    lab.append(`θ${String.fromCharCode(0x2081 + i)} = `);
-    values.push(html("output", { for: id, class: "jl-value" }, lab));
-    const s = html("input", { type: "range", id, min: -limit, max: limit, step, class: "jl-theta", "data-joint": i + 1 },
-      side);
-    s.value = String(theta0[i]);
-    sliders.push(s);
-  }
+  const { sliders, values, keys } = jointSliders(side, n, uid, { min: -limit, max: limit, step, value: (i) => theta0[i],
+    keys: true });
   const legend = html("ul", { class: "jl-legend" }, side);
   const changes = html("p", { class: "jl-changes", "aria-live": "polite" }, side);
   const tables = html("div", { class: "jl-tables" }, side);
@@ -155,176 +147,187 @@ function render({ model, el }) {
   }
   const tS = makeTable(["J", "s"], "jl-space", "space Jacobian");
   const tB = makeTable(["J", "b"], "jl-body", "body Jacobian");
+  return { select, sliders, values, keys, legend, changes, tS, tB };
+}
+/** @typedef {ReturnType<typeof buildScene> & ReturnType<typeof buildControls> & {o: Options}} Parts */
 
-  // ---- state -> picture
-  function readTheta() {
-    const th = model.get("theta");
-    return Array.from({ length: n }, (_, i) => {
-      const v = Number(th && th[i]);
-      return Number.isFinite(v) ? Math.max(-limit, Math.min(limit, v)) : 0;
-    });
+/** θ from the model, in the sliders' range (0 for what is not a number). @param {Model} model @param {Options} o */
+function readTheta(model, { n, limit }) {
+  const th = model.get("theta");
+  return Array.from({ length: n }, (_, i) => {
+    const v = Number(th && th[i]);
+    return Number.isFinite(v) ? Math.max(-limit, Math.min(limit, v)) : 0;
+  });
+}
+/** The watched column, 1 to n. @param {Model} model @param {number} n */
+function readColumn(model, n) {
+  const c = Math.round(Number(model.get("column")));
+  return c >= 1 && c <= n ? c : 1;
+}
+
+/** @param {Mat | null} A @param {Mat} B @param {number} n @returns {number[]} the columns (1-based) that differ */
+function changedColumns(A, B, n) {
+  /** @type {number[]} */
+  const out = [];
+  if (!A || !B) return out;
+  for (let c = 0; c < n; c++) {
+    let d = 0;
+    for (let r = 0; r < 6; r++) d = Math.max(d, Math.abs(A[r][c] - B[r][c]));
+    if (d > CHANGE_TOL) out.push(c + 1);
   }
-  function readColumn() {
-    const c = Math.round(Number(model.get("column")));
-    return c >= 1 && c <= n ? c : 1;
+  return out;
+}
+/** @param {number[]} xs */
+const list = (xs) => (xs.length ? xs.join(", ") : "none");
+
+/** The legend for watched column `col` (update). @param {HTMLUListElement} legend @param {Options} o @param {number} col */
+function legendFor(legend, { n, pal }, col) {
+  const before = Array.from({ length: col - 1 }, (_, k) => k + 1);
+  const after = Array.from({ length: n - col }, (_, k) => col + k + 1);
+  legend.textContent = "";
+  const l1 = html("li", {}, legend);
+  html("span", { class: "jl-key", style: `background:${pal.space}` }, l1);
+  l1.append(`axes ${list(before)} (before ${col}): they move column ${col} of `);
+  sub(l1, ["J", "s"]);
+  const l2 = html("li", {}, legend);
+  html("span", { class: "jl-key", style: `background:${pal.body}` }, l2);
+  l2.append(`axes ${list(after)} (after ${col}): they move column ${col} of `);
+  sub(l2, ["J", "b"]);
+  const l3 = html("li", {}, legend);
+  html("span", { class: "jl-key", style: `background:${PALETTE.bg}` }, l3);
+  l3.append(`axis ${col}, outlined in the tables: it moves neither`);
+}
+
+/** The sentence of what changed (update). @param {HTMLElement} changes @param {ColumnsState} state */
+function describeChanges(changes, state) {
+  changes.textContent = "";
+  if (state.moved.length === 1) {
+    const k = state.moved[0];
+    changes.append(`You moved θ${String.fromCharCode(0x2080 + k)}: columns of `);
+    sub(changes, ["J", "s"]).append(` that changed: ${list(state.changedS)} (after ${k}); of `);
+    sub(changes, ["J", "b"]).append(`: ${list(state.changedB)} (before ${k}).`);
+  } else if (state.moved.length > 1) {
+    changes.append(`Joints ${state.moved.join(", ")} moved: columns of `);
+    sub(changes, ["J", "s"]).append(` that changed: ${list(state.changedS)}; of `);
+    sub(changes, ["J", "b"]).append(`: ${list(state.changedB)}.`);
+  } else {
+    changes.append("Move one joint and watch which columns change (coloured).");
   }
-  /** @type {ColumnsState} */
-  const state = { theta: null, column: null, Js: null, Jb: null, moved: [], changedS: [], changedB: [], changeKey: null };
+}
+
+/**
+ * The arm, the axes coloured by role, the tables with what changed (update); `state`, what was drawn last, becomes
+ * what is drawn now.
+ * @param {Parts} parts @param {number[]} th @param {number} col @param {ColumnsState} state
+ */
+function update(parts, th, col, state) {
+  const { chain, n, pal, axisLen } = parts.o;
+  const { view, links, axes, joints, bFrame, axisDots, axisNums, keys, sliders, values, tS, tB } = parts;
+  const e = evaluate(chain, th);
+  const pts = e.points;
+  // what changed since the last drawing
+  const last = state.theta;
+  const moved = last ? th.map((t, k) => (t !== last[k] ? k + 1 : 0)).filter(Boolean) : [];
+  if (moved.length) {
+    state.changedS = changedColumns(state.Js, e.Js, n);
+    state.changedB = changedColumns(state.Jb, e.Jb, n);
+    state.moved = moved;
+  }
   /** @type {(k: number, i: number) => string} the colour of axis k when column i is watched */
   const roleColor = (k, i) => (k < i ? pal.space : k > i ? pal.body : PALETTE.fg);
-
-  /** @param {Mat | null} A @param {Mat} B @returns {number[]} the columns (1-based) that differ */
-  function changedColumns(A, B) {
-    /** @type {number[]} */
-    const out = [];
-    if (!A || !B) return out;
-    for (let c = 0; c < n; c++) {
-      let d = 0;
-      for (let r = 0; r < 6; r++) d = Math.max(d, Math.abs(A[r][c] - B[r][c]));
-      if (d > CHANGE_TOL) out.push(c + 1);
-    }
-    return out;
+  // the arm
+  for (let k = 0; k < n; k++) links[k].set(pts[k], pts[k + 1]);
+  for (let i = 0; i < n; i++) {
+    const c = roleColor(i + 1, col);
+    const w = [e.Js[0][i], e.Js[1][i], e.Js[2][i]]; // ω_s,i: axis i's direction in {s}
+    const q = pts[i];
+    axes[i].set([q[0] - axisLen * w[0], q[1] - axisLen * w[1], q[2] - axisLen * w[2]],
+      [q[0] + axisLen * w[0], q[1] + axisLen * w[1], q[2] + axisLen * w[2]]);
+    put(axes[i].el, "stroke", c);
+    put(axes[i].el, "stroke-width", i + 1 === col ? 6 : 4);
+    joints[i].set(q);
+    const tip = [q[0] + 1.25 * axisLen * w[0], q[1] + 1.25 * axisLen * w[1], q[2] + 1.25 * axisLen * w[2]];
+    axisDots[i].set(tip);
+    put(axisDots[i].el, "fill", i + 1 === col ? PALETTE.bg : c);
+    axisNums[i].set(tip);
+    put(axisNums[i].el, "fill", i + 1 === col ? PALETTE.fg : PALETTE.onColour);
+    put(keys[i], "style", `background:${i + 1 === col ? PALETTE.bg : c}`);
+    put(sliders[i], "style", `accent-color:${i + 1 === col ? PALETTE.fg : c}`);
   }
-  /** @param {number[]} xs */
-  const list = (xs) => (xs.length ? xs.join(", ") : "none");
-
-  function draw() {
-    const th = readTheta();
-    const col = readColumn();
-    const e = evaluate(chain, th);
-    const pts = e.points;
-    // what changed since the last drawing
-    const last = state.theta;
-    const moved = last ? th.map((t, k) => (t !== last[k] ? k + 1 : 0)).filter(Boolean) : [];
-    if (moved.length) {
-      state.changedS = changedColumns(state.Js, e.Js);
-      state.changedB = changedColumns(state.Jb, e.Jb);
-      state.moved = moved;
-    }
-    // the arm
-    for (let k = 0; k < n; k++) links[k].set(pts[k], pts[k + 1]);
-    for (let i = 0; i < n; i++) {
-      const c = roleColor(i + 1, col);
-      const w = [e.Js[0][i], e.Js[1][i], e.Js[2][i]]; // ω_s,i: axis i's direction in {s}
-      const q = pts[i];
-      axes[i].set([q[0] - axisLen * w[0], q[1] - axisLen * w[1], q[2] - axisLen * w[2]],
-        [q[0] + axisLen * w[0], q[1] + axisLen * w[1], q[2] + axisLen * w[2]]);
-      put(axes[i].el, "stroke", c);
-      put(axes[i].el, "stroke-width", i + 1 === col ? 6 : 4);
-      joints[i].set(q);
-      const tip = [q[0] + 1.25 * axisLen * w[0], q[1] + 1.25 * axisLen * w[1], q[2] + 1.25 * axisLen * w[2]];
-      axisDots[i].set(tip);
-      put(axisDots[i].el, "fill", i + 1 === col ? PALETTE.bg : c);
-      axisNums[i].set(tip);
-      put(axisNums[i].el, "fill", i + 1 === col ? PALETTE.fg : PALETTE.onColour);
-      put(keys[i], "style", `background:${i + 1 === col ? PALETTE.bg : c}`);
-      put(sliders[i], "style", `accent-color:${i + 1 === col ? PALETTE.fg : c}`);
-    }
-    const R = [e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)];
-    bFrame.set(R, pts[n]);
-    view.render();
-    // numbers
-    /** @type {[MatrixTable, Mat, number[], string][]} */
-    const shown = [[tS, e.Js, state.changedS, pal.space], [tB, e.Jb, state.changedB, pal.body]];
-    for (const [t, J, changed, colour] of shown) {
-      for (let c = 0; c < n; c++) {
-        const isChanged = changed.includes(c + 1);
-        const isWatched = c + 1 === col;
-        const style = isChanged ? `background:${tint(colour, 0.35)}` : "";
-        const cls = `${isWatched ? "jl-watch" : ""}${isChanged ? " jl-changed" : ""}`.trim();
-        put(t.heads[c], "class", cls);
-        put(t.heads[c], "style", style);
-        for (let r = 0; r < 6; r++) {
-          const cell = t.cells[r][c];
-          text(cell, fixed(J[r][c]));
-          put(cell, "class", cls);
-          put(cell, "style", style);
-        }
+  const R = [e.T[0].slice(0, 3), e.T[1].slice(0, 3), e.T[2].slice(0, 3)];
+  bFrame.set(R, pts[n]);
+  view.render();
+  // numbers
+  /** @type {[MatrixTable, Mat, number[], string][]} */
+  const shown = [[tS, e.Js, state.changedS, pal.space], [tB, e.Jb, state.changedB, pal.body]];
+  for (const [t, J, changed, colour] of shown) {
+    for (let c = 0; c < n; c++) {
+      const isChanged = changed.includes(c + 1);
+      const isWatched = c + 1 === col;
+      const style = isChanged ? `background:${tint(colour, 0.35)}` : "";
+      const cls = `${isWatched ? "jl-watch" : ""}${isChanged ? " jl-changed" : ""}`.trim();
+      put(t.heads[c], "class", cls);
+      put(t.heads[c], "style", style);
+      for (let r = 0; r < 6; r++) {
+        const cell = t.cells[r][c];
+        text(cell, fixed(J[r][c]));
+        put(cell, "class", cls);
+        put(cell, "style", style);
       }
     }
-    if (col !== state.column) legendFor(col);
-    const changeKey = `${state.moved}|${state.changedS}|${state.changedB}`;
-    if (changeKey !== state.changeKey) describeChanges();
-    state.changeKey = changeKey;
-    for (let i = 0; i < n; i++) {
-      text(values[i], `${fixed((th[i] * 180) / Math.PI, 1)}°`);
-      put(sliders[i], "aria-valuetext", `${fixed((th[i] * 180) / Math.PI, 1)} degrees`);  // what the page shows
-      if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
-    }
-    if (Number(select.value) !== col) select.value = String(col);
-    Object.assign(state, { theta: th, column: col, Js: e.Js, Jb: e.Jb, T: e.T, points: pts });
-    el.dataset.theta = JSON.stringify(th);
-    el.dataset.column = String(col);
-    el.dataset.moved = state.moved.join(",");
-    el.dataset.changedS = state.changedS.join(",");
-    el.dataset.changedB = state.changedB.join(",");
   }
+  if (col !== state.column) legendFor(parts.legend, parts.o, col);
+  const changeKey = `${state.moved}|${state.changedS}|${state.changedB}`;
+  if (changeKey !== state.changeKey) describeChanges(parts.changes, state);
+  state.changeKey = changeKey;
+  for (let i = 0; i < n; i++) showAngle(values[i], sliders[i], th[i], th[i]);
+  if (Number(parts.select.value) !== col) parts.select.value = String(col);
+  Object.assign(state, { theta: th, column: col, Js: e.Js, Jb: e.Jb, T: e.T, points: pts });
+}
 
-  /** @param {number} col */
-  function legendFor(col) {
-    const before = Array.from({ length: col - 1 }, (_, k) => k + 1);
-    const after = Array.from({ length: n - col }, (_, k) => col + k + 1);
-    legend.textContent = "";
-    const l1 = html("li", {}, legend);
-    html("span", { class: "jl-key", style: `background:${pal.space}` }, l1);
-    l1.append(`axes ${list(before)} (before ${col}): they move column ${col} of `);
-    sub(l1, ["J", "s"]);
-    const l2 = html("li", {}, legend);
-    html("span", { class: "jl-key", style: `background:${pal.body}` }, l2);
-    l2.append(`axes ${list(after)} (after ${col}): they move column ${col} of `);
-    sub(l2, ["J", "b"]);
-    const l3 = html("li", {}, legend);
-    html("span", { class: "jl-key", style: `background:${PALETTE.bg}` }, l3);
-    l3.append(`axis ${col}, outlined in the tables: it moves neither`);
-  }
-
-  function describeChanges() {
-    changes.textContent = "";
-    if (state.moved.length === 1) {
-      const k = state.moved[0];
-      changes.append(`You moved θ${String.fromCharCode(0x2080 + k)}: columns of `);
-      sub(changes, ["J", "s"]).append(` that changed: ${list(state.changedS)} (after ${k}); of `);
-      sub(changes, ["J", "b"]).append(`: ${list(state.changedB)} (before ${k}).`);
-    } else if (state.moved.length > 1) {
-      changes.append(`Joints ${state.moved.join(", ")} moved: columns of `);
-      sub(changes, ["J", "s"]).append(` that changed: ${list(state.changedS)}; of `);
-      sub(changes, ["J", "b"]).append(`: ${list(state.changedB)}.`);
-    } else {
-      changes.append("Move one joint and watch which columns change (coloured).");
-    }
-  }
-
-  // ---- input -> state
+/**
+ * The reader's input -> the model (bind): a slider sets its joint, the select the watched column.
+ * @param {Parts} parts @param {Model} model @param {() => void} redraw @returns {() => void}
+ */
+function bind({ o, sliders, select }, model, redraw) {
   /** @param {Event} ev */
   const onInput = (ev) => {
-    const th = readTheta();
+    const th = readTheta(model, o);
     const target = /** @type {HTMLInputElement} */ (ev.target);
     const i = Number(target.dataset.joint) - 1;
     const v = Number(target.value);
     if (!Number.isFinite(v)) return;
     th[i] = v;
-    model.set("theta", th);
-    model.save_changes();
+    save(model, "theta", th);
   };
-  const onColumn = () => {
-    model.set("column", Number(select.value));
-    model.save_changes();
+  return listen(model, ["theta", "column"], redraw, [
+    ...sliders.map((s) => /** @type {import("../ui.js").Listener} */ ([s, "input", onInput])),
+    [select, "change", () => save(model, "column", Number(select.value))],
+  ]);
+}
+
+/** @param {{model: Model, el: HTMLElement}} args */
+function render({ model, el }) {
+  const { uid } = startView(el, { classes: ["jl-columns"],
+    styles: [["jac-live-style-3d", CSS3D], ["jac-live-style-columns", CSS]] });
+  const o = options(model);
+  const { plot, side } = layout(el);
+  /** @type {Parts} */
+  const parts = { ...buildScene(plot, o, model, uid), ...buildControls(side, o, model, uid), o };
+  /** @type {ColumnsState} */
+  const state = { theta: null, column: null, Js: null, Jb: null, moved: [], changedS: [], changedB: [], changeKey: null };
+  const redraw = () => {
+    update(parts, readTheta(model, o), readColumn(model, o.n), state);
+    publish(el, { view: "columns_explorer", theta: /** @type {number[]} */ (state.theta),
+      column: /** @type {number} */ (state.column), moved: state.moved, changedS: state.changedS,
+      changedB: state.changedB });
   };
-  sliders.forEach((s) => s.addEventListener("input", onInput));
-  select.addEventListener("change", onColumn);
-  model.on("change:theta", draw);
-  model.on("change:column", draw);
-  draw();
-  suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
-  Object.assign(el, { jacLive: state, jacView: view });
-  return () => {
-    model.off("change:theta", draw);
-    model.off("change:column", draw);
-    sliders.forEach((s) => s.removeEventListener("input", onInput));
-    select.removeEventListener("change", onColumn);
-    view.destroy();
-    el.textContent = "";
-  };
+  const unlisten = bind(parts, model, redraw);
+  redraw();
+  return finishView(el, state, () => {
+    unlisten();
+    parts.view.destroy();
+  }, { jacView: parts.view });
 }
 
 export { render };

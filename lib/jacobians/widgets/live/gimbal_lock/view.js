@@ -21,8 +21,8 @@ import {
   analyticJacobian, coordinatesFromRotation, evaluate, makeChain, rateToAngularVelocity, singularValues,
 } from "../kinematics.js";
 import {
-  BASE_CSS, PALETTE, TWIST_ROWS, fixed, graphic, html, injectStyle, ink, matrixTable, put, sub, suppressShortcuts, svg,
-  text,
+  PALETTE, TWIST_ROWS, finishView, fixed, graphic, html, ink, jointSliders, layout, listen, matrixTable, publish, put,
+  save, showAngle, startView, sub, svg, text,
 } from "../ui.js";
 import { CSS as CSS3D, FONT, createView3D, frameItems } from "../view3d.js";
 
@@ -186,20 +186,8 @@ function buildControls(side, { uid, wristModels, keys, limitDeg, stepDeg, colCol
   const repLabel = html("label", { for: `${uid}-rep` }, side, "Coordinates φ:");
   const repSelect = html("select", { id: `${uid}-rep`, class: "jl-rep" }, repLabel);
   for (const [k, words] of Object.entries(REPS)) html("option", { value: k }, repSelect, words);
-  /** @type {HTMLInputElement[]} */
-  const sliders = [];
-  /** @type {HTMLOutputElement[]} */
-  const values = [];
-  for (let i = 0; i < 3; i++) {
-    const id = `${uid}-t${i + 1}`;
-    const lab = html("label", { for: id }, side);
-    lab.append(`θ${String.fromCharCode(0x2081 + i)} = `);
-    values.push(html("output", { for: id, class: "jl-value" }, lab));
-    const s = html("input", { type: "range", id, min: -limitDeg, max: limitDeg, step: stepDeg, class: "jl-theta",
-      "data-joint": i + 1, style: `accent-color:${colColors[i]}` }, side);
-    s.value = String(deg(Number(theta0[i]) || 0));
-    sliders.push(s);
-  }
+  const { sliders, values } = jointSliders(side, 3, uid, { min: -limitDeg, max: limitDeg, step: stepDeg,
+    value: (i) => deg(Number(theta0[i]) || 0), color: (i) => colColors[i] });
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   const status = html("p", { class: "jl-status", "aria-live": "polite" }, side);
   const tables = html("div", { class: "jl-tables" }, side);
@@ -317,184 +305,169 @@ function writeStatus(status, state, { rep, phi, detB, sigmaMin, wristSing, normJ
  * @param {() => Vec} readTheta @param {() => void} draw @returns {() => void}
  */
 function bind(model, { wristSelect, repSelect, sliders }, readTheta, draw) {
-const onInput = (/** @type {Event} */ ev) => {
-  const slider = /** @type {HTMLInputElement} */ (ev.target);
-  const th = readTheta();
-  const i = Number(slider.dataset.joint) - 1;
-  const v = Number(slider.value);
-  if (!Number.isFinite(v)) return;
-  th[i] = (v * Math.PI) / 180;
-  model.set("theta", th);
-  model.save_changes();
-};
-const onWrist = () => {
-  model.set("wrist", wristSelect.value);
-  model.save_changes();
-};
-const onRep = () => {
-  model.set("rep", repSelect.value);
-  model.save_changes();
-};
-sliders.forEach((s) => s.addEventListener("input", onInput));
-wristSelect.addEventListener("change", onWrist);
-repSelect.addEventListener("change", onRep);
-for (const k of ["theta", "wrist", "rep"]) model.on(`change:${k}`, draw);
-  return () => {
-    for (const k of ["theta", "wrist", "rep"]) model.off(`change:${k}`, draw);
-    sliders.forEach((s) => s.removeEventListener("input", onInput));
-    wristSelect.removeEventListener("change", onWrist);
-    repSelect.removeEventListener("change", onRep);
+  const onInput = (/** @type {Event} */ ev) => {
+    const slider = /** @type {HTMLInputElement} */ (ev.target);
+    const th = readTheta();
+    const i = Number(slider.dataset.joint) - 1;
+    const v = Number(slider.value);
+    if (!Number.isFinite(v)) return;
+    th[i] = (v * Math.PI) / 180;
+    save(model, "theta", th);
   };
+  return listen(model, ["theta", "wrist", "rep"], draw, [
+    ...sliders.map((s) => /** @type {import("../ui.js").Listener} */ ([s, "input", onInput])),
+    [wristSelect, "change", () => save(model, "wrist", wristSelect.value)],
+    [repSelect, "change", () => save(model, "rep", repSelect.value)],
+  ]);
 }
 
-/** @param {{model: Model, el: HTMLElement}} args */
-function render({ model, el }) {
-  const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style", BASE_CSS);
-  injectStyle(doc, "jac-live-style-3d", CSS3D);
-  injectStyle(doc, "jac-live-style-gimbal", CSS);
-  el.classList.add("jac-live", "jl-gimbal");
+/**
+ * The model's numbers, checked, with their defaults (what build, update and bind share).
+ * @param {Model} model @param {string} uid
+ */
+function options(model, uid) {
   /** @type {Record<string, WristModel>} */
   const wristModels = model.get("wrists");
   /** @type {Record<string, Chain>} */
   const chains = {};
   for (const [k, w] of Object.entries(wristModels)) chains[k] = makeChain(w.S, w.M, w.Q || null);
-  const keys = Object.keys(chains);
   const given = { ...DEFAULT_PALETTE, ...(model.get("palette") || {}) };
-  // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
-  /** @type {Record<string, string>} */
-  const pal = Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)]));
-  /** @type {string[]} */
-  const colColors = (model.get("column_colors") || DEFAULT_COLUMNS).map(graphic);
-  const limitDeg = Number(model.get("limit_deg")) || 180;
-  const stepDeg = Number(model.get("step_deg")) || 0.5;
-  const tool = Number(model.get("tool")) || 0.3;
-  const near = Number(model.get("near")) || 0.1;
-  const wristSingular = Number(model.get("wrist_singular")) || 1e-3;
-  const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
+  return {
+    uid, chains, wristModels, keys: Object.keys(chains),
+    // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
+    /** @type {Record<string, string>} */
+    pal: Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)])),
+    /** @type {string[]} */
+    colColors: (model.get("column_colors") || DEFAULT_COLUMNS).map(graphic),
+    limitDeg: Number(model.get("limit_deg")) || 180,
+    stepDeg: Number(model.get("step_deg")) || 0.5,
+    tool: Number(model.get("tool")) || 0.3,
+    near: Number(model.get("near")) || 0.1,
+    wristSingular: Number(model.get("wrist_singular")) || 1e-3,
+    /** @type {number[]} */
+    theta0: model.get("theta"),
+  };
+}
 
-  const wrap = html("div", { class: "jl-wrap" }, el);
-  const plot = html("div", { class: "jl-plot" }, wrap);
-  const side = html("div", { class: "jl-side" }, wrap);
+/** @typedef {ReturnType<typeof options>} Opts */
+/** @typedef {{o: Opts, scene: Scene, chart: Chart} & Controls} Parts */
 
-  const opts = { uid, tool, pal, colColors, limitDeg, stepDeg, wristModels, keys, theta0: model.get("theta") };
-  const scene = buildScene(plot, opts);
-  const view = scene.view;
-  const chartParts = buildChart(plot, opts);
-  const { X, cursor } = chartParts;
-  const { wristSelect, repSelect, sliders, values, banner, status, tB, tJ, tA } = buildControls(side, opts);
+/** The wrist shown (a key of the model's wrists). @param {Model} model @param {string[]} keys @returns {string} */
+function readWrist(model, keys) {
+  const w = model.get("wrist");
+  return keys.includes(w) ? w : keys[0];
+}
+/** @param {Model} model @returns {Representation} */
+function readRep(model) {
+  const r = model.get("rep");
+  return r in REPS ? r : "zyx";
+}
+/** θ from the model (rad), within ±limit_deg. @param {Model} model @param {number} limitDeg @returns {Vec} */
+function readTheta(model, limitDeg) {
+  const th = model.get("theta");
+  const lim = (limitDeg * Math.PI) / 180;
+  return [0, 1, 2].map((i) => {
+    const v = Number(th && th[i]);
+    return Number.isFinite(v) ? Math.max(-lim, Math.min(lim, v)) : 0;
+  });
+}
 
-  // ---- state -> picture (update)
-  function readWrist() {
-    const w = model.get("wrist");
-    return keys.includes(w) ? w : keys[0];
+/**
+ * The wrist w at θ in coordinates rep drawn (update): the scene, the chart, the tables, the banner and the status;
+ * `state`, what was drawn last, becomes what is drawn now.
+ * @param {Parts} parts @param {string} w @param {Representation} rep @param {Vec} th @param {GimbalState} state
+ */
+function update(parts, w, rep, th, state) {
+  const { chains, tool, limitDeg, near, wristSingular, pal } = parts.o;
+  const { tB, tJ, tA, banner, status, sliders, values, wristSelect, repSelect } = parts;
+  const chain = chains[w];
+  const e = evaluate(chain, th);
+  const a = analyticJacobian(chain, th, rep);
+  const B = rateToAngularVelocity(a.phi, rep);
+  const detB = det3(B);
+  const sv = singularValues([e.Jg[0], e.Jg[1], e.Jg[2]]);
+  const sigmaMin = sv[2];
+  const normJ = frob(e.Jg);
+  const normA = a.singular || !a.J ? null : frob(a.J);
+  drawScene(parts.scene, e, B, tool);
+  // chart
+  // Along θ2 the three norms do not depend on θ1: joint 1 turns the whole wrist about z, which turns J's
+  // columns about z and adds θ1 to φ1 (both ZYX and ZYZ start with a turn about z), and B(φ) = R_z(φ1) B(0, φ2, φ3).
+  // So the chart is redone only when θ3, the wrist or the coordinates change (the test checks it at any θ1).
+  const key = `${w}|${rep}|${th[2]}`;
+  if (key !== state.curveKey) {
+    curves(chain, th, rep, limitDeg, parts.chart);
+    state.curveKey = key;
   }
-  /** @returns {Representation} */
-  function readRep() {
-    const r = model.get("rep");
-    return r in REPS ? r : "zyx";
+  const cx = parts.chart.X(deg(th[1])).toFixed(1);
+  put(parts.chart.cursor, "x1", cx);
+  put(parts.chart.cursor, "x2", cx);
+  // numbers
+  for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) text(tB.cells[r][c], cell(B[r][c]));
+  for (let r = 0; r < 6; r++) {
+    for (let c = 0; c < 3; c++) {
+      text(tJ.cells[r][c], cell(e.Jg[r][c]));
+      text(tA.cells[r][c], a.singular || !a.J ? "—" : cell(a.J[r][c]));
+    }
   }
-  function readTheta() {
-    const th = model.get("theta");
-    const lim = (limitDeg * Math.PI) / 180;
-    return [0, 1, 2].map((i) => {
-      const v = Number(th && th[i]);
-      return Number.isFinite(v) ? Math.max(-lim, Math.min(lim, v)) : 0;
-    });
+  const capKey = a.singular ? "lock" : rep;
+  if (capKey !== state.capKey) {
+    tA.caption.textContent = "";
+    sub(tA.caption, ["J", "a"]).append(a.singular ? "(θ): undefined at the lock" : `(θ), ${rep.toUpperCase()}`);
+    state.capKey = capKey;
   }
+  /** @type {string} */
+  let level;
+  /** @type {string} */
+  let word;
+  const margin = a.margin;
+  if (a.singular) {
+    level = "singular";
+    word = `Gimbal lock: det B(φ) = 0, the ${rep.toUpperCase()} angle rates are not defined, Jₐ does not exist`;
+  } else if (margin < near) {
+    level = "warning";
+    word = `Near gimbal lock: |det B(φ)| = ${fixed(margin, 3)}, Jₐ is huge`;
+  } else {
+    level = "ok";
+    word = "";
+  }
+  const wristSing = sigmaMin < wristSingular;
+  if (wristSing) {
+    word = `${word ? `${word}. ` : ""}The wrist itself is singular: σₘᵢₙ of J’s ω rows is ${fixed(sigmaMin, 3)}`;
+    if (level === "ok") level = "wrist";
+  }
+  text(banner, word);
+  banner.hidden = word === "";
+  put(banner, "style", `border-color:${level === "warning" ? pal.warning : pal.singular}`);
+  writeStatus(status, state, { rep, phi: a.phi, detB, sigmaMin, wristSing, normJ, normA });
+  for (let i = 0; i < 3; i++) showAngle(values[i], sliders[i], th[i], deg(th[i]), 1e-9);
+  if (wristSelect.value !== w) wristSelect.value = w;
+  if (repSelect.value !== rep) repSelect.value = rep;
+  Object.assign(state, { theta: th, wrist: w, rep, phi: a.phi, B, detB, Ja: a.J, J: e.Jg, T: e.T, sigmaMin,
+    margin, singular: a.singular, level, normJ, normA });
+}
+
+/** @param {{model: Model, el: HTMLElement}} args */
+function render({ model, el }) {
+  const { uid } = startView(el, { classes: ["jl-gimbal"],
+    styles: [["jac-live-style-3d", CSS3D], ["jac-live-style-gimbal", CSS]] });
+  const o = options(model, uid);
+  const { plot, side } = layout(el);
+  /** @type {Parts} */
+  const parts = { o, scene: buildScene(plot, o), chart: buildChart(plot, o), ...buildControls(side, o) };
   /** @type {GimbalState} */
   const state = { theta: null, wrist: null, rep: null, curveKey: null };
-
-  function draw() {
-    const w = readWrist();
-    const rep = readRep();
-    const th = readTheta();
-    const chain = chains[w];
-    const e = evaluate(chain, th);
-    const a = analyticJacobian(chain, th, rep);
-    const B = rateToAngularVelocity(a.phi, rep);
-    const detB = det3(B);
-    const sv = singularValues([e.Jg[0], e.Jg[1], e.Jg[2]]);
-    const sigmaMin = sv[2];
-    const normJ = frob(e.Jg);
-    const normA = a.singular || !a.J ? null : frob(a.J);
-    drawScene(scene, e, B, tool);
-    // chart
-    // Along θ2 the three norms do not depend on θ1: joint 1 turns the whole wrist about z, which turns J's
-    // columns about z and adds θ1 to φ1 (both ZYX and ZYZ start with a turn about z), and B(φ) = R_z(φ1) B(0, φ2, φ3).
-    // So the chart is redone only when θ3, the wrist or the coordinates change (the test checks it at any θ1).
-    const key = `${w}|${rep}|${th[2]}`;
-    if (key !== state.curveKey) {
-      curves(chain, th, rep, limitDeg, chartParts);
-      state.curveKey = key;
-    }
-    const cx = X(deg(th[1])).toFixed(1);
-    put(cursor, "x1", cx);
-    put(cursor, "x2", cx);
-    // numbers
-    for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) text(tB.cells[r][c], cell(B[r][c]));
-    for (let r = 0; r < 6; r++) {
-      for (let c = 0; c < 3; c++) {
-        text(tJ.cells[r][c], cell(e.Jg[r][c]));
-        text(tA.cells[r][c], a.singular || !a.J ? "—" : cell(a.J[r][c]));
-      }
-    }
-    const capKey = a.singular ? "lock" : rep;
-    if (capKey !== state.capKey) {
-      tA.caption.textContent = "";
-      sub(tA.caption, ["J", "a"]).append(a.singular ? "(θ): undefined at the lock" : `(θ), ${rep.toUpperCase()}`);
-      state.capKey = capKey;
-    }
-    /** @type {string} */
-    let level;
-    /** @type {string} */
-    let word;
-    const margin = a.margin;
-    if (a.singular) {
-      level = "singular";
-      word = `Gimbal lock: det B(φ) = 0, the ${rep.toUpperCase()} angle rates are not defined, Jₐ does not exist`;
-    } else if (margin < near) {
-      level = "warning";
-      word = `Near gimbal lock: |det B(φ)| = ${fixed(margin, 3)}, Jₐ is huge`;
-    } else {
-      level = "ok";
-      word = "";
-    }
-    const wristSing = sigmaMin < wristSingular;
-    if (wristSing) {
-      word = `${word ? `${word}. ` : ""}The wrist itself is singular: σₘᵢₙ of J’s ω rows is ${fixed(sigmaMin, 3)}`;
-      if (level === "ok") level = "wrist";
-    }
-    text(banner, word);
-    banner.hidden = word === "";
-    put(banner, "style", `border-color:${level === "warning" ? pal.warning : pal.singular}`);
-    writeStatus(status, state, { rep, phi: a.phi, detB, sigmaMin, wristSing, normJ, normA });
-    for (let i = 0; i < 3; i++) {
-      text(values[i], `${fixed(deg(th[i]), 1)}°`);
-      put(sliders[i], "aria-valuetext", `${fixed(deg(th[i]), 1)} degrees`);  // what the page shows
-      const v = deg(th[i]);
-      if (Math.abs(Number(sliders[i].value) - v) > 1e-9 && doc.activeElement !== sliders[i]) sliders[i].value = String(v);
-    }
-    if (wristSelect.value !== w) wristSelect.value = w;
-    if (repSelect.value !== rep) repSelect.value = rep;
-    Object.assign(state, { theta: th, wrist: w, rep, phi: a.phi, B, detB, Ja: a.J, J: e.Jg, T: e.T, sigmaMin,
-      margin, singular: a.singular, level, normJ, normA });
-    el.dataset.theta = JSON.stringify(th);
-    el.dataset.wrist = w;
-    el.dataset.rep = rep;
-    el.dataset.level = level;
-  }
-
-  // ---- input -> state
-  const unbind = bind(model, { wristSelect, repSelect, sliders }, readTheta, draw);
-  draw();
-  suppressShortcuts(el); // in JupyterLab a key in a control reaches the control, not a notebook shortcut
-  Object.assign(el, { jacLive: state, jacView: view });
-  return () => {
-    unbind();
-    view.destroy();
-    el.textContent = "";
+  const redraw = () => {
+    update(parts, readWrist(model, o.keys), readRep(model), readTheta(model, o.limitDeg), state);
+    publish(el, { view: "gimbal_lock", theta: /** @type {Vec} */ (state.theta), level: String(state.level),
+      wrist: String(state.wrist), rep: String(state.rep) });
   };
+  const unlisten = bind(model, parts, () => readTheta(model, o.limitDeg), redraw);
+  redraw();
+  return finishView(el, state, () => {
+    unlisten();
+    parts.scene.view.destroy();
+  }, { jacView: parts.scene.view });
 }
 
 export { render };

@@ -19,8 +19,9 @@
 
 import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "../kinematics.js";
 import {
-  BASE_CSS, LIMIT, PALETTE, TWIST_ROWS, announcer, capture, ink, columnColor, fixed, html, injectStyle, legendItem,
-  makeArrow, planarCanvas, setArrow, setEllipse, sub, holdTouch, suppressShortcuts, svg, text as setText, toWorld,
+  LIMIT, PALETTE, TWIST_ROWS, announcer, capture, ink, columnColor, finishView, fixed, html, holdTouch, jointName,
+  jointSliders, layout, legendItem, listen, makeArrow, planarCanvas, player, publish, save, setArrow, setEllipse,
+  showAngle, startView, sub, svg, text as setText, toWorld,
 } from "../ui.js";
 
 export { fixed };
@@ -121,34 +122,34 @@ function turn(chain, th, k, target, reach) {
  * @returns {() => void}
  */
 function bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop }) {
-/** @type {number | null} */
-let drag = null;
-const onDown = (/** @type {PointerEvent} */ ev) => {
-  const h = /** @type {SVGElement} */ (ev.currentTarget);
-  const k = h === handle ? -1 : Number(h.dataset.joint) - 1;
-  drag = k;
-  stop();
-  capture(h, ev);
-  ev.preventDefault();
-};
-const onMove = (/** @type {PointerEvent} */ ev) => {
-  if (drag === null) return;
-  const target = toWorld(root, ev);
-  if (!target) return;
-  setTheta(drag < 0 ? solve(chain, readTheta(), target, reach) : turn(chain, readTheta(), drag, target, reach));
-};
-const onUp = (/** @type {PointerEvent} */ ev) => {
-  if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
-  drag = null;
-};
-const draggable = [handle, ...joints.slice(1)];
-const unhold = draggable.map(holdTouch);
-for (const h of draggable) {
-  h.addEventListener("pointerdown", onDown);
-  h.addEventListener("pointermove", onMove);
-  h.addEventListener("pointerup", onUp);
-  h.addEventListener("pointercancel", onUp);
-}
+  /** @type {number | null} */
+  let drag = null;
+  const onDown = (/** @type {PointerEvent} */ ev) => {
+    const h = /** @type {SVGElement} */ (ev.currentTarget);
+    const k = h === handle ? -1 : Number(h.dataset.joint) - 1;
+    drag = k;
+    stop();
+    capture(h, ev);
+    ev.preventDefault();
+  };
+  const onMove = (/** @type {PointerEvent} */ ev) => {
+    if (drag === null) return;
+    const target = toWorld(root, ev);
+    if (!target) return;
+    setTheta(drag < 0 ? solve(chain, readTheta(), target, reach) : turn(chain, readTheta(), drag, target, reach));
+  };
+  const onUp = (/** @type {PointerEvent} */ ev) => {
+    if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
+    drag = null;
+  };
+  const draggable = [handle, ...joints.slice(1)];
+  const unhold = draggable.map(holdTouch);
+  for (const h of draggable) {
+    h.addEventListener("pointerdown", onDown);
+    h.addEventListener("pointermove", onMove);
+    h.addEventListener("pointerup", onUp);
+    h.addEventListener("pointercancel", onUp);
+  }
   return () => {
     for (const h of draggable) {
       h.removeEventListener("pointerdown", onDown);
@@ -160,30 +161,35 @@ for (const h of draggable) {
   };
 }
 
-/** @param {{model: Model, el: HTMLElement}} args */
-function render({ model, el }) {
-  const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style", BASE_CSS);
-  el.classList.add("jac-live");
-  const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
+/**
+ * The model's numbers, checked, with their defaults (what build and update share).
+ * @param {Model} model @param {Chain} chain
+ */
+function options(model, chain) {
   const n = chain.n;
   const reach = Number(model.get("reach")) || 1;
-  const singTol = Number(model.get("sing_tol")) || 0.08 * reach;
-  const velScale = Number(model.get("vel_scale")) || 0.35;
-  const forceScale = Number(model.get("force_scale")) || 0.1 * reach * reach;
-  const forceClip = Number(model.get("force_clip")) || 1.25 * reach;
-  const name = model.get("name") || `planar ${n}R arm`;
-  const R = 1.3 * reach;
-  const uid = `jl${Math.random().toString(36).slice(2, 9)}`;
+  return {
+    chain, n, reach,
+    singTol: Number(model.get("sing_tol")) || 0.08 * reach,
+    velScale: Number(model.get("vel_scale")) || 0.35,
+    forceScale: Number(model.get("force_scale")) || 0.1 * reach * reach,
+    forceClip: Number(model.get("force_clip")) || 1.25 * reach,
+    name: model.get("name") || `planar ${n}R arm`,
+    L: 0.22 * reach, // the frames' axes
+    head: 0.07 * reach, // arrow heads
+    tiny: 1e-9 * reach, // an arrow shorter than this is hidden
+  };
+}
+/** @typedef {ReturnType<typeof options>} Options */
 
-  const wrap = html("div", { class: "jl-wrap" }, el);
-  const plot = html("div", { class: "jl-plot" }, wrap);
-  const side = html("div", { class: "jl-side" }, wrap);
+/**
+ * The drawing (build): grid, frames, ellipses, the arm, its joints and tool, the column arrows, the drag ring.
+ * @param {HTMLElement} plot @param {Options} o
+ */
+function buildScene(plot, { n, reach, name, L, head, tiny }) {
+  const R = 1.3 * reach;
   const { root, world } = planarCanvas(plot, R, reach,
     `${name}: the arm, the linear parts of the Jacobian columns, the velocity and force ellipses`);
-  const L = 0.22 * reach;
-  const head = 0.07 * reach;
-  const tiny = 1e-9 * reach;
   const sx = makeArrow(world, PALETTE.muted, 1.5); // frames {s} and {b} in grey: the colours are the columns'
   const sy = makeArrow(world, PALETTE.muted, 1.5);
   setArrow(sx, [0, 0], [L, 0], head, tiny);
@@ -213,27 +219,22 @@ function render({ model, el }) {
     "stroke-opacity": 0.5, "stroke-dasharray": "3 3", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke",
     class: "jl-handle" }, world);
   svg("title", {}, handle).textContent = "drag the tool (inverse kinematics by damped least squares)";
+  return { root, ellipse, force, clipLine, link, bx, by, joints, tool, cols, handle };
+}
 
-  // ---- the controls
-  /** @type {HTMLInputElement[]} */
-  const sliders = [];
-  /** @type {HTMLOutputElement[]} */
-  const values = [];
+/**
+ * The controls and the numbers (build): a slider a joint, Play and the joint it sweeps, the frame, the Jacobian's
+ * table, σ_min, the banner, the legend.
+ * @param {HTMLElement} side @param {Options} o @param {Model} model @param {string} uid
+ */
+function buildControls(side, { n, velScale }, model, uid) {
   const theta0 = model.get("theta");
-  for (let i = 0; i < n; i++) {
-    const id = `${uid}-t${i + 1}`;
-    const label = html("label", { for: id }, side);
-    label.append(`θ${String.fromCharCode(0x2081 + i)} = `);
-    values.push(html("output", { for: id, class: "jl-value" }, label));
-    const s = html("input", { type: "range", id, min: -LIMIT, max: LIMIT, step: STEP, class: "jl-theta",
-      "data-joint": i + 1, style: `accent-color:${columnColor(i)}` }, side);
-    s.value = String(theta0[i]);
-    sliders.push(s);
-  }
+  const { sliders, values } = jointSliders(side, n, uid, { min: -LIMIT, max: LIMIT, step: STEP,
+    value: (i) => theta0[i], color: columnColor });
   const row = html("div", { class: "jl-row" }, side);
   const play = html("button", { type: "button", class: "jl-play", "aria-pressed": "false" }, row, "▶ Play");
   const sweepSel = html("select", { class: "jl-sweep", "aria-label": "joint that Play sweeps" }, row);
-  for (let i = 0; i < n; i++) html("option", { value: i }, sweepSel, `sweep θ${String.fromCharCode(0x2081 + i)}`);
+  for (let i = 0; i < n; i++) html("option", { value: i }, sweepSel, `sweep ${jointName(i)}`);
   const sweep0 = Number(model.get("sweep"));
   sweepSel.value = String(Number.isInteger(sweep0) && sweep0 >= 0 && sweep0 < n ? sweep0 : n - 1);
   const frameLabel = html("label", { for: `${uid}-frame` }, side, "Jacobian:");
@@ -246,25 +247,11 @@ function render({ model, el }) {
   html("th", { scope: "col" }, hr, "");
   for (let i = 0; i < n; i++) html("th", { scope: "col", style: `color:${ink(columnColor(i))}` }, hr, `col ${i + 1}`);
   const tbody = html("tbody", {}, table);
-  /** @type {HTMLTableCellElement[][]} */
-  let cells = [];
-  /** @type {ReadonlyArray<SubText> | null} */
-  let rowsFor = null;
-  /** @param {ReadonlyArray<SubText>} labels */
-  function buildRows(labels) {
-    tbody.textContent = "";
-    cells = labels.map((lab) => {
-      const tr = html("tr", {}, tbody);
-      sub(html("th", { scope: "row" }, tr), lab);
-      return Array.from({ length: n }, () => html("td", {}, tr, ""));
-    });
-    rowsFor = labels;
-  }
   const status = html("p", { class: "jl-status" }, side);
   const say = announcer(side);  // the key numbers, once the reader stops moving a control
   sub(status, ["σ", "min"]);
   sub(status, ["(J", "v"]);
-  const sigmaText = doc.createTextNode("");
+  const sigmaText = side.ownerDocument.createTextNode("");
   status.append(sigmaText);
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   const legend = html("ul", { class: "jl-legend" }, side);
@@ -272,175 +259,194 @@ function render({ model, el }) {
   legendItem(legend, PALETTE.velocity, ["velocity ellipse of J", ["", "v"], `: ‖θ̇‖ = 1 (×${velScale} s)`]);
   const forceItem = legendItem(legend, PALETTE.force, [""], true);
   legendItem(legend, PALETTE.muted, ["axes of {s} and {b}; drag a joint or the dashed ring at the tool"]);
+  return { sliders, values, play, sweepSel, select, caption, tbody, sigmaText, say, banner, legendCols, forceItem };
+}
 
-  // ---- state -> picture
-  function readTheta() {
-    const th = model.get("theta");
-    return Array.from({ length: n }, (_, i) => (Number.isFinite(Number(th && th[i])) ? Number(th[i]) : 0));
-  }
-  /** @returns {Frame} */
-  function readFrame() {
-    const f = model.get("frame");
-    return FRAMES.includes(f) ? f : "space";
-  }
-  /** @type {PlanarState} */
-  const state = { theta: null, frame: null, J: null, sigmaMin: null, level: null, force: null };
+/** @typedef {ReturnType<typeof buildScene> & ReturnType<typeof buildControls> & {o: Options}} Parts */
 
-  function draw() {
-    const th = readTheta();
-    const frame = readFrame();
-    const e = evaluate(chain, th);
-    const J = frame === "space" ? e.Js : frame === "body" ? e.Jb : frame === "geometric" ? e.Jg
-      : planarAnalyticJacobian(chain, th);
-    const pts = e.points;
-    link.setAttribute("points", pts.map((p) => `${p[0]},${p[1]}`).join(" "));
-    for (let i = 0; i < n; i++) {
-      joints[i].setAttribute("cx", String(pts[i][0]));
-      joints[i].setAttribute("cy", String(pts[i][1]));
-    }
-    const tip = [e.T[0][3], e.T[1][3]];
-    for (const c of [tool, handle]) {
-      c.setAttribute("cx", String(tip[0]));
-      c.setAttribute("cy", String(tip[1]));
-    }
-    setArrow(bx, tip, [0.8 * L * e.T[0][0], 0.8 * L * e.T[1][0]], head, tiny);
-    setArrow(by, tip, [0.8 * L * e.T[0][1], 0.8 * L * e.T[1][1]], head, tiny);
-    const { P, V } = linearColumns(e, frame, n);
-    for (let i = 0; i < n; i++) setArrow(cols[i], P[i], V[i], head, tiny);
-    // velocity ellipse of J_v: semi-axes σ_i along the columns of U, drawn ×velScale
-    const Jv = [e.Jg[3], e.Jg[4]];
-    const { axes, directions } = velocityEllipsoid(Jv);
-    setEllipse(ellipse, tip, axes[0] * velScale, axes[1] * velScale, directions, 1e-4 * reach);
-    // force ellipse: 1/σ_i along the same directions (Infinity at a singularity), drawn ×forceScale, clipped
-    const f = forceEllipsoid(Jv);
-    const drawn = f.axes.map((a) => Math.min(a * forceScale, forceClip));
-    const clipped = f.axes.map((a) => !(a * forceScale <= forceClip));
-    setEllipse(force, tip, drawn[0], drawn[1], f.directions, 1e-4 * reach);
-    /** @type {string[]} */
-    const seg = [];
-    clipped.forEach((c, i) => {
-      if (!c) return;
-      const u = [f.directions[0][i], f.directions[1][i]];
-      seg.push(`${tip[0] - forceClip * u[0]},${tip[1] - forceClip * u[1]}`, `${tip[0] + forceClip * u[0]},${tip[1] + forceClip * u[1]}`);
-    });
-    clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
-    clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
-    const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
-    setText(/** @type {ChildNode} */ (forceItem.lastChild), forceState === "inf"
-      ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
-      : forceState === "clipped"
-        ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
-        : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
-    const s = Math.max(axes[1], 0);
-    /** @type {"ok" | "warning" | "singular"} */
-    let level;
-    /** @type {string} */
-    let word;
-    if (s < 1e-9) {
-      level = "singular";
-      word = "Singular: the tool cannot move along one direction";
-    } else if (s < singTol) {
-      level = "warning";
-      word = "Near a singularity: the tool barely moves along one direction";
-    } else {
-      level = "ok";
-      word = "";
-    }
-    link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
-    setText(sigmaText, `) = ${fixed(s, 3)} m`);
-    say(`${th.map((x, i) => `theta ${i + 1} ${fixed((x * 180) / Math.PI, 1)} degrees`).join(", ")}; `
-      + `smallest singular value ${fixed(s, 3)} metres${level === "ok" ? "" : `, ${level}`}`);
-    if (level !== state.level) {
-      banner.textContent = word;
-      banner.hidden = level === "ok";
-      banner.style.borderColor = PALETTE[level];
-    }
-    // numbers
-    const labels = frame === "analytic" ? ANALYTIC_ROWS : TWIST_ROWS;
-    if (rowsFor !== labels) buildRows(labels);
-    if (frame !== state.frame) {
-      caption.textContent = "";
-      sub(caption, SYMBOLS[frame]).append(frame === "analytic"
-        ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${frame} Jacobian`);
-      legendCols.textContent = "";
-      for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
-      legendCols.append(frame === "space" ? "linear parts of the columns, at the origin of {s}"
-        : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
-          : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
-    }
-    for (let r = 0; r < labels.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
-    for (let i = 0; i < n; i++) {
-      setText(values[i], `${fixed((th[i] * 180) / Math.PI, 1)}°`);
-      // a screen reader says what the page shows (degrees), not the slider's radians
-      const said = `${fixed((th[i] * 180) / Math.PI, 1)} degrees`;
-      if (sliders[i].getAttribute("aria-valuetext") !== said) sliders[i].setAttribute("aria-valuetext", said);
-      if (Number(sliders[i].value) !== th[i] && doc.activeElement !== sliders[i]) sliders[i].value = String(th[i]);
-    }
-    if (select.value !== frame) select.value = frame;
-    Object.assign(state, { theta: th, frame, J, sigmaMin: s, level, force: forceState });
-    el.dataset.theta = JSON.stringify(th);
-    el.dataset.frame = frame;
-    el.dataset.level = level;
-  }
+/**
+ * The table's rows for these labels (the rows change between the twist's six and the analytic Jacobian's three).
+ * @param {HTMLTableSectionElement} tbody @param {ReadonlyArray<SubText>} labels @param {number} n
+ * @returns {HTMLTableCellElement[][]}
+ */
+function tableRows(tbody, labels, n) {
+  tbody.textContent = "";
+  return labels.map((lab) => {
+    const tr = html("tr", {}, tbody);
+    sub(html("th", { scope: "row" }, tr), lab);
+    return Array.from({ length: n }, () => html("td", {}, tr, ""));
+  });
+}
 
-  // ---- input -> state
-  const setTheta = (/** @type {Vec} */ th) => {
-    model.set("theta", th);
-    model.save_changes();
-  };
+/** θ from the model, a number a joint (0 for what is not one). @param {Model} model @param {number} n @returns {Vec} */
+function readTheta(model, n) {
+  const th = model.get("theta");
+  return Array.from({ length: n }, (_, i) => (Number.isFinite(Number(th && th[i])) ? Number(th[i]) : 0));
+}
+/** @param {Model} model @returns {Frame} */
+function readFrame(model) {
+  const f = model.get("frame");
+  return FRAMES.includes(f) ? f : "space";
+}
+
+/**
+ * The picture and the numbers for θ and the frame (update); `shown` is what was drawn last, and becomes this.
+ * Returns what the view shows.
+ * @param {Parts} parts @param {Vec} th @param {Frame} frame @param {PlanarState & {cells?: HTMLTableCellElement[][],
+ *   rowsFor?: ReadonlyArray<SubText>}} shown
+ */
+function update(parts, th, frame, shown) {
+  const { chain, n, reach, singTol, forceScale, forceClip, L, head, tiny } = parts.o;
+  const { link, joints, tool, handle, bx, by, cols, ellipse, force, clipLine, forceItem, sigmaText, say, banner } = parts;
+  const e = evaluate(chain, th);
+  const J = frame === "space" ? e.Js : frame === "body" ? e.Jb : frame === "geometric" ? e.Jg
+    : planarAnalyticJacobian(chain, th);
+  const pts = e.points;
+  link.setAttribute("points", pts.map((p) => `${p[0]},${p[1]}`).join(" "));
+  for (let i = 0; i < n; i++) {
+    joints[i].setAttribute("cx", String(pts[i][0]));
+    joints[i].setAttribute("cy", String(pts[i][1]));
+  }
+  const tip = [e.T[0][3], e.T[1][3]];
+  for (const c of [tool, handle]) {
+    c.setAttribute("cx", String(tip[0]));
+    c.setAttribute("cy", String(tip[1]));
+  }
+  setArrow(bx, tip, [0.8 * L * e.T[0][0], 0.8 * L * e.T[1][0]], head, tiny);
+  setArrow(by, tip, [0.8 * L * e.T[0][1], 0.8 * L * e.T[1][1]], head, tiny);
+  const { P, V } = linearColumns(e, frame, n);
+  for (let i = 0; i < n; i++) setArrow(cols[i], P[i], V[i], head, tiny);
+  // velocity ellipse of J_v: semi-axes σ_i along the columns of U, drawn ×velScale
+  const Jv = [e.Jg[3], e.Jg[4]];
+  const { axes, directions } = velocityEllipsoid(Jv);
+  setEllipse(ellipse, tip, axes[0] * parts.o.velScale, axes[1] * parts.o.velScale, directions, 1e-4 * reach);
+  // force ellipse: 1/σ_i along the same directions (Infinity at a singularity), drawn ×forceScale, clipped
+  const f = forceEllipsoid(Jv);
+  const drawn = f.axes.map((a) => Math.min(a * forceScale, forceClip));
+  const clipped = f.axes.map((a) => !(a * forceScale <= forceClip));
+  setEllipse(force, tip, drawn[0], drawn[1], f.directions, 1e-4 * reach);
+  /** @type {string[]} */
+  const seg = [];
+  clipped.forEach((c, i) => {
+    if (!c) return;
+    const u = [f.directions[0][i], f.directions[1][i]];
+    seg.push(`${tip[0] - forceClip * u[0]},${tip[1] - forceClip * u[1]}`, `${tip[0] + forceClip * u[0]},${tip[1] + forceClip * u[1]}`);
+  });
+  clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
+  clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
+  const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
+  setText(/** @type {ChildNode} */ (forceItem.lastChild), forceState === "inf"
+    ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
+    : forceState === "clipped"
+      ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
+      : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
+  const s = Math.max(axes[1], 0);
+  /** @type {"ok" | "warning" | "singular"} */
+  let level;
+  /** @type {string} */
+  let word;
+  if (s < 1e-9) {
+    level = "singular";
+    word = "Singular: the tool cannot move along one direction";
+  } else if (s < singTol) {
+    level = "warning";
+    word = "Near a singularity: the tool barely moves along one direction";
+  } else {
+    level = "ok";
+    word = "";
+  }
+  link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
+  setText(sigmaText, `) = ${fixed(s, 3)} m`);
+  say(`${th.map((x, i) => `theta ${i + 1} ${fixed((x * 180) / Math.PI, 1)} degrees`).join(", ")}; `
+    + `smallest singular value ${fixed(s, 3)} metres${level === "ok" ? "" : `, ${level}`}`);
+  if (level !== shown.level) {
+    banner.textContent = word;
+    banner.hidden = level === "ok";
+    banner.style.borderColor = PALETTE[level];
+  }
+  // numbers
+  const labels = frame === "analytic" ? ANALYTIC_ROWS : TWIST_ROWS;
+  if (shown.rowsFor !== labels) {
+    shown.cells = tableRows(parts.tbody, labels, n);
+    shown.rowsFor = labels;
+  }
+  const cells = /** @type {HTMLTableCellElement[][]} */ (shown.cells);
+  if (frame !== shown.frame) {
+    const { caption, legendCols } = parts;
+    caption.textContent = "";
+    sub(caption, SYMBOLS[frame]).append(frame === "analytic"
+      ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${frame} Jacobian`);
+    legendCols.textContent = "";
+    for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
+    legendCols.append(frame === "space" ? "linear parts of the columns, at the origin of {s}"
+      : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
+        : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
+  }
+  for (let r = 0; r < labels.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
+  for (let i = 0; i < n; i++) showAngle(parts.values[i], parts.sliders[i], th[i], th[i]);
+  if (parts.select.value !== frame) parts.select.value = frame;
+  Object.assign(shown, { theta: th, frame, J, sigmaMin: s, level, force: forceState });
+}
+
+/**
+ * The reader's input -> the model (bind): the sliders, the frame, Play, dragging a joint or the tool.
+ * Returns the remover of all of it.
+ * @param {Parts} parts @param {Model} model @param {() => void} redraw @param {HTMLElement} el (its data-playing)
+ */
+function bind(parts, model, redraw, el) {
+  const { chain, n, reach } = parts.o;
+  const { sliders, select, play, sweepSel } = parts;
+  const setTheta = (/** @type {Vec} */ th) => save(model, "theta", th);
+  // Play: sweep one joint, PLAY_STEP a frame, up to LIMIT, then from -LIMIT again (on the slider's grid)
+  const playing = player(play, () => {
+    const th = readTheta(model, n);
+    const i = Number(sweepSel.value);
+    th[i] = th[i] + PLAY_STEP > LIMIT + 1e-9 ? -LIMIT : Math.round((th[i] + PLAY_STEP) / STEP) * STEP;
+    setTheta(th);
+  }, PLAY_MS, (p) => publish(el, { playing: p ? 1 : 0 }));
   const onInput = (/** @type {Event} */ ev) => {
     const slider = /** @type {HTMLInputElement} */ (ev.target);
-    const th = readTheta();
+    const th = readTheta(model, n);
     const v = Number(slider.value);
     if (!Number.isFinite(v)) return;
     th[Number(slider.dataset.joint) - 1] = v;
     setTheta(th);
   };
-  const onFrame = () => {
-    model.set("frame", select.value);
-    model.save_changes();
-  };
-  const unbindDrags = bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop });
-  // Play: sweep one joint, PLAY_STEP a frame, up to LIMIT, then from -LIMIT again
-  /** @type {ReturnType<typeof setInterval> | null} */
-  let timer = null;
-  function tick() {
-    const th = readTheta();
-    const i = Number(sweepSel.value);
-    th[i] = th[i] + PLAY_STEP > LIMIT + 1e-9 ? -LIMIT : Math.round((th[i] + PLAY_STEP) / STEP) * STEP; // on the slider's grid
-    setTheta(th);
-  }
-  function stop() {
-    if (timer !== null) clearInterval(timer);
-    timer = null;
-    play.textContent = "▶ Play";
-    play.setAttribute("aria-pressed", "false");
-  }
-  const onPlay = () => {
-    if (timer !== null) return stop();
-    timer = setInterval(tick, PLAY_MS);
-    play.textContent = "❚❚ Pause";
-    play.setAttribute("aria-pressed", "true");
-    return undefined;
-  };
-  play.addEventListener("click", onPlay);
-  sliders.forEach((s) => s.addEventListener("input", onInput));
-  select.addEventListener("change", onFrame);
-  model.on("change:theta", draw);
-  model.on("change:frame", draw);
-  draw();
-  suppressShortcuts(el);
-  Object.assign(el, { jacLive: state });
+  const unbindDrags = bindDrags(parts, { chain, reach, readTheta: () => readTheta(model, n), setTheta,
+    stop: playing.stop });
+  const unlisten = listen(model, ["theta", "frame"], redraw, [
+    [play, "click", playing.toggle],
+    ...sliders.map((s) => /** @type {import("../ui.js").Listener} */ ([s, "input", onInput])),
+    [select, "change", () => save(model, "frame", select.value)],
+  ]);
   return () => {
-    stop();
-    model.off("change:theta", draw);
-    model.off("change:frame", draw);
-    sliders.forEach((s) => s.removeEventListener("input", onInput));
+    playing.stop();
+    unlisten();
     unbindDrags();
-    play.removeEventListener("click", onPlay);
-    select.removeEventListener("change", onFrame);
-    el.textContent = "";
   };
+}
+
+/** @param {{model: Model, el: HTMLElement}} args */
+function render({ model, el }) {
+  const { uid } = startView(el);
+  const o = options(model, makeChain(model.get("S"), model.get("M"), model.get("Q") || null));
+  const { plot, side } = layout(el);
+  /** @type {Parts} */
+  const parts = { ...buildScene(plot, o), ...buildControls(side, o, model, uid), o };
+  /** @type {PlanarState} */
+  const state = { theta: null, frame: null, J: null, sigmaMin: null, level: null, force: null };
+  const shown = { ...state };
+  const redraw = () => {
+    update(parts, readTheta(model, o.n), readFrame(model), shown);
+    Object.assign(state, { theta: shown.theta, frame: shown.frame, J: shown.J, sigmaMin: shown.sigmaMin,
+      level: shown.level, force: shown.force });
+    publish(el, { view: "planar_explorer", theta: /** @type {Vec} */ (state.theta),
+      level: /** @type {string} */ (state.level), frame: /** @type {Frame} */ (state.frame) });
+  };
+  const unbind = bind(parts, model, redraw, el);
+  redraw();
+  publish(el, { playing: 0 });
+  return finishView(el, state, unbind);
 }
 
 export { render };

@@ -16,9 +16,8 @@
 
 import { dlsRates, evaluate, makeChain, resolvedRate } from "../kinematics.js";
 import {
-  BASE_CSS, PALETTE, announcer, capture, columnColor, fixed, holdTouch, html, injectStyle, planarCanvas, sub,
-  suppressShortcuts, svg,
-  toWorld,
+  PALETTE, announcer, capture, columnColor, finishView, fixed, holdTouch, html, listen, planarCanvas, player, publish,
+  save, startView, sub, svg, toWorld,
 } from "../ui.js";
 
 /** @typedef {import("../ui.js").Point2} Point2 */
@@ -149,128 +148,136 @@ export function simulate(chain, { path, drawn, method, damping, nSteps, duration
 function drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, run) {
   /** @type {[EventTarget, string, (ev: any) => void][]} */
   const on = [];
-let drawing = false;
-/** @type {Point2[] | null} */
-let stroke = null; // a pointer's stroke, while the pointer is down
-/** @type {Point2[]} */
-let keyed = []; // the points placed with the keyboard
-/** @type {Point2} */
-let penAt = [0, 0];
-const rootLabel = root.getAttribute("aria-label") || "";
-/** @param {Point2[]} P */
-const inkPoints = (P) => ink.setAttribute("points", P.map((q) => `${q[0]},${q[1]}`).join(" "));
-const showPen = () => {
-  const d = 0.05 * reach;
-  pen.setAttribute("d", `M${penAt[0] - d},${penAt[1]} h${2 * d} M${penAt[0]},${penAt[1] - d} v${2 * d}`);
-  inkPoints(keyed.length ? [...keyed, penAt] : []);
-};
-/** @param {boolean} d */
-const setDrawing = (d) => {
-  drawing = d;
-  keyed = [];
-  pad.setAttribute("visibility", d ? "visible" : "hidden");
-  pen.setAttribute("visibility", d ? "visible" : "hidden");
-  drawBtn.setAttribute("aria-pressed", String(d));
-  drawBtn.textContent = d ? "✎ Use the path drawn" : "✎ Draw a path";
-  help.textContent = d ? PEN_HELP : RUN_HELP;
-  if (d) {
-    const tool = run.tool();
-    penAt = tool ? [Math.round(tool[0] * 100) / 100, Math.round(tool[1] * 100) / 100] : [0, 0];
-    showPen();
-    root.setAttribute("tabindex", "0");
-    root.setAttribute("aria-label", `${rootLabel}. Drawing pad: the pen starts at the tool. ${PEN_HELP}`);
-  } else {
-    ink.setAttribute("points", "");
-    root.removeAttribute("tabindex");
-    root.setAttribute("aria-label", rootLabel);
-  }
-};
-/** Use a drawn stroke as the path (at least two distinct points), then stop drawing. @param {Point2[]} pts */
-const commit = (pts) => {
-  setDrawing(false);
-  if (resample(pts, 2)) run.use(pts);
-};
-on.push([drawBtn, "click", () => {
-  run.stop();
-  if (!drawing) {
-    setDrawing(true);
-    root.focus();
-  } else if (keyed.length >= 2) commit(keyed);
-  else setDrawing(false);
-}]);
-/** @type {Record<string, Point2>} */
-const PEN_MOVES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
-on.push([root, "keydown", (/** @type {KeyboardEvent} */ ev) => {
-  if (!drawing) return;
-  const where = () => `(${fixed(penAt[0], 2)}, ${fixed(penAt[1], 2)}) m`;
-  const move = PEN_MOVES[ev.key];
-  if (move) {
-    const h = ev.shiftKey ? 0.01 * reach : 0.05 * reach;
-    penAt = /** @type {Point2} */ (penAt.map((x, i) => Math.max(-R, Math.min(R, Math.round((x + h * move[i]) * 1e4) / 1e4))));
-    say(`pen at ${where()}`);
-  } else if (ev.key === "Enter" || ev.key === " ") {
-    keyed.push(penAt);
-    say(`point ${keyed.length} at ${where()}`);
-  } else if (ev.key === "Backspace") {
-    keyed.pop();
-    say(`${keyed.length} points`);
-  } else if (ev.key === "Escape") {
+  let drawing = false;
+  /** @type {Point2[] | null} */
+  let stroke = null; // a pointer's stroke, while the pointer is down
+  /** @type {Point2[]} */
+  let keyed = []; // the points placed with the keyboard
+  /** @type {Point2} */
+  let penAt = [0, 0];
+  const rootLabel = root.getAttribute("aria-label") || "";
+  /** @param {Point2[]} P */
+  const inkPoints = (P) => ink.setAttribute("points", P.map((q) => `${q[0]},${q[1]}`).join(" "));
+  const showPen = () => {
+    const d = 0.05 * reach;
+    pen.setAttribute("d", `M${penAt[0] - d},${penAt[1]} h${2 * d} M${penAt[0]},${penAt[1] - d} v${2 * d}`);
+    inkPoints(keyed.length ? [...keyed, penAt] : []);
+  };
+  /** @param {boolean} d */
+  const setDrawing = (d) => {
+    drawing = d;
+    keyed = [];
+    pad.setAttribute("visibility", d ? "visible" : "hidden");
+    pen.setAttribute("visibility", d ? "visible" : "hidden");
+    drawBtn.setAttribute("aria-pressed", String(d));
+    drawBtn.textContent = d ? "✎ Use the path drawn" : "✎ Draw a path";
+    help.textContent = d ? PEN_HELP : RUN_HELP;
+    if (d) {
+      const tool = run.tool();
+      penAt = tool ? [Math.round(tool[0] * 100) / 100, Math.round(tool[1] * 100) / 100] : [0, 0];
+      showPen();
+      root.setAttribute("tabindex", "0");
+      root.setAttribute("aria-label", `${rootLabel}. Drawing pad: the pen starts at the tool. ${PEN_HELP}`);
+    } else {
+      ink.setAttribute("points", "");
+      root.removeAttribute("tabindex");
+      root.setAttribute("aria-label", rootLabel);
+    }
+  };
+  /** Use a drawn stroke as the path (at least two distinct points), then stop drawing. @param {Point2[]} pts */
+  const commit = (pts) => {
     setDrawing(false);
-    drawBtn.focus();
-    say("drawing cancelled");
-  } else return;
-  if (drawing) showPen();
-  ev.preventDefault();
-  ev.stopPropagation(); // the view's own keys (step, play) and a deck's wait until the drawing ends
-}]);
-on.push([pad, "pointerdown", (ev) => {
-  const p = toWorld(root, ev);
-  if (!p) return;
-  capture(pad, ev);
-  stroke = [p];
-  inkPoints(stroke);
-  ev.preventDefault();
-}]);
-on.push([pad, "pointermove", (ev) => {
-  const p = stroke && toWorld(root, ev);
-  if (!p || !stroke) return;
-  stroke.push(p);
-  inkPoints(stroke);
-}]);
-/** @param {PointerEvent} ev */
-const finish = (ev) => {
-  if (!stroke) return;
-  const last = ev.type === "pointerup" && toWorld(root, ev);
-  if (last) stroke.push(last); // a touch's last move can come only with the lift
-  const pts = stroke;
-  stroke = null;
-  commit(pts);
-};
-on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
+    if (resample(pts, 2)) run.use(pts);
+  };
+  on.push([drawBtn, "click", () => {
+    run.stop();
+    if (!drawing) {
+      setDrawing(true);
+      root.focus();
+    } else if (keyed.length >= 2) commit(keyed);
+    else setDrawing(false);
+  }]);
+  /** @type {Record<string, Point2>} */
+  const PEN_MOVES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+  on.push([root, "keydown", (/** @type {KeyboardEvent} */ ev) => {
+    if (!drawing) return;
+    const where = () => `(${fixed(penAt[0], 2)}, ${fixed(penAt[1], 2)}) m`;
+    const move = PEN_MOVES[ev.key];
+    if (move) {
+      const h = ev.shiftKey ? 0.01 * reach : 0.05 * reach;
+      penAt = /** @type {Point2} */ (penAt.map((x, i) => Math.max(-R, Math.min(R, Math.round((x + h * move[i]) * 1e4) / 1e4))));
+      say(`pen at ${where()}`);
+    } else if (ev.key === "Enter" || ev.key === " ") {
+      keyed.push(penAt);
+      say(`point ${keyed.length} at ${where()}`);
+    } else if (ev.key === "Backspace") {
+      keyed.pop();
+      say(`${keyed.length} points`);
+    } else if (ev.key === "Escape") {
+      setDrawing(false);
+      drawBtn.focus();
+      say("drawing cancelled");
+    } else return;
+    if (drawing) showPen();
+    ev.preventDefault();
+    ev.stopPropagation(); // the view's own keys (step, play) and a deck's wait until the drawing ends
+  }]);
+  on.push([pad, "pointerdown", (ev) => {
+    const p = toWorld(root, ev);
+    if (!p) return;
+    capture(pad, ev);
+    stroke = [p];
+    inkPoints(stroke);
+    ev.preventDefault();
+  }]);
+  on.push([pad, "pointermove", (ev) => {
+    const p = stroke && toWorld(root, ev);
+    if (!p || !stroke) return;
+    stroke.push(p);
+    inkPoints(stroke);
+  }]);
+  /** @param {PointerEvent} ev */
+  const finish = (ev) => {
+    if (!stroke) return;
+    const last = ev.type === "pointerup" && toWorld(root, ev);
+    if (last) stroke.push(last); // a touch's last move can come only with the lift
+    const pts = stroke;
+    stroke = null;
+    commit(pts);
+  };
+  on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
   return on;
 }
 
-/** @param {{model: Model, el: HTMLElement}} args */
-function render({ model, el }) {
-  const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style", BASE_CSS);
-  el.classList.add("jac-live");
+/**
+ * The model's fixed numbers, checked, with their defaults (what build, update and bind share).
+ * @param {Model} model
+ */
+function options(model) {
   const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
   const n = chain.n;
   const reach = Number(model.get("reach")) || 1;
-  const nSteps = Math.max(2, Math.round(Number(model.get("n_steps")) || 160));
   const duration = Number(model.get("duration")) || 4;
-  const gain = Number.isFinite(Number(model.get("gain"))) ? Number(model.get("gain")) : 2;
   const rateLimit = Number(model.get("rate_limit")) || 8;
-  const name = model.get("name") || `planar ${n}R arm`;
-  const uid = `jr${Math.random().toString(36).slice(2, 9)}`;
-  el.tabIndex = -1;
+  // the joint-rate plot: t on [0, duration], rates on [-rateLimit, rateLimit], in a 400 × 300 box
+  const X0 = 52, X1 = 392, Y0 = 12, Y1 = 262;
+  return {
+    chain, n, reach, duration, rateLimit, X0, X1, Y0, Y1,
+    nSteps: Math.max(2, Math.round(Number(model.get("n_steps")) || 160)),
+    gain: Number.isFinite(Number(model.get("gain"))) ? Number(model.get("gain")) : 2,
+    name: model.get("name") || `planar ${n}R arm`,
+    R: 1.15 * reach,
+    px: (/** @type {number} */ t) => X0 + ((X1 - X0) * t) / duration,
+    py: (/** @type {number} */ r) => Y0 + ((Y1 - Y0) * (rateLimit - Math.max(-rateLimit, Math.min(rateLimit, r)))) / (2 * rateLimit),
+  };
+}
+/** @typedef {ReturnType<typeof options>} Options */
 
-  const wrap = html("div", { class: "jl-wrap" }, el);
-  const plot = html("div", { class: "jl-plot" }, wrap);
-  const right = html("div", { class: "jl-plot" }, wrap);
-  const side = html("div", { class: "jl-side" }, el);
-  const R = 1.15 * reach;
+/**
+ * The arm's drawing (build): the desired and the actual path, the arm, the target, the drawing pad and its pen.
+ * @param {HTMLElement} plot @param {Options} o
+ */
+function buildArm(plot, { n, reach, name, R }) {
   const { root, world } = planarCanvas(plot, R, reach, `${name} following the path; the desired path dashed`);
   const ns = { fill: "none", "vector-effect": "non-scaling-stroke" };
   const desLine = svg("polyline", { ...ns, stroke: PALETTE.path, "stroke-width": 3, "stroke-dasharray": "8 5",
@@ -285,11 +292,15 @@ function render({ model, el }) {
   const pad = svg("rect", { x: -R, y: -R, width: 2 * R, height: 2 * R, fill: "transparent", class: "jl-draw",
     visibility: "hidden" }, world);
   const pen = svg("path", { ...ns, stroke: PALETTE.fg, "stroke-width": 2, class: "jr-pen", visibility: "hidden" }, world);
+  return { root, desLine, actLine, link, joints, target, ink, pad, pen };
+}
 
-  // the joint-rate plot: t on [0, duration], rates on [-rateLimit, rateLimit], in a 400 × 300 box
-  const W = 400, H = 300, X0 = 52, X1 = 392, Y0 = 12, Y1 = 262;
-  const px = (/** @type {number} */ t) => X0 + ((X1 - X0) * t) / duration;
-  const py = (/** @type {number} */ r) => Y0 + ((Y1 - Y0) * (rateLimit - Math.max(-rateLimit, Math.min(rateLimit, r)))) / (2 * rateLimit);
+/**
+ * The joint-rate plot (build): its axes, a line a joint, the time cursor, the key.
+ * @param {HTMLElement} right @param {Options} o
+ */
+function buildRates(right, { n, duration, rateLimit, X0, X1, Y0, Y1, px, py }) {
+  const W = 400, H = 300;
   const rp = svg("svg", { viewBox: `0 0 ${W} ${H}`, role: "img", class: "jr-rates",
     "aria-label": "joint rates against time, as the run goes" }, right);
   const axes = svg("g", { stroke: PALETTE.muted, "stroke-width": 1, "font-size": 16, fill: PALETTE.fg }, rp);
@@ -311,8 +322,14 @@ function render({ model, el }) {
     html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, li);
     li.append(`θ̇${String.fromCharCode(0x2081 + i)}`);
   }
+  return { rateLines, cursor };
+}
 
-  // ---- controls
+/**
+ * The controls (build): path, Draw, method, λ, the step slider, back / Play / on, the help, the status, the banner.
+ * @param {HTMLElement} side @param {Options} o @param {string} uid
+ */
+function buildControls(side, { nSteps }, uid) {
   const row1 = html("div", { class: "jl-row" }, side);
   const pathLabel = html("label", { for: `${uid}-path` }, row1, "Path:");
   const pathSel = html("select", { id: `${uid}-path`, class: "jr-path" }, pathLabel);
@@ -335,132 +352,135 @@ function render({ model, el }) {
   const help = html("p", { class: "jl-status jr-help" }, side, RUN_HELP);
   const status = html("p", { class: "jl-status" }, side);
   const say = announcer(side);  // the key numbers, once a run or a drag has stopped
-  const statusT = doc.createTextNode("");
+  const statusT = side.ownerDocument.createTextNode("");
   status.append(statusT);
   sub(status, ["σ", "min"]);
   sub(status, ["(J", "v"]);
-  const statusS = doc.createTextNode("");
+  const statusS = side.ownerDocument.createTextNode("");
   status.append(statusS);
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
-  void help;
+  return { pathSel, drawBtn, methodSel, lamOut, lam, stepOut, stepIn, back, play, fwd, help, say, statusT, statusS,
+    banner };
+}
 
-  // ---- state
+/**
+ * The view (build): the arm and the rate plot side by side, the controls below.
+ * @param {HTMLElement} el @param {Model} model
+ */
+function build(el, model) {
+  const { uid } = startView(el, { prefix: "jr" });
+  const o = options(model);
+  el.tabIndex = -1;
+  const wrap = html("div", { class: "jl-wrap" }, el);
+  const plot = html("div", { class: "jl-plot" }, wrap);
+  const right = html("div", { class: "jl-plot" }, wrap);
+  const side = html("div", { class: "jl-side" }, el);
+  return { o, ...buildArm(plot, o), ...buildRates(right, o), ...buildControls(side, o, uid) };
+}
+/** @typedef {ReturnType<typeof build>} Parts */
+
+/** The model's choices, checked. @param {Model} model @param {Options} o @returns {RunOptions} */
+function readOptions(model, { nSteps, duration, gain, reach }) {
   const get = (/** @type {string} */ k, /** @type {any} */ d) => (model.get(k) === undefined || model.get(k) === null ? d : model.get(k));
-  /** @returns {RunOptions} */
-  const options = () => {
-    const m = get("method", "pinv");
-    const path = get("path", "close past the base");
-    const l = Number(get("damping", 0.1));
-    return { path: [...PATHS, "drawn"].includes(path) ? path : "circle", drawn: get("drawn", null),
-      method: m in METHODS ? m : "pinv", damping: Number.isFinite(l) && l >= 0 ? l : 0.1, nSteps, duration, gain,
-      reach };
-  };
-  /** @type {Simulation | null} */
-  let sim = null;
-  /** @type {string | null} */
-  let simKey = null;
-  /** @type {Map<string, Vec>} */
-  const starts = new Map();
-  /** @type {RateState} */
-  const state = { step: 0, sim: null, level: null };
-  function ensure() {
-    const o = options();
-    const k = JSON.stringify([o.path, o.path === "drawn" ? o.drawn : null, o.method, o.method === "dls" ? o.damping : 0]);
-    if (k === simKey) return false;
-    sim = simulate(chain, o, starts);
-    simKey = k;
-    desLine.setAttribute("points", sim.xd.map((p) => `${p[0]},${p[1]}`).join(" "));
-    return true;
-  }
-  function draw() {
-    ensure();
-    if (!sim) return;
-    const o = options();
-    const k = Math.max(0, Math.min(nSteps - 1, Math.round(Number(get("step", 0))) || 0));
-    const { run, t, xd } = sim;
-    const th = run.thetas[k];
-    const pts = evaluate(chain, th).points;
-    link.setAttribute("points", pts.map((p) => `${p[0]},${p[1]}`).join(" "));
-    for (let i = 0; i < n; i++) {
-      joints[i].setAttribute("cx", String(pts[i][0]));
-      joints[i].setAttribute("cy", String(pts[i][1]));
-    }
-    actLine.setAttribute("points", run.positions.slice(0, k + 1).map((p) => `${p[0]},${p[1]}`).join(" "));
-    const c = xd[k], a = 0.05 * reach;
-    target.setAttribute("d", `M${c[0] - a},${c[1] - a}L${c[0] + a},${c[1] + a}M${c[0] - a},${c[1] + a}L${c[0] + a},${c[1] - a}`);
-    for (let i = 0; i < n; i++) {
-      rateLines[i].setAttribute("points", run.rates.slice(0, k + 1).map((r, j) => `${px(t[j])},${py(r[i])}`).join(" "));
-    }
-    cursor.setAttribute("x1", String(px(t[k])));
-    cursor.setAttribute("x2", String(px(t[k])));
-    const s = run.sigmaMin[k];
-    const now = Math.hypot(...run.rates[k]);
-    let peak = 0;
-    for (let j = 0; j <= k; j++) for (const r of run.rates[j]) peak = Math.max(peak, Math.abs(r));
-    const level = s < 0.02 * reach ? "singular" : s < 0.1 * reach ? "warning" : "ok";
-    statusT.textContent = `t = ${fixed(t[k], 2)} s, `;
-    statusS.textContent = `) = ${fixed(s, 3)} m; ‖θ̇‖ = ${fixed(now, 2)} rad/s, `
-      + `peak |θ̇ᵢ| so far ${fixed(peak, 1)} rad/s; tracking error ${fixed(1000 * run.errors[k], 1)} mm`;
-    say(`time ${fixed(t[k], 2)} seconds; smallest singular value ${fixed(s, 3)} metres; `
-      + `peak joint rate so far ${fixed(peak, 1)} radians per second; tracking error ${fixed(1000 * run.errors[k], 1)} millimetres`);
-    if (level !== state.level) {
-      banner.hidden = level === "ok";
-      banner.textContent = level === "ok" ? "" : level === "singular"
-        ? "At a singularity: the tool has almost lost a direction; pseudo-inverse rates blow up, DLS gives up accuracy"
-        : "Near a singularity: the joint rates grow";
-      banner.style.borderColor = PALETTE[level];
-    }
-    link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
-    lamOut.textContent = `${fixed(o.damping, 3)} m`;
-    // the slider moves log10(λ); a screen reader says λ itself, as the label shows it
-    lam.setAttribute("aria-valuetext", `λ = ${fixed(o.damping, 3)} metres`);
-    lam.disabled = o.method !== "dls";
-    if (doc.activeElement !== lam) lam.value = String(Math.log10(Math.max(o.damping, 1e-3)));
-    stepOut.textContent = `${k} of ${nSteps - 1}`;
-    stepIn.setAttribute("aria-valuetext", `step ${k} of ${nSteps - 1}`);
-    if (doc.activeElement !== stepIn || Number(stepIn.value) !== k) stepIn.value = String(k);
-    if (pathSel.value !== o.path) pathSel.value = o.path;
-    if (methodSel.value !== o.method) methodSel.value = o.method;
-    Object.assign(state, { step: k, sim, level, sigmaMin: s, theta: th, drawn: o.drawn });
-    el.dataset.step = String(k);
-    el.dataset.theta = JSON.stringify(th);
-    el.dataset.level = level;
-  }
+  const m = get("method", "pinv");
+  const path = get("path", "close past the base");
+  const l = Number(get("damping", 0.1));
+  return { path: [...PATHS, "drawn"].includes(path) ? path : "circle", drawn: get("drawn", null),
+    method: m in METHODS ? m : "pinv", damping: Number.isFinite(l) && l >= 0 ? l : 0.1, nSteps, duration, gain,
+    reach };
+}
+/** The step shown, 0 to n_steps - 1. @param {Model} model @param {number} nSteps @returns {number} */
+function readStep(model, nSteps) {
+  const s = model.get("step");
+  return Math.max(0, Math.min(nSteps - 1, Math.round(Number(s === undefined || s === null ? 0 : s)) || 0));
+}
 
-  // ---- input -> state
-  const put = (/** @type {string} */ key, /** @type {unknown} */ value) => {
-    model.set(key, value);
-    model.save_changes();
-  };
-  const setStep = (/** @type {number} */ k) => put("step", Math.max(0, Math.min(nSteps - 1, k)));
-  /** @type {ReturnType<typeof setInterval> | null} */
-  let timer = null;
-  function stop() {
-    if (timer !== null) clearInterval(timer);
-    timer = null;
-    play.textContent = "▶ Play";
-    play.setAttribute("aria-pressed", "false");
+/**
+ * Step k of the run drawn (update): the arm, the paths, the rates so far, the numbers, the controls' values.
+ * @param {Parts} parts @param {Simulation} sim @param {number} k @param {RunOptions} opts @param {RateState} shown
+ */
+function update(parts, sim, k, opts, shown) {
+  const { n, reach, nSteps, px, py } = parts.o;
+  const { link, joints, actLine, target, rateLines, cursor, statusT, statusS, say, banner, lamOut, lam, stepOut,
+    stepIn, pathSel, methodSel } = parts;
+  const doc = lam.ownerDocument;
+  const { run, t, xd } = sim;
+  const th = run.thetas[k];
+  const pts = evaluate(parts.o.chain, th).points;
+  link.setAttribute("points", pts.map((p) => `${p[0]},${p[1]}`).join(" "));
+  for (let i = 0; i < n; i++) {
+    joints[i].setAttribute("cx", String(pts[i][0]));
+    joints[i].setAttribute("cy", String(pts[i][1]));
   }
-  function toggle() {
-    if (timer !== null) return stop();
+  actLine.setAttribute("points", run.positions.slice(0, k + 1).map((p) => `${p[0]},${p[1]}`).join(" "));
+  const c = xd[k], a = 0.05 * reach;
+  target.setAttribute("d", `M${c[0] - a},${c[1] - a}L${c[0] + a},${c[1] + a}M${c[0] - a},${c[1] + a}L${c[0] + a},${c[1] - a}`);
+  for (let i = 0; i < n; i++) {
+    rateLines[i].setAttribute("points", run.rates.slice(0, k + 1).map((r, j) => `${px(t[j])},${py(r[i])}`).join(" "));
+  }
+  cursor.setAttribute("x1", String(px(t[k])));
+  cursor.setAttribute("x2", String(px(t[k])));
+  const s = run.sigmaMin[k];
+  const now = Math.hypot(...run.rates[k]);
+  let peak = 0;
+  for (let j = 0; j <= k; j++) for (const r of run.rates[j]) peak = Math.max(peak, Math.abs(r));
+  const level = s < 0.02 * reach ? "singular" : s < 0.1 * reach ? "warning" : "ok";
+  statusT.textContent = `t = ${fixed(t[k], 2)} s, `;
+  statusS.textContent = `) = ${fixed(s, 3)} m; ‖θ̇‖ = ${fixed(now, 2)} rad/s, `
+    + `peak |θ̇ᵢ| so far ${fixed(peak, 1)} rad/s; tracking error ${fixed(1000 * run.errors[k], 1)} mm`;
+  say(`time ${fixed(t[k], 2)} seconds; smallest singular value ${fixed(s, 3)} metres; `
+    + `peak joint rate so far ${fixed(peak, 1)} radians per second; tracking error ${fixed(1000 * run.errors[k], 1)} millimetres`);
+  if (level !== shown.level) {
+    banner.hidden = level === "ok";
+    banner.textContent = level === "ok" ? "" : level === "singular"
+      ? "At a singularity: the tool has almost lost a direction; pseudo-inverse rates blow up, DLS gives up accuracy"
+      : "Near a singularity: the joint rates grow";
+    banner.style.borderColor = PALETTE[level];
+  }
+  link.setAttribute("stroke", level === "ok" ? PALETTE.link : PALETTE[level]);
+  lamOut.textContent = `${fixed(opts.damping, 3)} m`;
+  // the slider moves log10(λ); a screen reader says λ itself, as the label shows it
+  lam.setAttribute("aria-valuetext", `λ = ${fixed(opts.damping, 3)} metres`);
+  lam.disabled = opts.method !== "dls";
+  if (doc.activeElement !== lam) lam.value = String(Math.log10(Math.max(opts.damping, 1e-3)));
+  stepOut.textContent = `${k} of ${nSteps - 1}`;
+  stepIn.setAttribute("aria-valuetext", `step ${k} of ${nSteps - 1}`);
+  if (doc.activeElement !== stepIn || Number(stepIn.value) !== k) stepIn.value = String(k);
+  if (pathSel.value !== opts.path) pathSel.value = opts.path;
+  if (methodSel.value !== opts.method) methodSel.value = opts.method;
+  Object.assign(shown, { step: k, sim, level, sigmaMin: s, theta: th, drawn: opts.drawn });
+}
+
+/**
+ * The reader's input -> the model (bind): path, method, λ, the step slider, the buttons, the view's keys (P or K
+ * play/pause, → or . on, ← or , back, not while a slider or a select has them), the drawing pad.
+ * Returns the remover of all of it.
+ * @param {Parts} parts @param {Model} model @param {() => void} redraw @param {HTMLElement} el
+ * @param {RateState} state
+ */
+function bind(parts, model, redraw, el, state) {
+  const { nSteps, reach, R } = parts.o;
+  const { pathSel, methodSel, lam, stepIn, play, back, fwd, root, ink, pen, pad, drawBtn, help, say } = parts;
+  const setStep = (/** @type {number} */ k) => save(model, "step", Math.max(0, Math.min(nSteps - 1, k)));
+  const playing = player(play, () => {
+    if (state.step >= nSteps - 1) return playing.stop();
+    return setStep(state.step + 1);
+  }, 40, (p) => publish(el, { playing: p ? 1 : 0 }));
+  const toggle = () => {
+    if (playing.playing()) return playing.stop();
     if (state.step >= nSteps - 1) setStep(0);
-    timer = setInterval(() => {
-      if (state.step >= nSteps - 1) return stop();
-      return setStep(state.step + 1);
-    }, 40);
-    play.textContent = "❚❚ Pause";
-    play.setAttribute("aria-pressed", "true");
-    return undefined;
-  }
+    return playing.start();
+  };
+  const stop = playing.stop;
   const restart = () => {
     stop();
-    put("step", 0);
+    save(model, "step", 0);
   };
-  /** @type {[EventTarget, string, (ev: any) => void][]} */
+  /** @type {import("../ui.js").Listener[]} */
   const on = [
-    [pathSel, "change", () => { put("path", pathSel.value); restart(); }],
-    [methodSel, "change", () => { put("method", methodSel.value); restart(); }],
-    [lam, "input", () => { put("damping", Math.round(10 ** Number(lam.value) * 1e4) / 1e4); }],
+    [pathSel, "change", () => { save(model, "path", pathSel.value); restart(); }],
+    [methodSel, "change", () => { save(model, "method", methodSel.value); restart(); }],
+    [lam, "input", () => { save(model, "damping", Math.round(10 ** Number(lam.value) * 1e4) / 1e4); }],
     [stepIn, "input", () => { stop(); setStep(Number(stepIn.value)); }],
     [play, "click", toggle],
     [back, "click", () => { stop(); setStep(state.step - 1); }],
@@ -480,24 +500,50 @@ function render({ model, el }) {
     stop,
     use(/** @type {Point2[]} */ pts) {
       model.set("drawn", pts.map((p) => [Math.round(p[0] * 1e4) / 1e4, Math.round(p[1] * 1e4) / 1e4]));
-      put("path", "drawn");
+      save(model, "path", "drawn");
       restart();
     },
   }));
-  for (const [t, e, f] of on) t.addEventListener(e, f);
+  const unlisten = listen(model, ["path", "drawn", "method", "damping", "step"], redraw, on);
   const unhold = holdTouch(pad); // the pad is there only while drawing
-  const keys = ["path", "drawn", "method", "damping", "step"].map((k) => `change:${k}`).join(" ");
-  model.on(keys, draw);
-  draw();
-  suppressShortcuts(el);
-  Object.assign(el, { jacLive: state });
   return () => {
     stop();
-    model.off(keys, draw);
-    for (const [t, e, f] of on) t.removeEventListener(e, f);
+    unlisten();
     unhold();
-    el.textContent = "";
   };
+}
+
+/** @param {{model: Model, el: HTMLElement}} args */
+function render({ model, el }) {
+  const parts = build(el, model);
+  const { o } = parts;
+  /** @type {Simulation | null} */
+  let sim = null;
+  /** @type {string | null} */
+  let simKey = null;
+  /** @type {Map<string, Vec>} */
+  const starts = new Map();
+  /** @type {RateState} */
+  const state = { step: 0, sim: null, level: null };
+  const redraw = () => {
+    const opts = readOptions(model, o);
+    // the run is redone only when what it depends on changes
+    const k = JSON.stringify([opts.path, opts.path === "drawn" ? opts.drawn : null, opts.method,
+      opts.method === "dls" ? opts.damping : 0]);
+    if (k !== simKey) {
+      sim = simulate(o.chain, opts, starts);
+      simKey = k;
+      parts.desLine.setAttribute("points", sim.xd.map((p) => `${p[0]},${p[1]}`).join(" "));
+    }
+    if (!sim) return;
+    update(parts, sim, readStep(model, o.nSteps), opts, state);
+    publish(el, { view: "resolved_rate", theta: /** @type {Vec} */ (state.theta), level: /** @type {string} */ (state.level),
+      step: state.step });
+  };
+  const unbind = bind(parts, model, redraw, el, state);
+  redraw();
+  publish(el, { playing: 0 });
+  return finishView(el, state, unbind);
 }
 
 export { render };

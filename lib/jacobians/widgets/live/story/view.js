@@ -23,8 +23,8 @@
 
 import { evaluate, makeChain } from "../kinematics.js";
 import {
-  BASE_CSS, PALETTE, columnColor, fixed, graphic, html, injectStyle, ink, legendItem, makeArrow, setArrow, sub,
-  suppressShortcuts, svg, text as setText,
+  PALETTE, columnColor, finishView, fixed, graphic, html, ink, layout, legendItem, listen, makeArrow, player, publish,
+  save, setArrow, startView, sub, svg, text as setText,
 } from "../ui.js";
 
 /** @typedef {import("../host.js").Model} Model */
@@ -52,6 +52,13 @@ import {
  *   Panel
  */
 /** @typedef {Record<string, Vec[] | Vec[][]>} Arrows the arrows drawn: [tail, vector] (world m), or a list of them */
+/**
+ * What a story's build is given: the model, the chain, where it draws, and the legend and the table it fills.
+ * @typedef {{m: StoryModel, chain: Chain, n: number, head: number, plot: HTMLElement, legend: HTMLUListElement,
+ *   caption: HTMLTableCaptionElement, tableRows: (labels: [string, SubText][], cols: string[],
+ *   colColors?: string[] | null) => void, setRow: (key: string, v: number[], d?: number) => void}} StoryContext
+ */
+/** @typedef {(s: StoryFrame) => Arrows} StoryUpdate a story's redraw at one frame; returns the arrows drawn */
 
 /** @type {string[]} */
 export const STORIES = ["fixed_axis", "body_columns", "three_velocities"];
@@ -195,43 +202,226 @@ const pts = (/** @type {ArrayLike<number>[]} */ P) => P.map((q) => `${q[0]},${q[
 
 const vec = (/** @type {number[]} */ v, d = 2) => `(${v.map((x) => fixed(x, d)).join(", ")})`;
 
-/** @param {{model: Model, el: HTMLElement}} args */
-function render({ model, el }) {
-  const doc = el.ownerDocument;
-  injectStyle(doc, "jac-live-style", BASE_CSS);
-  injectStyle(doc, "jac-story-style", CSS);
-  el.classList.add("jac-live");
-  const get = (/** @type {string} */ k) => model.get(k);
+const tiny = 1e-9; // an arrow shorter than this (m) is hidden
+const arrowsOf = (/** @type {Arrow2} */ a, /** @type {string} */ cls) => a.g.setAttribute("class", cls);
+
+/**
+ * Chapter 1's story (build): a body turning about a fixed vertical axis through q; returns its redraw.
+ * @param {StoryContext} c @returns {StoryUpdate}
+ */
+function buildFixedAxis({ m, chain, plot, legend, caption, tableRows, setRow }) {
+  const P = panel(plot, m.box, "A body frame {b} turning about a vertical axis through q: v_s at the origin of {s}, ṗ at the origin of {b}");
+  const L = 0.4;
+  setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [L, 0], 0.08, tiny);
+  setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [0, L], 0.08, tiny);
+  P.text(-0.55, 0.08, "{s}");
+  const q = m.q;
+  const d = 0.07;
+  line(P.world, C.black, 2.5, { points: `${q[0] - d},${q[1] - d} ${q[0] + d},${q[1] + d}` });
+  line(P.world, C.black, 2.5, { points: `${q[0] - d},${q[1] + d} ${q[0] + d},${q[1] - d}` });
+  P.text(q[0] + 0.1, q[1] + 0.1, "q");
+  /** @type {Vec[]} */
+  const circle = [];
+  for (let k = 0; k <= 96; k++) circle.push(storyState(chain, m, (2 * Math.PI * k) / 96).p); // where {b}'s origin goes
+  line(P.world, C.sky, 2, { points: pts(circle), "stroke-dasharray": "2 4", class: "js-path" });
+  const bx = makeArrow(P.world, C.vermillion, 2.5);
+  const by = makeArrow(P.world, C.green, 2.5);
+  arrowsOf(bx, "js-xb");
+  arrowsOf(by, "js-yb");
+  const blabel = P.text(0, 0, "{b}");
+  const vs = makeArrow(P.world, C.orange, 4);
+  const pd = makeArrow(P.world, C.blue, 4);
+  arrowsOf(vs, "js-vs");
+  arrowsOf(pd, "js-pdot");
+  legendItem(legend, C.orange, ["v", ["", "s"], ": the body point passing through the origin of {s}"]);
+  legendItem(legend, C.blue, ["ṗ: the origin of {b}"]);
+  legendItem(legend, C.vermillion, ["x", ["", "b"], " and ", "y", ["", "b"], " (green): the axes of {b}"]);
+  legendItem(legend, C.sky, ["where the origin of {b} goes; ✕ the axis through q (ω̂ = ẑ); grid 1 m"], true);
+  caption.textContent = "velocities (m/s)";
+  tableRows([["vs", ["v", "s"]], ["pd", ["ṗ", ""]]], ["x", "y", "‖·‖"]);
+  return (s) => {
+    const vS = /** @type {Vec} */ (s.vS), pDot = /** @type {Vec} */ (s.pDot);
+    const a = m.axis_len;
+    setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
+    setArrow(by, s.p, [a * s.yb[0], a * s.yb[1]], 0.07, tiny);
+    blabel.setAttribute("x", String(s.p[0] + 0.05));
+    blabel.setAttribute("y", String(-(s.p[1] - 0.25)));
+    setArrow(vs, [0, 0], [vS[0], vS[1]], 0.12, tiny);
+    setArrow(pd, s.p, [pDot[0], pDot[1]], 0.12, tiny);
+    setRow("vs", [vS[0], vS[1], Math.hypot(...vS)]);
+    setRow("pd", [pDot[0], pDot[1], Math.hypot(...pDot)]);
+    return { vs: [[0, 0], [vS[0], vS[1]]], pdot: [s.p, [pDot[0], pDot[1]]] };
+  };
+}
+
+/**
+ * The planar 3R arm of chapters 3 and 7 (build): links, joints (named J1.. when `named`), {s} and the tool's axes,
+ * in a panel of its own under an optional title; returns the panel and the arm's redraw.
+ * @param {StoryContext} c @param {string} label @param {string | null} title @param {boolean} named
+ * @returns {{P: Panel, arm: (s: StoryFrame) => void}}
+ */
+function buildArm({ m, n, plot }, label, title, named) {
+  const left = html("div", { class: "js-panel" }, plot);
+  if (title) html("p", { class: "js-panel-title" }, left, title);
+  const P = panel(left, m.box, label);
+  const L = 0.5;
+  setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [L, 0], 0.08, tiny);
+  setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [0, L], 0.08, tiny);
+  P.text(L + 0.02, -P.font * 1.1, "x");
+  P.text(-P.font * 0.9, L + 0.02, "y");
+  const link = line(P.world, PALETTE.muted, 7, { class: "jl-link" });
+  /** @type {SVGCircleElement[]} */
+  const joints = [];
+  /** @type {SVGTextElement[]} */
+  const jl = [];
+  for (let i = 0; i < n; i++) {
+    joints.push(svg("circle", { r: 0.05, fill: PALETTE.bg, stroke: C.black, "stroke-width": 2, "vector-effect": "non-scaling-stroke" }, P.world));
+    if (named) jl.push(P.text(0, 0, `J${i + 1}`));
+  }
+  const bx = makeArrow(P.world, C.black, 1.5);
+  const by = line(P.world, C.black, 1.5, { "stroke-dasharray": "4 3" });
+  const xbl = P.text(0, 0, "x", "", "b");
+  const ybl = P.text(0, 0, "y", "", "b");
+  for (const t of [xbl, ybl]) {
+    t.setAttribute("text-anchor", "middle");
+    t.setAttribute("dominant-baseline", "middle");
+  }
+  const arm = (/** @type {StoryFrame} */ s) => {
+    link.setAttribute("points", pts(s.points));
+    for (let i = 0; i < n; i++) {
+      joints[i].setAttribute("cx", String(s.points[i][0]));
+      joints[i].setAttribute("cy", String(s.points[i][1]));
+      if (jl[i]) {
+        jl[i].setAttribute("x", String(s.points[i][0] + 0.08));
+        jl[i].setAttribute("y", String(-(s.points[i][1] - 0.28)));
+      }
+    }
+    const a = m.axis_len;
+    setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
+    by.setAttribute("points", `${s.p[0]},${s.p[1]} ${s.p[0] + a * s.yb[0]},${s.p[1] + a * s.yb[1]}`);
+    const r = a + 0.9 * P.font; // the labels just beyond the axes' tips, centred on their line
+    xbl.setAttribute("x", String(s.p[0] + r * s.xb[0]));
+    xbl.setAttribute("y", String(-(s.p[1] + r * s.xb[1])));
+    ybl.setAttribute("x", String(s.p[0] + r * s.yb[0]));
+    ybl.setAttribute("y", String(-(s.p[1] + r * s.yb[1])));
+  };
+  return { P, arm };
+}
+
+/**
+ * Chapter 3's story (build): the linear parts of J_b's columns at the tool in {s} (left) and in {b} (right).
+ * @param {StoryContext} c @returns {StoryUpdate}
+ */
+function buildBodyColumns(c) {
+  const { m, plot, head, legend, caption, tableRows, setRow } = c;
+  const { P, arm } = buildArm(c, "The planar 3R arm in {s}, with the velocity of the tool point when each joint alone turns at 1 rad/s",
+    "the arm in {s}; tool velocity per joint (×0.6)", true);
+  const right = html("div", { class: "js-panel" }, plot);
+  html("p", { class: "js-panel-title" }, right, "the same vectors in {b} (to scale)");
+  const Rp = panel(right, m.box_right, "The linear parts of the columns of J_b, in {b}-coordinates");
+  line(Rp.world, PALETTE.muted, 1, { points: `${m.box_right[0]},0 ${m.box_right[1]},0` });
+  line(Rp.world, PALETTE.muted, 1, { points: `0,${m.box_right[2]} 0,${m.box_right[3]}` });
+  // anchored at the right and top edges, so that a larger font (a slide) grows into the drawing
+  Rp.text(m.box_right[1] - 0.3 * Rp.font, -0.3 * Rp.font, "x", "", "b").setAttribute("text-anchor", "end");
+  Rp.text(0.08, m.box_right[3] - 0.2 * Rp.font, "y", "", "b").setAttribute("dominant-baseline", "hanging");
+  /** @type {Arrow2[]} */
+  const colsL = [];
+  /** @type {Arrow2[]} */
+  const colsR = [];
+  for (let i = 0; i < 3; i++) {
+    colsL.push(makeArrow(P.world, columnColor(i), 3.5));
+    colsR.push(makeArrow(Rp.world, columnColor(i), 3.5));
+    arrowsOf(colsL[i], `js-left js-col-${i + 1}`);
+    arrowsOf(colsR[i], `js-right js-col-${i + 1}`);
+  }
+  for (let i = 0; i < 3; i++) legendItem(legend, columnColor(i), ["J", ["", `b${i + 1}`], ` (joint ${i + 1})`]);
+  legendItem(legend, C.black, ["x", ["", "b"], " solid, ", "y", ["", "b"], " dashed: the tool axes; grid 1 m (right: 1 m/rad)"]);
+  caption.append("linear parts of the columns of J");
+  sub(caption, ["", "b"]);
+  caption.append(", in {b} (m/rad)");
+  tableRows([["x", ["x", "b"]], ["y", ["y", "b"]]], ["col 1", "col 2", "col 3"], [0, 1, 2].map(columnColor));
+  return (s) => {
+    const vsL = /** @type {Vec[]} */ (s.vs), vbR = /** @type {Vec[]} */ (s.vb);
+    arm(s);
+    const k = m.scale;
+    for (let i = 0; i < 3; i++) {
+      setArrow(colsL[i], s.p, [k * vsL[i][0], k * vsL[i][1]], head, tiny);
+      setArrow(colsR[i], [0, 0], vbR[i], 0.09, tiny);
+    }
+    setRow("x", vbR.map((v) => v[0]));
+    setRow("y", vbR.map((v) => v[1]));
+    return { left: vsL.map((v) => [s.p, [k * v[0], k * v[1]]]), right: vbR.map((v) => [[0, 0], v]) };
+  };
+}
+
+/**
+ * Chapter 7's story (build): ṗ at the tool, v_s at the origin of {s}, and the five velocities in numbers.
+ * @param {StoryContext} c @returns {StoryUpdate}
+ */
+function buildThreeVelocities(c) {
+  const { m, head, legend, caption, tableRows, setRow } = c;
+  const { P, arm } = buildArm(c, "The planar 3R arm at constant joint rates: ṗ at the tool, v_s at the origin of {s}",
+    null, false);
+  const pd = makeArrow(P.world, C.green, 4);
+  const vs = makeArrow(P.world, C.orange, 4);
+  arrowsOf(pd, "js-pdot");
+  arrowsOf(vs, "js-vs");
+  legendItem(legend, C.green, ["ṗ (geometric J): the tool point's velocity"]);
+  legendItem(legend, C.orange, ["v", ["", "s"], " (space J", ["", "s"], "): at the origin of {s}"]);
+  legendItem(legend, C.black, ["x", ["", "b"], " solid, ", "y", ["", "b"], " dashed: the tool axes; grid 1 m"]);
+  caption.textContent = `θ̇ = ${vec(m.theta_dot, 1)} rad/s`;
+  tableRows([["ws", ["ω", "s"]], ["wb", ["ω", "b"]], ["pd", ["ṗ", ""]], ["vs", ["v", "s"]], ["vb", ["v", "b"]]],
+    ["x", "y", "z", "‖·‖"]);
+  const vsc = m.vel_scale;
+  return (s) => {
+    const [vS, pDot, omegaS, omegaB, vB] = /** @type {Vec[]} */ ([s.vS, s.pDot, s.omegaS, s.omegaB, s.vB]);
+    arm(s);
+    setArrow(pd, s.p, [vsc * pDot[0], vsc * pDot[1]], head, tiny);
+    setArrow(vs, [0, 0], [vsc * vS[0], vsc * vS[1]], head, tiny);
+    const nrm = (/** @type {number[]} */ v) => Math.hypot(...v);
+    setRow("ws", [...omegaS, nrm(omegaS)]);
+    setRow("wb", [...omegaB, nrm(omegaB)]);
+    setRow("pd", [...pDot, nrm(pDot)]);
+    setRow("vs", [...vS, nrm(vS)]);
+    setRow("vb", [...vB, nrm(vB)]);
+    return { pdot: [s.p, [vsc * pDot[0], vsc * pDot[1]]], vs: [[0, 0], [vsc * vS[0], vsc * vS[1]]] };
+  };
+}
+
+/** Each story's build, by the model's `story`. @type {Record<string, (c: StoryContext) => StoryUpdate>} */
+const BUILDS = { fixed_axis: buildFixedAxis, body_columns: buildBodyColumns, three_velocities: buildThreeVelocities };
+
+/** The model's keys a story reads. @param {Model} model @returns {StoryModel} */
+function readStory(model) {
   /** @type {Record<string, any>} */
   const keys = {};
   for (const k of ["story", "offset", "rate", "waves", "t_end", "frames", "closed", "speed", "box", "box_right",
-    "scale", "theta_dot", "vel_scale", "axis_len", "q"]) keys[k] = get(k);
+    "scale", "theta_dot", "vel_scale", "axis_len", "q"]) keys[k] = model.get(k);
   const m = /** @type {StoryModel} */ (keys);
   if (!STORIES.includes(m.story)) throw new Error(`Expected story one of ${STORIES.join(", ")}, got ${JSON.stringify(m.story)}`);
-  const chain = makeChain(get("S"), get("M"), get("Q") || null);
-  const n = chain.n;
-  const reach = Number(get("reach")) || 1;
-  const uid = `js${Math.random().toString(36).slice(2, 9)}`;
-  el.dataset.story = m.story;
+  return m;
+}
 
-  const wrap = html("div", { class: "jl-wrap" }, el);
-  const plot = html("div", { class: `js-plot${m.story === "body_columns" ? " js-two" : ""}` }, wrap);
-  const side = html("div", { class: "jl-side" }, wrap);
-  const head = 0.06 * reach;
-  const tiny = 1e-9;
+/**
+ * The view (build): the story's drawing, its numbers and legend, then the time slider, Play and θ.
+ * @param {HTMLElement} el @param {Model} model
+ */
+function build(el, model) {
+  const { uid } = startView(el, { styles: [["jac-story-style", CSS]], prefix: "js" });
+  const m = readStory(model);
+  const chain = makeChain(model.get("S"), model.get("M"), model.get("Q") || null);
+  const n = chain.n;
+  const reach = Number(model.get("reach")) || 1;
+  el.dataset.story = m.story;
+  const { plot, side } = layout(el, `js-plot${m.story === "body_columns" ? " js-two" : ""}`);
   const legend = html("ul", { class: "jl-legend" });
-  /** @type {((s: StoryFrame) => Arrows)[]} */
-  const draw = []; // per-frame drawing functions of the story
   const table = html("table", { class: "js-numbers" });
   const caption = html("caption", {}, table);
   const tbody = html("tbody", {}, table);
   /** @type {Record<string, HTMLTableCellElement[]>} */
   const rows = {};
-  /**
-   * The table's head and rows: a row per [key, label], a column per name (coloured as colColors).
-   * @param {[string, SubText][]} labels @param {string[]} cols @param {string[] | null} [colColors]
-   */
-  function tableRows(labels, cols, colColors = null) {
+  /** @type {StoryContext["tableRows"]} a row per [key, label], a column per name (coloured as colColors) */
+  const tableRows = (labels, cols, colColors = null) => {
     const thead = html("thead", {}, table);
     const hr = html("tr", {}, thead);
     table.insertBefore(thead, tbody);
@@ -242,167 +432,12 @@ function render({ model, el }) {
       sub(html("th", { scope: "row" }, tr), lab);
       rows[key] = cols.map(() => html("td", {}, tr, ""));
     }
-  }
-  const setRow = (/** @type {string} */ key, /** @type {number[]} */ v, d = 2) => v.forEach((x, i) => setText(rows[key][i], fixed(x, d)));
-  const arrowsOf = (/** @type {Arrow2} */ a, /** @type {string} */ cls) => a.g.setAttribute("class", cls);
+  };
+  /** @type {StoryContext["setRow"]} */
+  const setRow = (key, v, d = 2) => v.forEach((x, i) => setText(rows[key][i], fixed(x, d)));
+  const drawStory = BUILDS[m.story]({ m, chain, n, head: 0.06 * reach, plot, legend, caption, tableRows, setRow });
 
-  if (m.story === "fixed_axis") {
-    const P = panel(plot, m.box, "A body frame {b} turning about a vertical axis through q: v_s at the origin of {s}, ṗ at the origin of {b}");
-    const L = 0.4;
-    setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [L, 0], 0.08, tiny);
-    setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [0, L], 0.08, tiny);
-    P.text(-0.55, 0.08, "{s}");
-    const q = m.q;
-    const d = 0.07;
-    line(P.world, C.black, 2.5, { points: `${q[0] - d},${q[1] - d} ${q[0] + d},${q[1] + d}` });
-    line(P.world, C.black, 2.5, { points: `${q[0] - d},${q[1] + d} ${q[0] + d},${q[1] - d}` });
-    P.text(q[0] + 0.1, q[1] + 0.1, "q");
-    /** @type {Vec[]} */
-    const circle = [];
-    for (let k = 0; k <= 96; k++) circle.push(storyState(chain, m, (2 * Math.PI * k) / 96).p); // where {b}'s origin goes
-    line(P.world, C.sky, 2, { points: pts(circle), "stroke-dasharray": "2 4", class: "js-path" });
-    const bx = makeArrow(P.world, C.vermillion, 2.5);
-    const by = makeArrow(P.world, C.green, 2.5);
-    arrowsOf(bx, "js-xb");
-    arrowsOf(by, "js-yb");
-    const blabel = P.text(0, 0, "{b}");
-    const vs = makeArrow(P.world, C.orange, 4);
-    const pd = makeArrow(P.world, C.blue, 4);
-    arrowsOf(vs, "js-vs");
-    arrowsOf(pd, "js-pdot");
-    legendItem(legend, C.orange, ["v", ["", "s"], ": the body point passing through the origin of {s}"]);
-    legendItem(legend, C.blue, ["ṗ: the origin of {b}"]);
-    legendItem(legend, C.vermillion, ["x", ["", "b"], " and ", "y", ["", "b"], " (green): the axes of {b}"]);
-    legendItem(legend, C.sky, ["where the origin of {b} goes; ✕ the axis through q (ω̂ = ẑ); grid 1 m"], true);
-    caption.textContent = "velocities (m/s)";
-    tableRows([["vs", ["v", "s"]], ["pd", ["ṗ", ""]]], ["x", "y", "‖·‖"]);
-    draw.push((s) => {
-      const vS = /** @type {Vec} */ (s.vS), pDot = /** @type {Vec} */ (s.pDot);
-      const a = m.axis_len;
-      setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
-      setArrow(by, s.p, [a * s.yb[0], a * s.yb[1]], 0.07, tiny);
-      blabel.setAttribute("x", String(s.p[0] + 0.05));
-      blabel.setAttribute("y", String(-(s.p[1] - 0.25)));
-      setArrow(vs, [0, 0], [vS[0], vS[1]], 0.12, tiny);
-      setArrow(pd, s.p, [pDot[0], pDot[1]], 0.12, tiny);
-      setRow("vs", [vS[0], vS[1], Math.hypot(...vS)]);
-      setRow("pd", [pDot[0], pDot[1], Math.hypot(...pDot)]);
-      return { vs: [[0, 0], [vS[0], vS[1]]], pdot: [s.p, [pDot[0], pDot[1]]] };
-    });
-  } else {
-    // the planar 3R arm: links, joints, {s} and the tool axes
-    const left = html("div", { class: "js-panel" }, plot);
-    if (m.story === "body_columns") html("p", { class: "js-panel-title" }, left, "the arm in {s}; tool velocity per joint (×0.6)");
-    const P = panel(left, m.box, m.story === "body_columns"
-      ? "The planar 3R arm in {s}, with the velocity of the tool point when each joint alone turns at 1 rad/s"
-      : "The planar 3R arm at constant joint rates: ṗ at the tool, v_s at the origin of {s}");
-    const L = 0.5;
-    setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [L, 0], 0.08, tiny);
-    setArrow(makeArrow(P.world, C.black, 1.5), [0, 0], [0, L], 0.08, tiny);
-    P.text(L + 0.02, -P.font * 1.1, "x");
-    P.text(-P.font * 0.9, L + 0.02, "y");
-    const link = line(P.world, PALETTE.muted, 7, { class: "jl-link" });
-    /** @type {SVGCircleElement[]} */
-    const joints = [];
-    /** @type {SVGTextElement[]} */
-    const jl = [];
-    for (let i = 0; i < n; i++) {
-      joints.push(svg("circle", { r: 0.05, fill: PALETTE.bg, stroke: C.black, "stroke-width": 2, "vector-effect": "non-scaling-stroke" }, P.world));
-      if (m.story === "body_columns") jl.push(P.text(0, 0, `J${i + 1}`));
-    }
-    const bx = makeArrow(P.world, C.black, 1.5);
-    const by = line(P.world, C.black, 1.5, { "stroke-dasharray": "4 3" });
-    const xbl = P.text(0, 0, "x", "", "b");
-    const ybl = P.text(0, 0, "y", "", "b");
-    for (const t of [xbl, ybl]) {
-      t.setAttribute("text-anchor", "middle");
-      t.setAttribute("dominant-baseline", "middle");
-    }
-    const arm = (/** @type {StoryFrame} */ s) => {
-      link.setAttribute("points", pts(s.points));
-      for (let i = 0; i < n; i++) {
-        joints[i].setAttribute("cx", String(s.points[i][0]));
-        joints[i].setAttribute("cy", String(s.points[i][1]));
-        if (jl[i]) {
-          jl[i].setAttribute("x", String(s.points[i][0] + 0.08));
-          jl[i].setAttribute("y", String(-(s.points[i][1] - 0.28)));
-        }
-      }
-      const a = m.axis_len;
-      setArrow(bx, s.p, [a * s.xb[0], a * s.xb[1]], 0.07, tiny);
-      by.setAttribute("points", `${s.p[0]},${s.p[1]} ${s.p[0] + a * s.yb[0]},${s.p[1] + a * s.yb[1]}`);
-      const r = a + 0.9 * P.font; // the labels just beyond the axes' tips, centred on their line
-      xbl.setAttribute("x", String(s.p[0] + r * s.xb[0]));
-      xbl.setAttribute("y", String(-(s.p[1] + r * s.xb[1])));
-      ybl.setAttribute("x", String(s.p[0] + r * s.yb[0]));
-      ybl.setAttribute("y", String(-(s.p[1] + r * s.yb[1])));
-    };
-    if (m.story === "body_columns") {
-      const right = html("div", { class: "js-panel" }, plot);
-      html("p", { class: "js-panel-title" }, right, "the same vectors in {b} (to scale)");
-      const Rp = panel(right, m.box_right, "The linear parts of the columns of J_b, in {b}-coordinates");
-      line(Rp.world, PALETTE.muted, 1, { points: `${m.box_right[0]},0 ${m.box_right[1]},0` });
-      line(Rp.world, PALETTE.muted, 1, { points: `0,${m.box_right[2]} 0,${m.box_right[3]}` });
-      // anchored at the right and top edges, so that a larger font (a slide) grows into the drawing
-      Rp.text(m.box_right[1] - 0.3 * Rp.font, -0.3 * Rp.font, "x", "", "b").setAttribute("text-anchor", "end");
-      Rp.text(0.08, m.box_right[3] - 0.2 * Rp.font, "y", "", "b").setAttribute("dominant-baseline", "hanging");
-      /** @type {Arrow2[]} */
-      const colsL = [];
-      /** @type {Arrow2[]} */
-      const colsR = [];
-      for (let i = 0; i < 3; i++) {
-        colsL.push(makeArrow(P.world, columnColor(i), 3.5));
-        colsR.push(makeArrow(Rp.world, columnColor(i), 3.5));
-        arrowsOf(colsL[i], `js-left js-col-${i + 1}`);
-        arrowsOf(colsR[i], `js-right js-col-${i + 1}`);
-      }
-      for (let i = 0; i < 3; i++) legendItem(legend, columnColor(i), ["J", ["", `b${i + 1}`], ` (joint ${i + 1})`]);
-      legendItem(legend, C.black, ["x", ["", "b"], " solid, ", "y", ["", "b"], " dashed: the tool axes; grid 1 m (right: 1 m/rad)"]);
-      caption.append("linear parts of the columns of J");
-      sub(caption, ["", "b"]);
-      caption.append(", in {b} (m/rad)");
-      tableRows([["x", ["x", "b"]], ["y", ["y", "b"]]], ["col 1", "col 2", "col 3"], [0, 1, 2].map(columnColor));
-      draw.push((s) => {
-        const vsL = /** @type {Vec[]} */ (s.vs), vbR = /** @type {Vec[]} */ (s.vb);
-        arm(s);
-        const k = m.scale;
-        for (let i = 0; i < 3; i++) {
-          setArrow(colsL[i], s.p, [k * vsL[i][0], k * vsL[i][1]], head, tiny);
-          setArrow(colsR[i], [0, 0], vbR[i], 0.09, tiny);
-        }
-        setRow("x", vbR.map((v) => v[0]));
-        setRow("y", vbR.map((v) => v[1]));
-        return { left: vsL.map((v) => [s.p, [k * v[0], k * v[1]]]), right: vbR.map((v) => [[0, 0], v]) };
-      });
-    } else {
-      const pd = makeArrow(P.world, C.green, 4);
-      const vs = makeArrow(P.world, C.orange, 4);
-      arrowsOf(pd, "js-pdot");
-      arrowsOf(vs, "js-vs");
-      legendItem(legend, C.green, ["ṗ (geometric J): the tool point's velocity"]);
-      legendItem(legend, C.orange, ["v", ["", "s"], " (space J", ["", "s"], "): at the origin of {s}"]);
-      legendItem(legend, C.black, ["x", ["", "b"], " solid, ", "y", ["", "b"], " dashed: the tool axes; grid 1 m"]);
-      caption.textContent = `θ̇ = ${vec(m.theta_dot, 1)} rad/s`;
-      tableRows([["ws", ["ω", "s"]], ["wb", ["ω", "b"]], ["pd", ["ṗ", ""]], ["vs", ["v", "s"]], ["vb", ["v", "b"]]],
-        ["x", "y", "z", "‖·‖"]);
-      const vsc = m.vel_scale;
-      draw.push((s) => {
-        const [vS, pDot, omegaS, omegaB, vB] = /** @type {Vec[]} */ ([s.vS, s.pDot, s.omegaS, s.omegaB, s.vB]);
-        arm(s);
-        setArrow(pd, s.p, [vsc * pDot[0], vsc * pDot[1]], head, tiny);
-        setArrow(vs, [0, 0], [vsc * vS[0], vsc * vS[1]], head, tiny);
-        const nrm = (/** @type {number[]} */ v) => Math.hypot(...v);
-        setRow("ws", [...omegaS, nrm(omegaS)]);
-        setRow("wb", [...omegaB, nrm(omegaB)]);
-        setRow("pd", [...pDot, nrm(pDot)]);
-        setRow("vs", [...vS, nrm(vS)]);
-        setRow("vb", [...vB, nrm(vB)]);
-        return { pdot: [s.p, [vsc * pDot[0], vsc * pDot[1]]], vs: [[0, 0], [vsc * vS[0], vsc * vS[1]]] };
-      });
-    }
-  }
-
-  // ---- controls: Play / Pause and the time slider
+  // the controls: the time slider, Play / Pause, θ
   const id = `${uid}-time`;
   const label = html("label", { for: id }, side);
   label.append("time ");
@@ -412,56 +447,66 @@ function render({ model, el }) {
   const play = html("button", { type: "button", class: "jl-play", "aria-pressed": "false" }, row, "▶ Play");
   const thetaLine = html("p", { class: "jl-status js-theta" }, side);
   side.append(table, legend);
+  return { m, chain, drawStory, out, slider, play, thetaLine };
+}
+/** @typedef {ReturnType<typeof build>} Parts */
 
-  const state = { frame: null, drawn: null };
-  const readFrame = () => {
-    const k = Math.round(Number(model.get("frame")));
-    return Number.isFinite(k) ? ((k % m.frames) + m.frames) % m.frames : 0;
-  };
-  function redraw() {
-    const k = readFrame();
-    const s = storyState(chain, m, frameTime(m, k));
-    const arrows = draw[0](s);
-    setText(out, `t = ${fixed(s.t, 2)} s`);
-    setText(thetaLine, `θ = (${s.theta.map((x) => `${fixed((x * 180) / Math.PI, 0)}°`).join(", ")})`);
-    if (Number(slider.value) !== k) slider.value = String(k);
-    slider.setAttribute("aria-valuetext", `t = ${fixed(s.t, 2)} s, frame ${k + 1} of ${m.frames}`);
-    Object.assign(state, { frame: k, ...s, arrows });
-    el.dataset.frame = String(k);
-  }
-  const setFrame = (/** @type {number} */ k) => {
-    model.set("frame", k);
-    model.save_changes();
-  };
-  const onInput = () => {
-    stop();
-    setFrame(Number(slider.value));
-  };
-  /** @type {ReturnType<typeof setInterval> | null} */
-  let timer = null;
+/** The frame shown (0 to frames - 1) from the model's. @param {Model} model @param {StoryModel} m */
+function readFrame(model, m) {
+  const k = Math.round(Number(model.get("frame")));
+  return Number.isFinite(k) ? ((k % m.frames) + m.frames) % m.frames : 0;
+}
+
+/**
+ * Frame k drawn (update); returns what the view shows.
+ * @param {Parts} parts @param {number} k
+ */
+function update({ m, chain, drawStory, out, slider, thetaLine }, k) {
+  const s = storyState(chain, m, frameTime(m, k));
+  const arrows = drawStory(s);
+  setText(out, `t = ${fixed(s.t, 2)} s`);
+  setText(thetaLine, `θ = (${s.theta.map((x) => `${fixed((x * 180) / Math.PI, 0)}°`).join(", ")})`);
+  if (Number(slider.value) !== k) slider.value = String(k);
+  slider.setAttribute("aria-valuetext", `t = ${fixed(s.t, 2)} s, frame ${k + 1} of ${m.frames}`);
+  return { frame: k, ...s, arrows };
+}
+
+/**
+ * The reader's input -> the model (bind): the time slider, Play (a frame every frame's time / speed).
+ * Returns the remover and Play's stop.
+ * @param {Parts} parts @param {Model} model @param {() => void} redraw @param {(playing: boolean) => void} onPlaying
+ */
+function bind({ m, slider, play }, model, redraw, onPlaying) {
+  const setFrame = (/** @type {number} */ k) => save(model, "frame", k);
   const frameMs = (1000 * m.t_end) / (m.closed ? m.frames : m.frames - 1) / (m.speed || 1);
-  function stop() {
-    if (timer !== null) clearInterval(timer);
-    timer = null;
-    play.textContent = "▶ Play";
-    play.setAttribute("aria-pressed", "false");
-    el.dataset.playing = "0";
-  }
-  function start() {
-    if (timer !== null) return;
-    timer = setInterval(() => setFrame((readFrame() + 1) % m.frames), frameMs);
-    play.textContent = "❚❚ Pause";
-    play.setAttribute("aria-pressed", "true");
-    el.dataset.playing = "1";
-  }
-  const onPlay = () => (timer !== null ? stop() : start());
-  play.addEventListener("click", onPlay);
-  slider.addEventListener("input", onInput);
-  model.on("change:frame", redraw);
+  const playing = player(play, () => setFrame((readFrame(model, m) + 1) % m.frames), frameMs, onPlaying);
+  const unlisten = listen(model, ["frame"], redraw, [
+    [play, "click", playing.toggle],
+    [slider, "input", () => {
+      playing.stop();
+      setFrame(Number(slider.value));
+    }],
+  ]);
+  return () => {
+    playing.stop();
+    unlisten();
+  };
+}
+
+/** @param {{model: Model, el: HTMLElement}} args */
+function render({ model, el }) {
+  const parts = build(el, model);
+  /** @type {Record<string, unknown>} */
+  const state = { frame: null, drawn: null };
+  const redraw = () => {
+    const shown = update(parts, readFrame(model, parts.m));
+    Object.assign(state, shown);
+    publish(el, { view: "story", theta: shown.theta, step: shown.frame });
+  };
+  const unbind = bind(parts, model, redraw, (p) => publish(el, { playing: p ? 1 : 0 }));
   redraw();
-  el.dataset.playing = "0";
-  suppressShortcuts(el);
-  Object.assign(el, { jacLive: state });
+  publish(el, { playing: 0 });
+  const cleanup = finishView(el, state, unbind);
   // labels at slide size once the drawing has its width (a deck's slide is laid out when shown)
   /** @type {Panel[]} */
   const panels = [...el.querySelectorAll("svg")].map((r) => /** @type {{jsPanel?: Panel}} */ (r).jsPanel)
@@ -472,11 +517,7 @@ function render({ model, el }) {
   fit();
   return () => {
     if (watch) watch.disconnect();
-    stop();
-    model.off("change:frame", redraw);
-    slider.removeEventListener("input", onInput);
-    play.removeEventListener("click", onPlay);
-    el.textContent = "";
+    cleanup();
   };
 }
 
