@@ -102,6 +102,13 @@ def test_every_library_colour_has_a_swatch():
     assert drawn <= known, f"no swatch for {sorted(drawn - known)}"
 
 
-def test_slider_limit_is_the_librarys():
-    m = re.search(r"export const LIMIT = ([0-9.]+);", SOURCE)
-    assert m and float(m.group(1)) == live.LIMIT
+def test_slider_limit_comes_from_the_library_only():
+    """The joint sliders' range is set in one place, jacobians.widgets.live.LIMIT, and reaches the views with their
+    model (ui.js sliderLimit reads it and refuses a model without it); no module of the views writes it again."""
+    from jacobians.widgets import live_spatial as spatial
+
+    assert live.planar_model("planar_3r")["limit"] == live.LIMIT
+    assert spatial.columns_model()["limit"] == live.LIMIT
+    for js in sorted(LIVE.rglob("*.js")):
+        text = js.read_text(encoding="utf-8")
+        assert not re.search(r"\bconst\s+LIMIT\b|\b3\.14\b", text), f"{js.name} writes the sliders' range again"

@@ -20,11 +20,13 @@ palette's table itself are checked without a browser in
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import bookcheck
 import live_views
 import pytest
+from live_data import DATA_JS
 
 from jacobians.widgets import live_spatial as spatial
 from jacobians.widgets.live import story_model
@@ -150,4 +152,25 @@ def test_every_view_keeps_its_contrast(themed, mode):
         assert got["checked"] > 20, f"{view}: only {got['checked']} colours checked"
         problems += [f"{view}: {f}" for f in got["fails"]]
     assert not problems, "\n".join(problems)
+    assert errors == []
+
+
+def test_every_view_writes_the_same_data_keys(themed):
+    """One contract for what a view shows on its host element (AUTHORING.md, "Adding a live view"): the same
+    keys in every view, read by every test through live_data.DATA_JS, with each view's own keys beside them."""
+    page, errors = themed
+    own = {"planar_explorer": {"frame", "playing"}, "resolved_rate": {"step", "playing"},
+           "story": {"story", "step", "playing"}, "columns_explorer": {"column", "moved", "changedS", "changedB"},
+           "gimbal_lock": {"wrist", "rep"}}
+    with_level = {"planar_explorer", "resolved_rate", "gimbal_lock"}
+    for view_id, view, model in MODELS:
+        got = page.eval_on_selector(f"#{view_id}", DATA_JS)
+        common = {"view", "ready", "theta", "lmSuppressShortcuts"} | ({"level"} if view in with_level else set())
+        assert set(got) == common | own[view], f"{view}: {sorted(got)}"
+        assert got["view"] == view and got["ready"] == 1
+        n = len(model["wrists"][model["wrist"]]["S"][0]) if view == "gimbal_lock" else len(model["S"][0])
+        theta = got["theta"]
+        assert len(theta) == n and all(isinstance(t, (int, float)) and math.isfinite(t) for t in theta), theta
+        assert got.get("level", "ok") in {"ok", "warning", "singular", "wrist"}
+        assert got.get("playing", 0) == 0 and isinstance(got.get("step", 0), int)
     assert errors == []

@@ -1,5 +1,6 @@
 // @ts-check
-// The live views' colours and slider range, in one place.
+// The live views' colours, in one place (the sliders' range comes with each view's model, from
+// jacobians.widgets.live.LIMIT).
 //
 // The views draw the library's Okabe–Ito palette (jacobians.plotting.style.PALETTE). Each colour is a
 // CSS custom property on the view (.jac-live): the SVG and the HTML of a view say "var(--jl-blue)", and
@@ -10,9 +11,6 @@
 // A view paints its own ground (GROUND), so every ratio below is taken against a known colour:
 // a line or a shape at least 3:1 (WCAG 1.4.11), text at least 4.5:1 (WCAG 1.4.3), in both modes
 // (tests/test_live_palette_contrast.py computes them all from this table).
-
-/** The views' slider range, ±LIMIT rad (jacobians.widgets.live.LIMIT, kept equal by a test). */
-export const LIMIT = 3.14;
 
 /** The ground a view paints under itself, light and dark (the dark one is the book theme's own). */
 export const GROUND = { light: "#ffffff", dark: "#121212" };

@@ -9,7 +9,7 @@
 /** @typedef {{g: SVGGElement, line: SVGLineElement, head: SVGPolygonElement}} Arrow2 */
 /** @typedef {ReturnType<typeof matrixTable>} MatrixTable */
 
-export { AXIS_COLORS, COLUMN_COLORS, LIMIT, PALETTE, columnColor, graphic, ink, tint } from "./palette.js";
+export { AXIS_COLORS, COLUMN_COLORS, PALETTE, columnColor, graphic, ink, tint } from "./palette.js";
 import { PALETTE, THEME_CSS } from "./palette.js";
 
 export const SVGNS = "http://www.w3.org/2000/svg";
@@ -381,6 +381,20 @@ export function layout(el, plotClass = "jl-plot") {
   const plot = html("div", { class: plotClass }, wrap);
   const side = html("div", { class: "jl-side" }, wrap);
   return { wrap, plot, side };
+}
+
+/**
+ * The joint sliders' range, ±limit rad: the model's `limit`, written by the library (jacobians.widgets.live.LIMIT,
+ * the one place it is set). A model without one is an error, not a guess.
+ * @param {Model} model
+ * @returns {number}
+ */
+export function sliderLimit(model) {
+  const limit = Number(model.get("limit"));
+  if (!(limit > 0 && Number.isFinite(limit))) {
+    throw new Error(`Expected the model's limit (the sliders' range, rad) as a positive number, got ${JSON.stringify(model.get("limit"))}`);
+  }
+  return limit;
 }
 
 /** θ with the joint's subscript digit: jointName(0) is "θ₁". @param {number} i 0-based @returns {string} */

@@ -18,8 +18,8 @@
 
 import { evaluate, makeChain } from "../kinematics.js";
 import {
-  LIMIT, PALETTE, TWIST_ROWS, finishView, fixed, graphic, html, jointSliders, layout, listen, matrixTable, publish, put,
-  save, showAngle, startView, sub, text, tint,
+  PALETTE, TWIST_ROWS, finishView, fixed, graphic, html, jointSliders, layout, listen, matrixTable, publish, put,
+  save, showAngle, sliderLimit, startView, sub, text, tint,
 } from "../ui.js";
 import { CSS as CSS3D, createView3D, frameItems, groundGrid } from "../view3d.js";
 
@@ -76,7 +76,7 @@ function options(model) {
     chain, n, reach,
     // the library's Okabe–Ito colours as the page's mode draws them (palette.js)
     pal: Object.fromEntries(Object.entries(given).map(([k, c]) => [k, graphic(c)])),
-    limit: Number(model.get("limit")) || LIMIT,
+    limit: sliderLimit(model),
     step: Number(model.get("step")) || 0.01,
     axisLen: Number(model.get("axis_length")) || 0.15 * reach,
     name: model.get("name") || `${n}-joint arm`,

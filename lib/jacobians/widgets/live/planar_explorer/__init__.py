@@ -23,7 +23,7 @@ from ....chain import SerialChain
 from ....frames import check_frame
 from ....jacobian import analytic_jacobian, jacobian
 from ....plotting import arm_reach
-from .._base import LiveView, ViewSpec, angles, chain_model, checked_theta, planar_chain, text, whole
+from .._base import LIMIT, LiveView, ViewSpec, angles, chain_model, checked_theta, planar_chain, text, whole
 
 __all__ = ["PlanarExplorer", "planar_model", "PLANAR_FRAMES", "SPEC"]
 
@@ -50,7 +50,7 @@ def planar_model(robot: str | SerialChain = "planar_2r", theta: Sequence[float] 
     reach = arm_reach(chain)
     # the default pose is the matplotlib explorer's
     th = checked_theta(theta, [0.5, 1.2, -0.8, 0.4, 0.3][:n], n, name)
-    return {**chain_model(chain), "theta": th, "frame": frame, "sing_tol": SING_TOL * reach,
+    return {**chain_model(chain), "theta": th, "frame": frame, "limit": LIMIT, "sing_tol": SING_TOL * reach,
             "vel_scale": VEL_SCALE, "force_scale": 0.1 * reach ** 2, "force_clip": 1.25 * reach, "sweep": sw}
 
 

@@ -11,7 +11,7 @@
 //
 // anywidget-compatible: `export default { render }`; render({model, el}) reads
 // model.get(key) for S (6×n), M (4×4), Q (n×3 joint axis points), theta (n, rad),
-// frame ("space" | "body" | "geometric" | "analytic"), reach (m), sing_tol (m),
+// frame ("space" | "body" | "geometric" | "analytic"), limit (the sliders' range ±limit rad), reach (m), sing_tol (m),
 // vel_scale (drawn m per m/s), force_scale (drawn m per N/(N m)), force_clip (m),
 // sweep (joint Play turns, 0-based), name; it writes theta and frame back with
 // model.set + model.save_changes and redraws on "change:theta" / "change:frame".
@@ -19,9 +19,9 @@
 
 import { dlsRates, evaluate, forceEllipsoid, makeChain, planarAnalyticJacobian, velocityEllipsoid } from "../kinematics.js";
 import {
-  LIMIT, PALETTE, TWIST_ROWS, announcer, capture, ink, columnColor, finishView, fixed, html, holdTouch, jointName,
+  PALETTE, TWIST_ROWS, announcer, capture, ink, columnColor, finishView, fixed, html, holdTouch, jointName,
   jointSliders, layout, legendItem, listen, makeArrow, planarCanvas, player, publish, save, setArrow, setEllipse,
-  showAngle, startView, sub, svg, text as setText, toWorld,
+  showAngle, sliderLimit, startView, sub, svg, text as setText, toWorld,
 } from "../ui.js";
 
 export { fixed };
@@ -47,11 +47,13 @@ const SYMBOLS = { space: ["J", "s"], body: ["J", "b"], geometric: ["J", ""], ana
 const ANALYTIC_ROWS = [["ẋ", ""], ["ẏ", ""], ["φ̇", ""]];
 const STEP = 0.01; // rad, as the matplotlib explorer's sliders
 const MAX_STEP = 0.2; // rad, largest joint change of one DLS iteration of a tool drag
-// the slider range ±LIMIT rad (palette.js) is a multiple of STEP: the initial θ keeps its value
-const PLAY_STEP = 0.02; // rad per frame of Play: from -LIMIT it passes 0 exactly (the singularity of a stretched arm)
+// the slider range ±limit rad (the model's, jacobians.widgets.live.LIMIT) is a multiple of STEP: the initial θ keeps
+// its value
+const PLAY_STEP = 0.02; // rad per frame of Play: from -limit it passes 0 exactly (the singularity of a stretched arm)
 const PLAY_MS = 30;
 
-const clamp = (/** @type {number} */ x) => Math.min(LIMIT, Math.max(-LIMIT, x));
+/** x within ±limit. @param {number} x @param {number} limit */
+const clamp = (x, limit) => Math.min(limit, Math.max(-limit, x));
 
 /**
  * The linear parts of the shown Jacobian's columns as arrows: their tails P and vectors V (world, m).
@@ -80,8 +82,11 @@ function linearColumns(e, frame, n) {
 
 
 // tool drag: θ moves by damped least-squares steps on J_v towards the pointer (never NaN: DLS is bounded)
-/** @param {Chain} chain @param {Vec} th @param {ArrayLike<number>} target @param {number} reach @returns {Vec} */
-function solve(chain, th, target, reach) {
+/**
+ * @param {Chain} chain @param {Vec} th @param {ArrayLike<number>} target @param {number} reach @param {number} limit
+ * @returns {Vec}
+ */
+function solve(chain, th, target, reach, limit) {
   const damping = 0.05 * reach;
   const n = chain.n;
   for (let k = 0; k < 60; k++) {
@@ -91,16 +96,16 @@ function solve(chain, th, target, reach) {
     const d = dlsRates([e.Jg[3], e.Jg[4]], err, damping);
     const big = Math.max(...d.map(Math.abs));
     const scale = big > MAX_STEP ? MAX_STEP / big : 1; // small steps: the arm follows the pointer continuously
-    for (let i = 0; i < n; i++) th[i] = clamp(th[i] + scale * d[i]);
+    for (let i = 0; i < n; i++) th[i] = clamp(th[i] + scale * d[i], limit);
   }
   return th;
 }
 // joint drag: joint k's point turns about joint k-1 towards the pointer (θ_{k-1} changes alone)
 /**
  * @param {Chain} chain @param {Vec} th @param {number} k @param {ArrayLike<number>} target @param {number} reach
- * @returns {Vec}
+ * @param {number} limit @returns {Vec}
  */
-function turn(chain, th, k, target, reach) {
+function turn(chain, th, k, target, reach, limit) {
   const pts = evaluate(chain, th).points;
   const a = pts[k - 1];
   const b = pts[k];
@@ -110,7 +115,7 @@ function turn(chain, th, k, target, reach) {
   let t = th[k - 1] + wz * Math.atan2(Math.sin(d), Math.cos(d));
   if (t > Math.PI) t -= 2 * Math.PI;
   if (t < -Math.PI) t += 2 * Math.PI;
-  th[k - 1] = clamp(t);
+  th[k - 1] = clamp(t, limit);
   return th;
 }
 
@@ -118,10 +123,11 @@ function turn(chain, th, k, target, reach) {
  * Dragging the tool's ring or a joint (bind): the pointer's world point sets theta through solve or turn.
  * Returns the remover of the listeners.
  * @param {{root: SVGSVGElement, handle: SVGCircleElement, joints: SVGCircleElement[]}} parts
- * @param {{chain: Chain, reach: number, readTheta: () => Vec, setTheta: (th: Vec) => void, stop: () => void}} run
+ * @param {{chain: Chain, reach: number, limit: number, readTheta: () => Vec, setTheta: (th: Vec) => void,
+ *   stop: () => void}} run
  * @returns {() => void}
  */
-function bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta, stop }) {
+function bindDrags({ root, handle, joints }, { chain, reach, limit, readTheta, setTheta, stop }) {
   /** @type {number | null} */
   let drag = null;
   const onDown = (/** @type {PointerEvent} */ ev) => {
@@ -136,7 +142,8 @@ function bindDrags({ root, handle, joints }, { chain, reach, readTheta, setTheta
     if (drag === null) return;
     const target = toWorld(root, ev);
     if (!target) return;
-    setTheta(drag < 0 ? solve(chain, readTheta(), target, reach) : turn(chain, readTheta(), drag, target, reach));
+    setTheta(drag < 0 ? solve(chain, readTheta(), target, reach, limit)
+      : turn(chain, readTheta(), drag, target, reach, limit));
   };
   const onUp = (/** @type {PointerEvent} */ ev) => {
     if (drag !== null && ev.type === "pointerup") onMove(ev); // a touch's last move can come only with the lift
@@ -170,6 +177,7 @@ function options(model, chain) {
   const reach = Number(model.get("reach")) || 1;
   return {
     chain, n, reach,
+    limit: sliderLimit(model),
     singTol: Number(model.get("sing_tol")) || 0.08 * reach,
     velScale: Number(model.get("vel_scale")) || 0.35,
     forceScale: Number(model.get("force_scale")) || 0.1 * reach * reach,
@@ -227,9 +235,9 @@ function buildScene(plot, { n, reach, name, L, head, tiny }) {
  * table, σ_min, the banner, the legend.
  * @param {HTMLElement} side @param {Options} o @param {Model} model @param {string} uid
  */
-function buildControls(side, { n, velScale }, model, uid) {
+function buildControls(side, { n, limit, velScale }, model, uid) {
   const theta0 = model.get("theta");
-  const { sliders, values } = jointSliders(side, n, uid, { min: -LIMIT, max: LIMIT, step: STEP,
+  const { sliders, values } = jointSliders(side, n, uid, { min: -limit, max: limit, step: STEP,
     value: (i) => theta0[i], color: columnColor });
   const row = html("div", { class: "jl-row" }, side);
   const play = html("button", { type: "button", class: "jl-play", "aria-pressed": "false" }, row, "▶ Play");
@@ -394,14 +402,14 @@ function update(parts, th, frame, shown) {
  * @param {Parts} parts @param {Model} model @param {() => void} redraw @param {HTMLElement} el (its data-playing)
  */
 function bind(parts, model, redraw, el) {
-  const { chain, n, reach } = parts.o;
+  const { chain, n, reach, limit } = parts.o;
   const { sliders, select, play, sweepSel } = parts;
   const setTheta = (/** @type {Vec} */ th) => save(model, "theta", th);
-  // Play: sweep one joint, PLAY_STEP a frame, up to LIMIT, then from -LIMIT again (on the slider's grid)
+  // Play: sweep one joint, PLAY_STEP a frame, up to limit, then from -limit again (on the slider's grid)
   const playing = player(play, () => {
     const th = readTheta(model, n);
     const i = Number(sweepSel.value);
-    th[i] = th[i] + PLAY_STEP > LIMIT + 1e-9 ? -LIMIT : Math.round((th[i] + PLAY_STEP) / STEP) * STEP;
+    th[i] = th[i] + PLAY_STEP > limit + 1e-9 ? -limit : Math.round((th[i] + PLAY_STEP) / STEP) * STEP;
     setTheta(th);
   }, PLAY_MS, (p) => publish(el, { playing: p ? 1 : 0 }));
   const onInput = (/** @type {Event} */ ev) => {
@@ -412,7 +420,7 @@ function bind(parts, model, redraw, el) {
     th[Number(slider.dataset.joint) - 1] = v;
     setTheta(th);
   };
-  const unbindDrags = bindDrags(parts, { chain, reach, readTheta: () => readTheta(model, n), setTheta,
+  const unbindDrags = bindDrags(parts, { chain, reach, limit, readTheta: () => readTheta(model, n), setTheta,
     stop: playing.stop });
   const unlisten = listen(model, ["theta", "frame"], redraw, [
     [play, "click", playing.toggle],
