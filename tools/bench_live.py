@@ -114,7 +114,7 @@ VIEW_JS = """({view, model, n, kind, seed}) => {
     const t0 = performance.now();
     if (kind === "slider") {
       const sl = sliders[k % sliders.length];
-      sl.value = ((2 * rand() - 1) * 3.14).toFixed(2);
+      sl.value = ((2 * rand() - 1) * Number(sl.max)).toFixed(2);  // the slider's own range (the model's limit)
       sl.dispatchEvent(new Event("input", {bubbles: true}));
     } else if (kind === "drag") {
       handle.dispatchEvent(new PointerEvent("pointermove", {bubbles: true, pointerId: 1,
