@@ -1,9 +1,10 @@
 """make grade's machinery on a class of made-up notebooks: right, wrong, half-done, broken JSON, empty,
 endless loop, raising, writing outside its scratch folder, tampering with the checker; the gradebook row by row.
 
-One chapter (exercises 2: numeric, symbolic and code exercises) keeps it fast; its exercises are read from the
-catalogue, so that adding one changes no test here. The per-cell limit is 20 s: the endless loop is stopped, and
-the set-up cell finishes on a loaded machine."""
+The class hands in the made-up chapter ``ch00`` (``tests/fixtures/classroom.py``: two numeric exercises, a symbolic
+one and a code one), not a chapter of the course, so that changing the course's exercises changes no test here and
+the other way round. The per-cell limit is 20 s: the endless loop is stopped, and the set-up cell finishes on a
+loaded machine."""
 
 from __future__ import annotations
 
@@ -16,6 +17,9 @@ import nbformat
 import numpy as np
 import pytest
 import sympy as sp
+from tests.fixtures import classroom
+from tests.fixtures.classroom import CODE, IDS
+from tests.fixtures.classroom import PAGE as CHAPTER
 from tools.bench_grade import string_ids_supported, submission
 
 from course import exercises
@@ -24,11 +28,12 @@ from course.classroom.grade import COLUMNS, Row, exercises_of, grade_class, stud
 from course.classroom.report import report_name
 from course.classroom.sandbox import Limits
 
-#: The chapter the class hands in, and its exercises (in page order), from the catalogue.
-CHAPTER = "02_space_jacobian"
-IDS = [eid for eid in exercises.exercise_ids() if eid.startswith(f"ch{CHAPTER[:2]}_")]
-#: The chapter's code exercise (a function returning zeros fails its first test).
-CODE = next(eid for eid in IDS if exercises.load(eid, seed=0).kind == "function")
+fixture_chapter = classroom.fixture_chapter  # (the made-up chapter in the catalogue, for this module's tests)
+pytestmark = pytest.mark.usefixtures("fixture_chapter")
+
+# The chapter the class hands in is the made-up one (CHAPTER, its page; IDS, its exercises in page order); CODE is
+# its code exercise (a function returning zeros fails its first test).
+
 #: The exercises a half-done notebook answers (bench_grade's "half": the first half of the page).
 HALF = len(IDS) // 2
 #: The per-cell limit of the class: it stops the endless loop, and must leave the set-up cell (numpy, sympy,
@@ -60,7 +65,7 @@ def _with_cell(nb: nbformat.NotebookNode, index: int, source: str) -> nbformat.N
 
 
 @pytest.fixture(scope="module")
-def graded(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[Row], dict[str, str]]:
+def graded(tmp_path_factory: pytest.TempPathFactory, fixture_chapter) -> tuple[Path, list[Row], dict[str, str]]:
     _need_isolation()
     root = tmp_path_factory.mktemp("class") / "submissions"
     (root / "a" / "deep" / "folder").mkdir(parents=True)
@@ -367,3 +372,26 @@ def test_a_function_answer_is_collected_with_its_helpers_and_runs_in_the_sandbox
     assert not ok and "did not finish within 1 s" in out
     with pytest.raises(RuntimeError, match="stopped after an earlier failure"):
         slow(1)  # the looping process was killed, never reused
+
+
+# --------------------------------------------------------------------------- the made-up chapter itself
+def test_the_made_up_chapter_is_a_generated_page_whose_solutions_are_right_for_several_ids():
+    """Its page is in the generated layout, lists the chapter's exercises in order, its student notebook is what
+    students get, and its worked solutions (which the book-style submissions hand in) are right for other IDs; each
+    exercise's library check holds. (The course's own pages: tests/test_exercise_solutions_every_variant.py.)"""
+    import jupytext
+    from tools.make_exercises import check_student, parse_page, render_page, student_notebook
+
+    from course.exercises._registry import LIBRARY_CHECKS
+
+    head, blocks, chapter = parse_page(CHAPTER.read_text(encoding="utf-8"))
+    assert render_page(head, blocks, chapter) == CHAPTER.read_text(encoding="utf-8")
+    assert [b.eid for b in blocks] == IDS == [e for e in exercises.exercise_ids() if e.startswith(f"ch{chapter:02d}_")]
+    check_student(student_notebook(CHAPTER))
+    for seed in ("s1", "maria.garcia@uni.example", "0", "1", "2", "3"):
+        ns: dict[str, object] = {}
+        for cell in jupytext.read(CHAPTER).cells:
+            if cell.cell_type == "code":
+                exec(cell.source.replace('SEED = "student-id"', f"SEED = {seed!r}"), ns)  # (asserts each verdict)
+        for eid in IDS:
+            LIBRARY_CHECKS[eid](exercises.load(eid, seed=seed))

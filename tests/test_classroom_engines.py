@@ -3,13 +3,16 @@
 The warm worker (:mod:`course.classroom._zygote`, cells run by IPython's shell in a fork that enters a bubblewrap
 sandbox) replaced a Jupyter kernel started afresh in each sandbox (:mod:`course.classroom._runner`, kept for
 ``make bench``'s comparison). An honest class must get the same gradebook, row for row, both ways; here it
-also has a code exercise with partial credit, so that the tests-passed counts are compared too.
+also has a code exercise with partial credit, so that the tests-passed counts are compared too. The class hands in
+the made-up chapter ``ch00`` (``tests/fixtures/classroom.py``), not a chapter of the course.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
+from tests.fixtures import classroom
+from tests.fixtures.classroom import CODE, IDS, PAGE
 from tools.bench_grade import BOOK, submission
 
 from course import exercises
@@ -17,7 +20,11 @@ from course.classroom import grade
 from course.classroom.grade import Row, grades_table, score
 from course.classroom.sandbox import Limits, isolation
 
-CH02 = "02_space_jacobian"
+fixture_chapter = classroom.fixture_chapter  # (the made-up chapter in the catalogue, for this module's tests)
+pytestmark = pytest.mark.usefixtures("fixture_chapter")
+#: Two of the chapter's exercises: a numeric one and the code one.
+NUMERIC = next(eid for eid, kind in classroom.KINDS.items() if kind == "numeric")
+CH = CODE.split("_")[0]
 
 #: A function answer right on every other call (the grader calls it once per test, in order): partial credit.
 _HALF = '''calls = [0]
@@ -25,7 +32,7 @@ _HALF = '''calls = [0]
 
 def {name}(*args):
     calls[0] += 1
-    ref = exercises.load("ch02_ex4", seed=SEED).reference(*args)
+    ref = exercises.load("{code}", seed=SEED).reference(*args)
     return ref if calls[0] % 2 else 0 * np.asarray(ref)
 
 
@@ -34,7 +41,7 @@ answer = {name}
 
 
 def test_tests_passed_counts_each_test_as_the_checker_judges_it():
-    ex = exercises.load("ch02_ex4", seed="s1")
+    ex = exercises.load(CODE, seed="s1")
     n = len(ex.cases())
     assert grade.count_passed_tests(ex, ex.reference) == (n, n)
     assert grade.count_passed_tests(ex, lambda *a: np.zeros((6, 6))) == (0, n)
@@ -51,13 +58,13 @@ def test_tests_passed_counts_each_test_as_the_checker_judges_it():
 
 
 def test_partial_credit_scores_and_the_grades_table():
-    rows = [Row("s1", "a.ipynb", "ch02_ex4", "s1", "0", "wrong", "", "4/6"),
-            Row("s1", "a.ipynb", "ch02_ex1", "s1", "1", "right"),
-            Row("s2", "b.ipynb", "ch02_ex4", "s2", "0", "wrong", "", "4/6"),
-            Row("s3", "c.ipynb", "ch02_ex4", "s3", "0", "wrong", "", "7/6")]  # (impossible: earns nothing)
-    worth = {"ch02_ex1": 1.0, "ch02_ex4": 3.0}
-    head, table = grades_table(rows, {}, worth, partial=frozenset({"ch02_ex4"}))
-    assert head == ["student", "name", "ch02 (of 4)", "total (of 4)"]
+    rows = [Row("s1", "a.ipynb", CODE, "s1", "0", "wrong", "", "4/6"),
+            Row("s1", "a.ipynb", NUMERIC, "s1", "1", "right"),
+            Row("s2", "b.ipynb", CODE, "s2", "0", "wrong", "", "4/6"),
+            Row("s3", "c.ipynb", CODE, "s3", "0", "wrong", "", "7/6")]  # (impossible: earns nothing)
+    worth = {NUMERIC: 1.0, CODE: 3.0}
+    head, table = grades_table(rows, {}, worth, partial=frozenset({CODE}))
+    assert head == ["student", "name", f"{CH} (of 4)", "total (of 4)"]
     assert table == [["s1", "", "3", "3"], ["s2", "", "2", "2"], ["s3", "", "0", "0"]]
     _, none = grades_table(rows, {}, worth, partial=frozenset())
     assert none == [["s1", "", "1", "1"], ["s2", "", "0", "0"], ["s3", "", "0", "0"]]
@@ -66,14 +73,14 @@ def test_partial_credit_scores_and_the_grades_table():
 
 def test_partial_credit_is_only_for_code_exercises(tmp_path):
     bad = tmp_path / "points.toml"
-    bad.write_text("[points]\n[partial]\nch02_ex1 = true\n", encoding="utf-8")
+    bad.write_text(f"[points]\n[partial]\n{NUMERIC} = true\n", encoding="utf-8")
     with pytest.raises(ValueError, match="not a code exercise"):
         grade.partial_credit.__wrapped__(bad)
-    bad.write_text("[partial]\nch02_ex4 = 1\n", encoding="utf-8")
+    bad.write_text(f"[partial]\n{CODE} = 1\n", encoding="utf-8")
     with pytest.raises(ValueError, match="true or false"):
         grade.partial_credit.__wrapped__(bad)
-    bad.write_text("[partial]\nch02_ex4 = true\n", encoding="utf-8")
-    assert grade.partial_credit.__wrapped__(bad) == {"ch02_ex4"}
+    bad.write_text(f"[partial]\n{CODE} = true\n", encoding="utf-8")
+    assert grade.partial_credit.__wrapped__(bad) == {CODE}
 
 
 #: The notebooks graded the previous way too (a Jupyter kernel started in each sandbox costs several CPU seconds):
@@ -84,7 +91,7 @@ KERNEL_ALSO = ("partly.ipynb", "half.ipynb", "book.ipynb")
 
 
 @pytest.fixture(scope="module")
-def both_ways(tmp_path_factory):
+def both_ways(tmp_path_factory, fixture_chapter):
     if isolation().broken:
         pytest.fail(f"the grading sandbox does not work on a machine that has all it needs: {isolation().reason}")
     if not isolation().ok:
@@ -92,15 +99,15 @@ def both_ways(tmp_path_factory):
     import nbformat
 
     root = tmp_path_factory.mktemp("engines")
-    nbs = {"right.ipynb": submission(CH02, "s-right", "right"), "wrong.ipynb": submission(CH02, "s-wrong", "wrong"),
-           "half.ipynb": submission(CH02, "s-half", "half"), "book.ipynb": submission("01_twists", "s-book", BOOK)}
-    partly = submission(CH02, "s-partly", "right")
+    nbs = {"right.ipynb": submission(PAGE, "s-right", "right"), "wrong.ipynb": submission(PAGE, "s-wrong", "wrong"),
+           "half.ipynb": submission(PAGE, "s-half", "half"), "book.ipynb": submission(PAGE, "s-book", BOOK)}
+    partly = submission(PAGE, "s-partly", "right")
     cell = next(c for c in partly.cells if c.cell_type == "code" and c.source.startswith("def "))
-    cell.source = _HALF.format(name=cell.source.split("(")[0].removeprefix("def "))
+    cell.source = _HALF.format(name=cell.source.split("(")[0].removeprefix("def "), code=CODE)
     nbs["partly.ipynb"] = partly
     out = {}
     patch = pytest.MonkeyPatch()
-    patch.setattr(grade, "partial_credit", lambda path=None: frozenset({"ch02_ex4"}))  # (forked workers inherit)
+    patch.setattr(grade, "partial_credit", lambda path=None: frozenset({CODE}))  # (forked workers inherit)
     try:
         for engine in grade.ENGINES:
             folder = root / engine
@@ -120,17 +127,17 @@ def test_an_honest_class_gets_the_same_gradebook_both_ways(both_ways):
     assert [r for r in warm if r.notebook in KERNEL_ALSO] == kernel
     assert {r.notebook for r in kernel} == set(KERNEL_ALSO)
     assert not [r for r in warm + kernel if r.exercise == "(notebook)"], warm
-    n02, n01 = (len([e for e in exercises.exercise_ids() if e.startswith(c)]) for c in ("ch02_", "ch01_"))
-    # right, book (chapter 1), half (the first half), partly (all but its code exercise)
-    assert sum(r.correct == "1" for r in warm) == n02 + n01 + n02 // 2 + n02 - 1
+    n = len(IDS)
+    # right, book, half (the first half), partly (all but its code exercise)
+    assert sum(r.correct == "1" for r in warm) == n + n + n // 2 + n - 1
 
 
 def test_a_code_exercise_earns_partial_credit_end_to_end(both_ways):
     rows = both_ways["warm"]
-    tests = {r.student: r.tests for r in rows if r.exercise == "ch02_ex4"}
-    n = len(exercises.load("ch02_ex4", seed="s-partly").cases())
+    tests = {r.student: r.tests for r in rows if r.exercise == CODE}
+    n = len(exercises.load(CODE, seed="s-partly").cases())
     assert tests["s-right"] == f"{n}/{n}" and tests["s-wrong"] == f"0/{n}"
     passed, run = map(int, tests["s-partly"].split("/"))
     assert run == n and 0 < passed < n
-    (row,) = [r for r in rows if r.student == "s-partly" and r.exercise == "ch02_ex4"]
+    (row,) = [r for r in rows if r.student == "s-partly" and r.exercise == CODE]
     assert row.correct == "0" and f"passed {passed} of the {n} tests" in row.message

@@ -2,7 +2,8 @@
 
 Part 1 runs small attacker programs straight in a sandbox (:func:`course.classroom.sandbox.start`), one
 property each. Part 2 grades a class of hostile notebooks next to honest ones and checks each row, that the
-submissions are byte-identical afterwards and that nothing is left running.
+submissions are byte-identical afterwards and that nothing is left running; the class hands in the made-up
+chapter ``ch00`` (``tests/fixtures/classroom.py``), not a chapter of the course.
 
 Every bomb is bounded on its own (a few dozen processes, a few hundred MB), so that a broken sandbox cannot
 harm the machine. The tests need root and bubblewrap (``make test-lib`` installs it); without them they are
@@ -23,10 +24,18 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
+from tests.fixtures import classroom
+from tests.fixtures.classroom import CODE, IDS, PAGE
 
 from course import exercises
 from course.classroom import sandbox
 from course.classroom.sandbox import Limits, kill_tree, limits_hit, make_scratch, remove_scratch, start
+
+fixture_chapter = classroom.fixture_chapter  # (the made-up chapter in the catalogue, for this module's tests)
+#: The chapter's symbolic exercise (the decoder bomb's target) and a numeric one.
+SYMBOLIC = next(eid for eid, kind in classroom.KINDS.items() if kind == "symbolic")
+NUMERIC = next(eid for eid, kind in classroom.KINDS.items() if kind == "numeric")
+CH = CODE.split("_")[0]
 
 ISOLATION = sandbox.isolation()
 pytestmark = pytest.mark.skipif(not ISOLATION.ok and not ISOLATION.broken, reason=f"no isolation here: {ISOLATION.reason}")
@@ -294,10 +303,10 @@ def test_overlong_log_lines_are_skipped_unread(tmp_path):
     from course.classroom import grade
 
     log = tmp_path / "checks.jsonl"
-    good = json.dumps({"exercise": "ch02_ex1", "answer": {"t": "int", "v": "1"}})
-    log.write_text(good + "\n" + json.dumps({"exercise": "ch02_ex1", "answer": {"t": "str", "v": "x" * (
+    good = json.dumps({"exercise": NUMERIC, "answer": {"t": "int", "v": "1"}})
+    log.write_text(good + "\n" + json.dumps({"exercise": NUMERIC, "answer": {"t": "str", "v": "x" * (
         grade.MAX_LOG_LINE + 10)}}) + "\n", encoding="utf-8")
-    assert grade._last_checks(log, {"ch02_ex1"})["ch02_ex1"]["answer"] == {"t": "int", "v": "1"}
+    assert grade._last_checks(log, {NUMERIC})[NUMERIC]["answer"] == {"t": "int", "v": "1"}
 
 
 def test_the_checker_gets_a_cpu_budget():
@@ -308,20 +317,19 @@ def test_the_checker_gets_a_cpu_budget():
             pass
 
 
-def test_an_exercise_variable_travels_as_its_id_and_is_rebuilt_only_in_the_sandbox():
+def test_an_exercise_variable_travels_as_its_id_and_is_rebuilt_only_in_the_sandbox(fixture_chapter):
     from course.classroom.answer_data import Opaque, decode, encode
 
-    ns = {"__name__": "__main__", "ex4": exercises.load("ch01_ex4", seed="s1")}
-    exec("def f(T):\n    return ex4.given['inverse']\n", ns)
+    ns = {"__name__": "__main__", "ex4": exercises.load(CODE, seed="s1")}
+    exec("def f(T):\n    return ex4.given['unit']\n", ns)
     data = encode(ns["f"])
-    assert data["constants"]["ex4"] == {"t": "exercise", "id": "ch01_ex4"}
+    assert data["constants"]["ex4"] == {"t": "exercise", "id": CODE}
     assert decode(data["constants"]["ex4"]) == Opaque("Exercise")  # the grader never builds it
 
 
 # --------------------------------------------------------------------------- part 2: a hostile class, graded
-CH02 = "02_space_jacobian"
-#: The exercises of the chapter the class hands in (and of chapters 1 and 3), from the catalogue.
-IDS02, IDS01, IDS03 = ([e for e in exercises.exercise_ids() if e.startswith(f"ch{k:02d}_")] for k in (2, 1, 3))
+#: The exercises of the chapter the class hands in.
+IDS02 = IDS
 MARK = f"hostile-{os.getpid()}"
 
 _SURVIVOR = r'''import ctypes
@@ -359,7 +367,7 @@ socket.create_connection(("127.0.0.1", PORT), timeout=3).sendall(b"a classmate's
 
 _DECODER_BOMB = r'''import json, os
 with open(os.environ["JACOBIANS_PROGRESS_LOG"], "a") as f:
-    f.write(json.dumps({"exercise": "ch02_ex3", "seed": SEED, "correct": True, "kind": "correct", "answer": {
+    f.write(json.dumps({"exercise": "SYMBOLIC", "seed": SEED, "correct": True, "kind": "correct", "answer": {
         "t": "sympy", "v": ["F", "Pow", [["Integer", "3"], ["Integer", "100000000"]]]}}) + "\n")
 '''
 
@@ -439,7 +447,7 @@ def _uids_alive() -> list[int]:
 
 
 @pytest.fixture(scope="module")
-def hostile_class(tmp_path_factory):
+def hostile_class(tmp_path_factory, fixture_chapter):
     root = tmp_path_factory.mktemp("hostile") / "submissions"
     (root / "dup").mkdir(parents=True)
     with _listening_server() as (port, received):
@@ -456,22 +464,21 @@ def _grade_hostile_class(root: Path, port: int):
     from course.classroom.grade import grade_class
 
     w = nbformat.write
-    w(_with_cell(submission(CH02, "s-survivor", "right"), 1, _SURVIVOR.replace("IDS02", " ".join(IDS02))), root / "a_survivor.ipynb")
-    w(submission(CH02, "s-victim", BOOK), root / "b_victim.ipynb")
-    w(_with_cell(submission(CH02, "s-reader", "right"), 1, f"ROOT = {str(root)!r}\n" + _READER),
+    w(_with_cell(submission(PAGE, "s-survivor", "right"), 1, _SURVIVOR.replace("IDS02", " ".join(IDS02))), root / "a_survivor.ipynb")
+    w(submission(PAGE, "s-victim", BOOK), root / "b_victim.ipynb")
+    w(_with_cell(submission(PAGE, "s-reader", "right"), 1, f"ROOT = {str(root)!r}\n" + _READER),
       root / "c_reader.ipynb")
-    w(_with_cell(submission(CH02, "s-net", "right"), 1, _NET.replace("PORT", str(port))), root / "d_net.ipynb")
-    w(_with_cell(submission(CH02, "s-decoder", "half"), -1, _DECODER_BOMB), root / "e_decoder.ipynb")
-    w(_with_cell(submission(CH02, "s-bombs", "right"), 4, _BOMBS), root / "f_bombs.ipynb")
-    w(_with_cell(submission(CH02, "s-shm", "right"), 1, _SHM.replace("MARK", MARK)), root / "g_shm.ipynb")
-    w(submission(CH02, "s2401012", "wrong"), root / "dup" / "old.ipynb")
-    w(submission(CH02, " S2401012 ", "right"), root / "dup" / "new.ipynb")
+    w(_with_cell(submission(PAGE, "s-net", "right"), 1, _NET.replace("PORT", str(port))), root / "d_net.ipynb")
+    w(_with_cell(submission(PAGE, "s-decoder", "half"), -1, _DECODER_BOMB.replace("SYMBOLIC", SYMBOLIC)), root / "e_decoder.ipynb")
+    w(_with_cell(submission(PAGE, "s-bombs", "right"), 4, _BOMBS), root / "f_bombs.ipynb")
+    w(_with_cell(submission(PAGE, "s-shm", "right"), 1, _SHM.replace("MARK", MARK)), root / "g_shm.ipynb")
+    w(submission(PAGE, "s2401012", "wrong"), root / "dup" / "old.ipynb")
+    w(submission(PAGE, " S2401012 ", "right"), root / "dup" / "new.ipynb")
     os.utime(root / "dup" / "old.ipynb", (time.time() - 3600, time.time() - 3600))
-    w(submission(CH02, "student-id", "blank"), root / "h_placeholder1.ipynb")
-    w(submission(CH02, "student-id", "right"), root / "h_placeholder2.ipynb")
-    w(submission(CH02, "=2+3", "blank"), root / "i_injection.ipynb")
-    w(submission("01_twists", "s-book", BOOK), root / "j_book01.ipynb")
-    w(submission("03_body_jacobian", "s-book", BOOK), root / "j_book03.ipynb")
+    w(submission(PAGE, "student-id", "blank"), root / "h_placeholder1.ipynb")
+    w(submission(PAGE, "student-id", "right"), root / "h_placeholder2.ipynb")
+    w(submission(PAGE, "=2+3", "blank"), root / "i_injection.ipynb")
+    w(submission(PAGE, "s-book", BOOK), root / "j_book.ipynb")
     roster = root.parent / "roster.csv"
     roster.write_text("ID,Name\ns-victim,Vic Tim\ns-book,Bo Ok\nS2401012,Dee Up\ns-absent,Ada Absent\n",
                       encoding="utf-8")
@@ -531,7 +538,7 @@ def test_no_network_to_a_server_of_this_machine(hostile_class):
 
 def test_the_decoder_bomb_is_graded_wrong_cheaply(hostile_class):
     _, rows, *_ = hostile_class
-    (row,) = [r for r in _of(rows, "e_decoder.ipynb") if r.exercise == "ch02_ex3"]
+    (row,) = [r for r in _of(rows, "e_decoder.ipynb") if r.exercise == SYMBOLIC]
     assert row.correct == "0" and "too large" in row.message, row
 
 
@@ -580,8 +587,7 @@ def test_a_formula_id_is_defused_in_the_csv(hostile_class):
 
 def test_book_style_code_answers_are_graded_right(hostile_class):
     _, rows, *_ = hostile_class
-    assert _grades(rows, "j_book01.ipynb") == dict.fromkeys(IDS01, "1")
-    assert _grades(rows, "j_book03.ipynb") == dict.fromkeys(IDS03, "1")
+    assert _grades(rows, "j_book.ipynb") == dict.fromkeys(IDS02, "1")
 
 
 def test_the_roster_flags_unknown_ids_and_missing_students(hostile_class):
@@ -610,9 +616,11 @@ def test_grades_csv_has_a_row_per_student_a_column_per_chapter_and_a_total(hosti
     assert head[:2] == ["student", "name"] and [h.split(" ")[0] for h in head[2:-1]] == chapters
     assert head[-1] == f"total (of {sum(worth.values()):g})"
     col = {h.split(" ")[0]: k for k, h in enumerate(head)}
-    assert body["s-victim"][col["ch02"]] == "4" and body["s-victim"][1] == "Vic Tim"
-    assert body["s-book"][col["ch01"]] == body["s-book"][col["ch03"]] == "4" and body["s-book"][-1] == "8"
-    assert body["s2401012"][col["ch02"]] == "4"  # the later notebook only
+    full = f"{sum(worth[e] for e in IDS02):g}"  # the chapter's points, all earned
+    assert body["s-victim"][col[CH]] == full and body["s-victim"][1] == "Vic Tim"
+    assert body["s-book"][col[CH]] == body["s-book"][-1] == full  # (no points from any other chapter)
+    assert all(body["s-book"][col[c]] == "0" for c in chapters if c != CH)
+    assert body["s2401012"][col[CH]] == full  # the later notebook only
     assert body["s-absent"][-1] == "0" and body["'=2+3"][-1] == "0"  # (defused)
     assert len([k for k in body if k.startswith("(placeholder")]) == 2
 
@@ -621,9 +629,9 @@ def test_exports_follow_each_platforms_columns(hostile_class):
     root, *_ = hostile_class
     canvas, moodle, gradescope = (_csv(root / "exports" / f"{n}.csv") for n in ("canvas", "moodle", "gradescope"))
     assert canvas[0][:5] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
-    assert canvas[0][5] == "Jacobians ch01" and canvas[1][0].strip() == "Points Possible"
+    assert canvas[0][5].startswith("Jacobians ch") and canvas[1][0].strip() == "Points Possible"
     victim = next(r for r in canvas if r[2] == "s-victim")
-    assert victim[0] == "Vic Tim" and victim[5 + 1] == "4"  # ch02
+    assert victim[0] == "Vic Tim" and victim[canvas[0].index(f"Jacobians {CH}")] == f"{len(IDS02)}"
     assert moodle[0][:2] == ["ID number", "Full name"] and "Total" not in moodle[0]
     assert gradescope[0][:3] == ["Name", "SID", "Email"] and gradescope[0][-1] == "Total Score"
     for table in (canvas, moodle, gradescope):
@@ -634,12 +642,12 @@ def test_exports_follow_each_platforms_columns(hostile_class):
 def test_the_class_page_counts_tried_right_and_names_mistakes(hostile_class):
     root, rows, *_ = hostile_class
     page = (root / "class.html").read_text(encoding="utf-8")
-    assert "<td><code>ch02_ex1</code></td>" in page and "http" not in page.replace('lang="en"', "")
+    assert f"<td><code>{IDS02[0]}</code></td>" in page and "http" not in page.replace('lang="en"', "")
     import re
 
-    tried, right = map(int, re.search(r"<code>ch02_ex4</code></td><td class=\"n\">(\d+)</td><td class=\"n\">(\d+)",
+    tried, right = map(int, re.search(f"<code>{CODE}</code></td><td class=\"n\">(\\d+)</td><td class=\"n\">(\\d+)",
                                       page).groups())
-    counted = [r for r in rows if r.exercise == "ch02_ex4" and r.correct in ("0", "1")]
+    counted = [r for r in rows if r.exercise == CODE and r.correct in ("0", "1")]
     assert right == len({r.student for r in counted if r.correct == "1"})
     assert tried == len({r.student for r in counted if not r.message.startswith("not attempted")})
 

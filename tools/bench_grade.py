@@ -80,11 +80,18 @@ def answer_source(exercise_id: str, seed: str | int, way: str) -> str:
     return f"answer = {_literal(ref)}\n"
 
 
-def submission(chapter: str, student: str | int, way: str) -> nbformat.NotebookNode:
-    """The notebook ``chapter`` (e.g. ``"02_space_jacobian"``) handed in by ``student``, answered ``way``."""
+def page(chapter: str | Path) -> Path:
+    """The source page of ``chapter``: an exercise page's name (``"02_space_jacobian"``), or a page's path (the
+    tests' made-up chapter, ``tests/fixtures/00_fixture.md``)."""
+    return chapter if isinstance(chapter, Path) else SOURCES / f"{chapter}.md"
+
+
+def submission(chapter: str | Path, student: str | int, way: str) -> nbformat.NotebookNode:
+    """The notebook ``chapter`` (e.g. ``"02_space_jacobian"``, or a page's path, see :func:`page`) handed in by
+    ``student``, answered ``way``."""
     if way not in (*WAYS, BOOK):
         raise ValueError(f"Expected a way in {(*WAYS, BOOK)}, got {way!r}")
-    nb = student_notebook(SOURCES / f"{chapter}.md")
+    nb = student_notebook(page(chapter))
     solutions = book_solutions(chapter) if way == BOOK else {}
     for cell in nb.cells:
         if cell.cell_type == "code" and _SEED_LINE.search(cell.source):
@@ -104,13 +111,13 @@ def submission(chapter: str, student: str | int, way: str) -> nbformat.NotebookN
     return nb
 
 
-def book_solutions(chapter: str) -> dict[str, str]:
+def book_solutions(chapter: str | Path) -> dict[str, str]:
     """The worked solution of each exercise of ``chapter``: its solution cells that do not call the checker."""
     import jupytext
 
     from tools.make_exercises import SOLUTION_TAG
 
-    nb = jupytext.read(SOURCES / f"{chapter}.md")
+    nb = jupytext.read(page(chapter))
     out: dict[str, list[str]] = {}
     current = None
     for cell in nb.cells:

@@ -432,8 +432,15 @@ def _environment(home: str, extra: dict[str, str]) -> dict[str, str]:
         "PYDEVD_DISABLE_FILE_VALIDATION": "1", "MPLBACKEND": "Agg", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1",
         "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
     }
+    if os.environ.get(FIXTURE_ENV):  # the tests' made-up chapter: the graded notebooks must load it too
+        env[FIXTURE_ENV] = "1"
     env.update(extra)
     return env
+
+
+#: The variable that registers the grading tests' made-up chapter (:data:`course.exercises.fixture.ENV`), passed
+#: into the sandbox when the grader has it.
+FIXTURE_ENV = "COURSE_FIXTURE_CHAPTER"
 
 
 def _limiter(limits: Limits, cpu_seconds: float, cgroup: _Cgroup | None, uid: int | None) -> Callable[[], None]:

@@ -35,11 +35,14 @@ Modules: ``ch01`` ... ``ch10`` (the definitions, one module per chapter);
 angles, lengths, chains, poses; test cases of function exercises), ``_kinematics``
 (the references' plain-numpy formulas), ``_mistakes`` (mistakes met in many
 exercises), ``_latex`` (numbers in statements), ``_symbolic_2r`` (the planar 2R
-arm in sympy).
+arm in sympy), ``_checks`` (what the library checks share). ``fixture`` is not the
+course's: the made-up chapter ``ch00`` that the grading tests hand in, registered only
+when they ask (:func:`fixture.register`, or the variable ``COURSE_FIXTURE_CHAPTER``).
 """
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 from typing import Any
 
@@ -51,8 +54,13 @@ from ._bank import variant_index, variant_seed
 from ._progress import Progress, record
 from ._progress import summary as _summary
 from ._registry import CATALOGUE
+from .fixture import ENV as _FIXTURE_ENV
+from .fixture import register as _register_fixture
 
 __all__ = ["CATALOGUE", "check", "exercise_ids", "load", "on_check", "summary"]
+
+if os.environ.get(_FIXTURE_ENV):  # the made-up chapter of make grade's tests, in the processes they grade with
+    _register_fixture()
 
 #: Functions called with every Feedback that :func:`check` returns (e.g. a session's progress record).
 _LISTENERS: list[Callable[[Feedback], None]] = []

@@ -1,8 +1,9 @@
 """Kinematics in plain numpy for the exercises' references and mistakes.
 
 The references are computed with these plain formulas *and* checked against
-the :mod:`jacobians` library in ``tests/test_exercises.py``, so a wrong
-reference cannot hide behind the code that produced it.
+the :mod:`jacobians` library by another route, in each exercise's library check
+(``register(..., library=...)``), so a wrong reference cannot hide behind the
+code that produced it.
 """
 
 from __future__ import annotations

@@ -8,9 +8,12 @@ from typing import Any
 import numpy as np
 from numpy.random import Generator
 
+import jacobians as jac
 from jacobians import lie
 from jacobians.grading import Case, Exercise, Mistake, numeric_exercise
+from jacobians.testing import fd_tol
 
+from ._checks import assert_close, assert_within, conjugated, conjugated_columns, reference_runs, size
 from ._hand import adjoint_steps
 from ._kinematics import Array, adj, inv_T, swap
 from ._latex import bmatrix, vec
@@ -21,7 +24,21 @@ from ._variants import random_transform, worked_example
 SKEW_HINT = "Recall [p] is the skew matrix with [p]x = p × x."
 
 
-@register("ch01_ex1")
+def _library_ch01_ex1(ex: Exercise) -> None:
+    """The screw axis is the twist of the body turning about the axis at unit rate: [S] = Ṫ(0) for
+    T(t) = Trans(q) Rot(ω̂, t) Trans(−q) (T(0) = I), by central differences of the library's exp_so3, not
+    from −ω × q. The difference quotient is within fd_tol of Ṫ(0); q − R q is rounded relative to |q|."""
+    w, q = ex.given["omega"], ex.given["q"]
+
+    def pose(t: Array) -> Array:
+        R = lie.exp_so3(w * t[0])
+        return np.asarray(lie.make_transform(R, q - R @ q), dtype=float)
+
+    Tdot = jac.numerical_jacobian(pose, np.zeros(1))[..., 0]
+    assert_within(ex.solution(), lie.matrix_to_twist(Tdot), fd_tol(pose, np.zeros(1), scale=size(q)), "screw axis")
+
+
+@register("ch01_ex1", library=_library_ch01_ex1)
 def _ch01_ex1(rng: Generator) -> Exercise:
     axes = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], float)
     w = axes[rng.integers(6)]
@@ -74,7 +91,19 @@ def _adj_mistakes(T: Array) -> list[Mistake]:
     ]
 
 
-@register("ch01_ex2")
+def _adjoint_by_conjugation(T: Array) -> Array:
+    """Column k of [Ad_T] is the unit twist e_k seen through T, (T [e_k] T⁻¹)^∨."""
+    return conjugated_columns(T, np.eye(6))
+
+
+def _library_ch01_ex2(ex: Exercise) -> None:
+    """[Ad_T] column by column from its definition, T [V] T⁻¹ (4x4 products): exact algebra on terms of size
+    |T| |T⁻¹|, so within TOL of that."""
+    T = ex.given["T"]
+    assert_close(ex.solution(), _adjoint_by_conjugation(T), "adjoint", scale=size(T) ** 2)
+
+
+@register("ch01_ex2", library=_library_ch01_ex2)
 def _ch01_ex2(rng: Generator) -> Exercise:
     T = random_transform(rng)
     ref = adj(T)
@@ -88,7 +117,14 @@ def _ch01_ex2(rng: Generator) -> Exercise:
                             hint="Compare block by block with [[R, 0], [[p]R, R]].", method=method)
 
 
-@register("ch01_ex3")
+def _library_ch01_ex3(ex: Exercise) -> None:
+    """[V_a] = T_ab [V_b] T_ab⁻¹ (4x4 products, not the 6x6 adjoint): exact algebra on terms of size
+    |T| |V| |T⁻¹|."""
+    T, V = ex.given["T_ab"], ex.given["V_b"]
+    assert_close(ex.solution(), conjugated(T, V), "twist", scale=size(T) ** 2 * size(V))
+
+
+@register("ch01_ex3", library=_library_ch01_ex3)
 def _ch01_ex3(rng: Generator) -> Exercise:
     T_ab = random_transform(rng)
     V_b = rng.integers(-3, 4, size=6).astype(float)
@@ -157,6 +193,14 @@ def _adj_example(inverse: bool) -> Callable[[Generator], tuple[str, dict[str, An
     return worked_example("my_adjoint(T)", build)
 
 
+def _library_ch01_ex4(ex: Exercise) -> None:
+    """On every test case, the reference function's matrix is the adjoint by conjugation (of T⁻¹ in the second
+    variant), as in ch01_ex2."""
+    for (T,), out in reference_runs(ex):
+        T_used = np.linalg.inv(T) if ex.given["inverse"] else T
+        assert_close(out, _adjoint_by_conjugation(T_used), "adjoint", scale=size(T) ** 2)
+
+
 register_code("ch01_ex4", "Code: the adjoint map", [
     CodeVariant(_ADJ_TASK + "its $6\\times 6$ adjoint $[\\mathrm{Ad}_T]$ for twists ordered $(\\omega, v)$. "
                 "Set `answer = my_adjoint`. It is tested on random transforms.",
@@ -166,4 +210,4 @@ register_code("ch01_ex4", "Code: the adjoint map", [
                 "Set `answer = my_adjoint`. It is tested on random transforms.",
                 ref_adjoint_of_inverse, _adj_inv_case, "my_adjoint", "adjoint matrix", {"inverse": True},
                 example=_adj_example(True)),
-])
+], library=_library_ch01_ex4)

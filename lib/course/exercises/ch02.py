@@ -12,6 +12,7 @@ import jacobians as jac
 from jacobians import robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exercise
 
+from ._checks import assert_close, reference_runs, size
 from ._hand import planar_points, planar_trig
 from ._kinematics import DEG, Array, adj, body_jac, expS, space_jac
 from ._latex import degs, num, vec
@@ -188,10 +189,26 @@ def _space_example(layout: str) -> Callable[[np.random.Generator], tuple[str, di
     return worked_example("my_space_jacobian(S, theta)", build)
 
 
+def _axes_columns(ex: Exercise, axes: Any) -> Array:
+    """The screw axes of a code exercise's test case as columns, whichever layout the variant passes."""
+    return np.asarray(axes, dtype=float).T if ex.given["layout"] == "rows" else np.asarray(axes, dtype=float)
+
+
+def _library_ch02_ex4(ex: Exercise) -> None:
+    """On every test case, J_s is the library's body Jacobian carried to {s}: [Ad_T_sb] J_b(θ), T_sb the library's
+    forward kinematics (of any home pose: J_s does not depend on it), a route through the joints after each
+    column instead of before it. Products of at most 7 exponentials and a 6x6 adjoint: within TOL of the size
+    of the terms, |J_b| times max(1, |p|)."""
+    for (axes, th), out in reference_runs(ex):
+        chain = jac.SerialChain(_axes_columns(ex, axes), np.eye(4))
+        T, J_b = chain.fk(th), jac.body_jacobian(chain, th)
+        assert_close(out, jac.body_to_space(J_b, T), "space Jacobian", scale=size(J_b) * size(T))
+
+
 register_code("ch02_ex4", "Code: the space Jacobian", [
     CodeVariant(f"Write `my_space_jacobian(S, theta)`: `S` is {LAYOUT_TEXT[layout]} at home, `theta` a length-$n$ "
                 "array of joint values; return $J_s(\\theta)$, $6\\times n$. You may use `jacobians.lie.exp_se3` and "
                 "`jacobians.lie.adjoint`, but not `jacobians.space_jacobian`. Set `answer = my_space_jacobian`.",
                 space_jac if layout == "columns" else (lambda S, th: space_jac(np.asarray(S).T, th)),
                 case, "my_space_jacobian", "space Jacobian", {"layout": layout}, example=_space_example(layout))
-    for layout, case in _SPACE_CASES.items()])
+    for layout, case in _SPACE_CASES.items()], library=_library_ch02_ex4)

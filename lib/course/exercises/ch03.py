@@ -12,6 +12,7 @@ import jacobians as jac
 from jacobians import robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, symbolic_exercise
 
+from ._checks import assert_close, reference_runs, size
 from ._hand import inverse_adjoint_steps, planar_points, planar_trig
 from ._kinematics import DEG, Array, adj, body_jac, inv_T, space_jac
 from ._latex import bmatrix, degs, num, vec
@@ -145,10 +146,21 @@ def _body_example(layout: str) -> Callable[[Generator], tuple[str, dict[str, Any
     return example
 
 
+def _library_ch03_ex4(ex: Exercise) -> None:
+    """On every test case, J_b is the library's space Jacobian carried to {b}: [Ad_T_bs] J_s(θ) of the chain
+    whose space axes are the given body axes at home M = I (then B = S), a route through the joints before each
+    column instead of after it; within TOL of the size of the terms, as in ch02_ex4."""
+    for (axes, th), out in reference_runs(ex):
+        B = np.asarray(axes, dtype=float).T if ex.given["layout"] == "rows" else np.asarray(axes, dtype=float)
+        chain = jac.SerialChain(B, np.eye(4))
+        T, J_s = chain.fk(th), jac.space_jacobian(chain, th)
+        assert_close(out, jac.space_to_body(J_s, T), "body Jacobian", scale=size(J_s) * size(T))
+
+
 register_code("ch03_ex4", "Code: the body Jacobian", [
     CodeVariant(f"Write `my_body_jacobian(B, theta)`: `B` is {LAYOUT_TEXT[layout].replace('screw', 'body screw')} "
                 "at home, `theta` a length-$n$ array; return $J_b(\\theta)$, $6\\times n$. Do not call "
                 "`jacobians.body_jacobian`. Set `answer = my_body_jacobian`.",
                 body_jac if layout == "columns" else (lambda B, th: body_jac(np.asarray(B).T, th)),
                 case, "my_body_jacobian", "body Jacobian", {"layout": layout}, example=_body_example(layout))
-    for layout, case in layout_cases(_body_case).items()])
+    for layout, case in layout_cases(_body_case).items()], library=_library_ch03_ex4)

@@ -14,6 +14,7 @@ from jacobians import robots
 from jacobians.chain import SerialChain
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
+from ._checks import assert_close, conjugated_columns, reference_runs, size
 from ._hand import adjoint_steps, inverse_adjoint_steps, planar_jv, planar_points, planar_trig
 from ._kinematics import Array, adj, blockdiag, body_jac, fk, inv_T, nearest_pose, space_jac
 from ._latex import bmatrix, degs, vec
@@ -78,7 +79,15 @@ def _ch04_ex1(rng: Generator) -> Exercise:
     return _frame_change("s", J_s, T, ref, mistakes)
 
 
-@register("ch04_ex2")
+def _library_ch04_ex2(ex: Exercise) -> None:
+    """Each column of J_s is that column's twist of J_b seen from {s}, T_sb [J_bi] T_sb⁻¹ (4x4 products, not the
+    adjoint's blocks); the printed T_sb is an exact pose (short decimals). Exact algebra on terms of size
+    |T| |J_b| |T⁻¹|."""
+    T, J_b = ex.given["T_sb"], ex.given["J_b"]
+    assert_close(ex.solution(), conjugated_columns(T, J_b), "space Jacobian", scale=size(T) ** 2 * size(J_b))
+
+
+@register("ch04_ex2", library=_library_ch04_ex2)
 def _ch04_ex2(rng: Generator) -> Exercise:
     arm, th, J_s, J_b, T = _rrp_state(rng)
     R = T[:3, :3]
@@ -144,6 +153,15 @@ def _change_example(direction: str) -> Callable[[Generator], tuple[str, dict[str
     return worked_example("my_change_frame(J, T_sb)", build)
 
 
+def _library_ch04_ex3(ex: Exercise) -> None:
+    """On every test case, each column seen through T_bs = T_sb⁻¹ (to the body Jacobian) or T_sb (to the space
+    one) by conjugation, as in ch04_ex2."""
+    to_body = ex.given["direction"] == "space_to_body"
+    for (J, T), out in reference_runs(ex):
+        expected = conjugated_columns(np.linalg.inv(T) if to_body else T, J)
+        assert_close(out, expected, "changed Jacobian", scale=size(T) ** 2 * size(J))
+
+
 register_code("ch04_ex3", "Code: change the frame of a Jacobian", [
     CodeVariant("Write `my_change_frame(J, T_sb)` that takes the space Jacobian $J_s$ ($6\\times n$) and $T_{sb}$ "
                 "($4\\times4$), numpy arrays, and returns the body Jacobian $J_b$. Do not call "
@@ -155,7 +173,7 @@ register_code("ch04_ex3", "Code: change the frame of a Jacobian", [
                 "`jacobians.body_to_space`. Set `answer = my_change_frame`.",
                 ref_body_to_space, chain_case(_b2s_case), "my_change_frame", "space Jacobian",
                 {"direction": "body_to_space"}, example=_change_example("body_to_space")),
-])
+], library=_library_ch04_ex3)
 
 
 #: The velocities ch04_ex4 may ask for: name, symbol, and how it comes from the joint rates.

@@ -10,8 +10,11 @@ from numpy.random import Generator
 from numpy.typing import ArrayLike
 
 import jacobians as jac
+from jacobians import lie
 from jacobians.grading import Exercise, Mistake, numeric_exercise
+from jacobians.testing import fd_tol
 
+from ._checks import assert_close, assert_within, reference_runs, size
 from ._hand import planar_jv, rotate_halves
 from ._kinematics import DEG, Array, adj, blockdiag, body_jac, fk, inv_T, nearest_pose, space_jac
 from ._latex import bmatrix, degs, vec
@@ -93,7 +96,21 @@ def _ch05_ex2(rng: Generator) -> Exercise:
                             what="geometric Jacobian", method=method)
 
 
-@register("ch05_ex3")
+def _library_ch05_ex3(ex: Exercise) -> None:
+    """The column is (z_i, ṗ) with ṗ the velocity of the tool point turning about the axis at unit rate:
+    p(t) = p_i + Rot(z_i, t)(p − p_i) (the library's exp_so3), differentiated by central differences, not
+    z_i × (p − p_i). Within fd_tol, the rounding relative to |p|, |p_i|."""
+    z, p_i, p = ex.given["z_i"], ex.given["p_i"], ex.given["p"]
+
+    def point(t: Array) -> Array:
+        return np.asarray(p_i + lie.exp_so3(z * t[0]) @ (p - p_i), dtype=float)
+
+    p_dot = jac.numerical_jacobian(point, np.zeros(1))[:, 0]
+    bound = fd_tol(point, np.zeros(1), scale=size(p, p_i))
+    assert_within(ex.solution(), np.concatenate([z, p_dot]), bound, "column")
+
+
+@register("ch05_ex3", library=_library_ch05_ex3)
 def _ch05_ex3(rng: Generator) -> Exercise:
     axes = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [0, 0, -1], [0, -1, 0]], float)
     z = axes[rng.integers(len(axes))]
@@ -155,6 +172,18 @@ def _geo_example(layout: str) -> Callable[[Generator], tuple[str, dict[str, Any]
     return worked_example("my_geometric_jacobian(S, M, theta)", build)
 
 
+def _library_ch05_ex4(ex: Exercise) -> None:
+    """On every test case, J from the library's space Jacobian instead of the body one: ω_s is its angular
+    rows, and the tool point p moves at ṗ = v_s + ω_s × p (v_s is the velocity of the body point at the origin
+    of {s}). Exact algebra on terms of size |J_s| max(1, |p|)."""
+    for (axes, M, th), out in reference_runs(ex):
+        S = np.asarray(axes, dtype=float).T if ex.given["layout"] == "rows" else np.asarray(axes, dtype=float)
+        chain = jac.SerialChain(S, M)
+        J_s, p = jac.space_jacobian(chain, th), chain.fk(th)[:3, 3]
+        expected = np.vstack([J_s[:3], J_s[3:] + np.cross(J_s[:3].T, p).T])
+        assert_close(out, expected, "geometric Jacobian", scale=size(J_s) * size(p))
+
+
 register_code("ch05_ex4", "Code: the geometric Jacobian", [
     CodeVariant(f"Write `my_geometric_jacobian(S, M, theta)` returning the geometric Jacobian $J(\\theta)$ (rows "
                 f"$(\\omega_s, \\dot p)$, $6\\times n$) of the chain whose space screw axes `S` are "
@@ -165,4 +194,4 @@ register_code("ch05_ex4", "Code: the geometric Jacobian", [
                 else (lambda S, M, th: ref_geometric_jacobian(np.asarray(S).T, M, th)),
                 case, "my_geometric_jacobian", "geometric Jacobian", {"layout": layout},
                 example=_geo_example(layout))
-    for layout, case in layout_cases(_geo_case).items()])
+    for layout, case in layout_cases(_geo_case).items()], library=_library_ch05_ex4)

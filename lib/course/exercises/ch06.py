@@ -14,6 +14,7 @@ from jacobians import lie, robots
 from jacobians.grading import Exercise, Mistake, numeric_exercise, scalar_exercise, symbolic_exercise
 from jacobians.grading.exercise import Interval
 
+from ._checks import assert_close, assert_within, size
 from ._hand import euler_zyx_or_zyz
 from ._kinematics import DEG, Array, blockdiag, body_jac, fk
 from ._latex import bmatrix, degs, num
@@ -116,7 +117,18 @@ def _rot(phi: Array, rep: str) -> Array:
     return lie.rotation_about("z", a) @ lie.rotation_about("y", b) @ lie.rotation_about(last, c)
 
 
-@register("ch06_ex3")
+def _library_ch06_ex3(ex: Exercise) -> None:
+    """The analytic Jacobian's angular rows are the angle rates: the library's B(φ) (ω_s = B φ̇) times them gives
+    back the geometric Jacobian's angular rows, and the linear rows are ṗ unchanged. B⁻¹ carries cond(B), so the
+    product is within TOL of cond(B) |J|."""
+    J = ex.given["J"]
+    B = jac.representations.rate_to_angular_velocity(np.radians(ex.given["phi_deg"]), "zyx")
+    ref = ex.solution()
+    assert_close(B @ ref[:3], J[:3], "angular rows times B", scale=float(np.linalg.cond(B)) * size(J))
+    assert_close(ref[3:], J[3:], "linear rows")
+
+
+@register("ch06_ex3", library=_library_ch06_ex3)
 def _ch06_ex3(rng: Generator) -> Exercise:
     arm = robots.zyx_wrist(float(rng.choice([0.1, 0.2, 0.3])))
     th_deg = angles_deg(rng, 3, step=15, low=-60, high=60)
@@ -169,7 +181,29 @@ def lock_angles(family: str) -> list[float]:
     return [base + k * np.pi for k in range(-5, 5) if abs(base + k * np.pi) <= 4 * np.pi + 1e-9]
 
 
-@register("ch06_ex4")
+def _euler_B(rep: str, phi: Array) -> Array:
+    """B(φ) of any Euler sequence from its definition, with the library's rotations: column j is the j-th
+    rotation's axis carried by the rotations before it (not the lock angles' formula)."""
+    unit = {a: np.eye(3)[k] for k, a in enumerate("xyz")}
+    cols, R = [], np.eye(3)
+    for axis, angle in zip(rep, phi, strict=True):
+        cols.append(R @ unit[axis])
+        R = R @ lie.rotation_about(axis, angle)
+    return np.column_stack(cols)
+
+
+def _library_ch06_ex4(ex: Exercise) -> None:
+    """At φ2 = the answer, B(φ) (of any φ1, φ3) loses rank: its smallest singular value is 0, up to the
+    rounding of φ2 itself (EPS |φ2|, and σ_min moves at most at unit rate with φ2, the columns being unit
+    vectors turned by φ2) and of the products (TOL); the answer lies in the range asked."""
+    rep, (low, high) = ex.given["representation"], ex.given["range"]
+    phi2 = float(ex.solution())
+    assert low < phi2 < high, f"{phi2} outside ({low}, {high})"
+    sigma = np.linalg.svd(_euler_B(rep, np.array([0.3, phi2, -0.2])), compute_uv=False)[-1]
+    assert_within(sigma, 0.0, 1e-12 * max(1.0, abs(phi2)), "smallest singular value of B at the answer")
+
+
+@register("ch06_ex4", library=_library_ch06_ex4)
 def _ch06_ex4(rng: Generator) -> Exercise:
     rep = str(rng.choice(TAIT_BRYAN + PROPER))
     family = "tait-bryan" if rep in TAIT_BRYAN else "proper"

@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 import jacobians as jac
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
+from ._checks import assert_close, assert_within, reference_runs, size
 from ._hand import rotate_halves
 from ._kinematics import Array, adj, blockdiag, fk, inv_T, nearest_pose, space_jac, swap
 from ._latex import bmatrix
@@ -29,7 +30,13 @@ def _p_cross(p: Array, J: Array) -> Array:
     return out
 
 
-@register("ch07_ex1")
+def _library_ch07_ex1(ex: Exercise) -> None:
+    """The library's reordering of (v, ω) rows to (ω, v) (``interop.to_angular_first``): nothing is computed,
+    so the entries are equal."""
+    assert_within(ex.solution(), jac.interop.to_angular_first(ex.given["J_sic"]), 0.0, "geometric Jacobian")
+
+
+@register("ch07_ex1", library=_library_ch07_ex1)
 def _ch07_ex1(rng: Generator) -> Exercise:
     T, J_b, J, J_s = spatial_5r_pose(rng)
     J_sic = np.round(swap(J), 6)
@@ -90,7 +97,16 @@ def _ch07_ex2(rng: Generator) -> Exercise:
                             what="space Jacobian", method=method)
 
 
-@register("ch07_ex3")
+def _library_ch07_ex3(ex: Exercise) -> None:
+    """Through the space Jacobian instead of a rotation: the rows reordered (``interop``), the library's
+    geometric-to-space change, then its space-to-body change, at the printed T_sb (an exact pose: short
+    decimals). Exact algebra on terms of size |J| max(1, |p|)²."""
+    J_lwa, T = ex.given["J_lwa"], ex.given["T_sb"]
+    J_s = jac.geometric_to_space(jac.interop.to_angular_first(J_lwa), T)
+    assert_close(ex.solution(), jac.space_to_body(J_s, T), "body Jacobian", scale=size(J_lwa) * size(T) ** 2)
+
+
+@register("ch07_ex3", library=_library_ch07_ex3)
 def _ch07_ex3(rng: Generator) -> Exercise:
     T, J_b, J, J_s = spatial_5r_pose(rng)
     J_lwa = np.round(swap(J), 6)       # Pinocchio LOCAL_WORLD_ALIGNED: (v of the frame origin, omega) in world axes
@@ -163,6 +179,13 @@ def _pinocchio_example(frame: str) -> Callable[[Generator], tuple[str, dict[str,
     return worked_example("from_pinocchio(J)", build)
 
 
+def _library_ch07_ex4(ex: Exercise) -> None:
+    """On every test case, the library's reordering (``interop.to_angular_first``) of the given rows: nothing is
+    computed, so the entries are equal."""
+    for (J,), out in reference_runs(ex):
+        assert_within(out, jac.interop.to_angular_first(J), 0.0, "Modern Robotics Jacobian")
+
+
 register_code("ch07_ex4", "Code: from Pinocchio's conventions", [
     CodeVariant("Pinocchio's `WORLD` Jacobian is the space Jacobian with rows $(v, \\omega)$. Write "
                 "`from_pinocchio(J)` that takes it and returns the Modern Robotics space Jacobian $J_s$ "
@@ -174,4 +197,4 @@ register_code("ch07_ex4", "Code: from Pinocchio's conventions", [
                 "($6\\times n$, numpy). Set `answer = from_pinocchio`.",
                 ref_from_pinocchio_world, chain_case(_local_case), "from_pinocchio", "body Jacobian",
                 {"pinocchio_frame": "LOCAL"}, example=_pinocchio_example("LOCAL")),
-])
+], library=_library_ch07_ex4)

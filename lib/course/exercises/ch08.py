@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 import jacobians as jac
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
+from ._checks import assert_close, reference_runs, size
 from ._hand import planar_points, planar_trig
 from ._kinematics import DEG, Array, adj, blockdiag, expS, fk, inv_T, planar_chain, space_jac
 from ._latex import degs, vec
@@ -227,6 +228,19 @@ def _links_example(layout: str) -> Callable[[Generator], tuple[str, dict[str, An
     return worked_example("my_link_jacobians(S, theta)", build)
 
 
+def _library_ch08_ex4(ex: Exercise) -> None:
+    """On every test case, link i's space Jacobian is the library's space Jacobian of the chain cut after joint i
+    (link i's pose is e^[S1]θ1···e^[Si]θi times a constant), padded with zero columns for the joints after it,
+    instead of J_s with columns zeroed. The same products of exponentials: within TOL of |J|."""
+    for (axes, th), out in reference_runs(ex):
+        S = np.asarray(axes, dtype=float).T if ex.given["layout"] == "rows" else np.asarray(axes, dtype=float)
+        n = S.shape[1]
+        expected = np.zeros((n, 6, n))
+        for i in range(n):
+            expected[i, :, :i + 1] = jac.space_jacobian(jac.SerialChain(S[:, :i + 1], np.eye(4)), th[:i + 1])
+        assert_close(out, expected, "stack of link Jacobians", scale=size(expected))
+
+
 register_code("ch08_ex4", "Code: the Jacobians of every link", [
     CodeVariant(f"Write `my_link_jacobians(S, theta)`: `S` is {LAYOUT_TEXT[layout]}, `theta` a length-$n$ array; "
                 "return an array of shape $(n, 6, n)$ whose entry `[i]` is the space Jacobian of link $i+1$ "
@@ -236,4 +250,4 @@ register_code("ch08_ex4", "Code: the Jacobians of every link", [
                 else (lambda S, th: link_space_jacobians(np.asarray(S).T, th)),
                 case, "my_link_jacobians", "stack of link Jacobians", {"layout": layout},
                 example=_links_example(layout))
-    for layout, case in layout_cases(_links_case).items()])
+    for layout, case in layout_cases(_links_case).items()], library=_library_ch08_ex4)

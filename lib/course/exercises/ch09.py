@@ -12,7 +12,9 @@ from numpy.typing import ArrayLike
 import jacobians as jac
 from jacobians.grading import Case, Exercise, Mistake, numeric_exercise, scalar_exercise
 from jacobians.grading.exercise import Interval
+from jacobians.testing import EPS
 
+from ._checks import assert_close, assert_within, reference_runs, size
 from ._hand import pinv_steps, planar_jv
 from ._kinematics import DEG, Array, adj
 from ._latex import bmatrix, degs, vec
@@ -21,7 +23,14 @@ from ._registry import CodeVariant, register, register_code
 from ._variants import angles_deg, example_text, lengths, spatial_5r_pose
 
 
-@register("ch09_ex1")
+def _library_ch09_ex1(ex: Exercise) -> None:
+    """The library's statics, τ = J_bᵀ F_b (``statics.joint_torques``): the torque of joint i is the power of F_b
+    on the twist J_bi of that joint at unit rate. The data are exact short decimals: within TOL of |J| |F|."""
+    J_b, F_b = ex.given["J_b"], ex.given["F_b"]
+    assert_close(ex.solution(), jac.statics.joint_torques(J_b, F_b), "torques", scale=6 * size(J_b) * size(F_b))
+
+
+@register("ch09_ex1", library=_library_ch09_ex1)
 def _ch09_ex1(rng: Generator) -> Exercise:
     T, J_b, J, J_s = spatial_5r_pose(rng)
     J_b = J_b[:, :3].copy()
@@ -188,6 +197,21 @@ def _dls_example(rng: Generator, damping: str) -> tuple[str, dict[str, Any]]:
     return text, {"example_J": J, "example_V": V, "example_mu": mu}
 
 
+def _library_ch09_ex4(ex: Exercise) -> None:
+    """On every test case, the library's damped rates (``velocity.dls_rates``: gains σ/(σ² + λ²) from the SVD, no
+    normal equations) against the reference (a solve with A = J Jᵀ + λ² I). The solve is backward stable, so its
+    y = A⁻¹V is off by about κ(A) ops EPS |y| (κ(A) = (σ_max² + λ²)/λ_min(A), up to 1e4 at λ = 0.05), then
+    multiplied by Jᵀ; the SVD route's gains are at most 1/(2λ), so its error is about ops EPS |V|/λ. The bound is
+    512 EPS κ(A) max(1, |J| |y|, |V|/λ)."""
+    for (J, V, d), out in reference_runs(ex):
+        lam = float(d) if ex.given["damping"] == "lambda" else float(np.sqrt(d))
+        A = J @ J.T + lam ** 2 * np.eye(J.shape[0])
+        y = np.linalg.solve(A, V)
+        scale = max(1.0, float(np.linalg.norm(J, 2) * np.linalg.norm(y)), float(np.linalg.norm(V)) / lam)
+        bound = 512 * EPS * float(np.linalg.cond(A)) * scale
+        assert_within(out, jac.velocity.dls_rates(J, V, lam), bound, "damped rates")
+
+
 register_code("ch09_ex4", "Code: damped least squares", [
     CodeVariant("Write `my_dls_rates(J, V, lam)` returning the damped least-squares joint rates "
                 "$\\dot\\theta = J^T(JJ^T + \\lambda^2 I)^{-1}\\mathcal V$ for any $m\\times n$ `J`, length-$m$ "
@@ -200,10 +224,23 @@ register_code("ch09_ex4", "Code: damped least squares", [
                 "Set `answer = my_dls_rates`.",
                 ref_dls_rates_mu, lambda rng: _dls_case(rng, "mu"), "my_dls_rates", "joint rates",
                 {"damping": "mu"}, example=lambda rng: _dls_example(rng, "mu")),
-])
+], library=_library_ch09_ex4)
 
 
-@register("ch09_ex5")
+def _library_ch09_ex5(ex: Exercise) -> None:
+    """The two semi-axes σ1 >= σ2 >= 0 are fixed by σ1² + σ2² = |J_v|_F² and σ1 σ2 = |det J_v| (J_v the
+    library's position rows, not the reference's formula; no SVD); both sides are sums of products of entries of
+    size |J|, so within TOL of |J|²."""
+    arm = jac.robots.planar(ex.given["lengths"])
+    J = jac.geometric_jacobian(arm, np.radians(ex.given["theta_deg"]))[3:5]
+    s1, s2 = (float(v) for v in ex.solution())
+    assert s1 >= s2 >= 0.0, (s1, s2)
+    scale = size(J) ** 2
+    assert_close(s1 ** 2 + s2 ** 2, float(np.sum(J ** 2)), "sum of the squared semi-axes", scale=scale)
+    assert_close(s1 * s2, abs(float(np.linalg.det(J))), "product of the semi-axes", scale=scale)
+
+
+@register("ch09_ex5", library=_library_ch09_ex5)
 def _ch09_ex5(rng: Generator) -> Exercise:
     ls, th_deg, Jv = _regular_2r(rng)
     sv = np.linalg.svd(Jv, compute_uv=False)
@@ -227,7 +264,18 @@ def _ch09_ex5(rng: Generator) -> Exercise:
                             what="semi-axes", method=method)
 
 
-@register("ch09_ex6")
+def _library_ch09_ex6(ex: Exercise) -> None:
+    """At θ2 = the answer (θ1 as given), the library's position Jacobian is singular: det J_v = 0 up to the
+    rounding of θ2 (EPS |θ2| times |∂det/∂θ2| <= l1 l2) and of the products (TOL (l1 + l2)²); the answer lies in
+    (0, 2π)."""
+    L = ex.given["lengths"]
+    th2 = float(ex.solution())
+    assert 0.0 < th2 < 2 * np.pi, th2
+    J = jac.geometric_jacobian(jac.robots.planar(L), np.array([np.radians(ex.given["theta1_deg"]), th2]))[3:5]
+    assert_close(np.linalg.det(J), 0.0, "det J_v at the answer", scale=float(np.sum(L)) ** 2 * max(1.0, th2))
+
+
+@register("ch09_ex6", library=_library_ch09_ex6)
 def _ch09_ex6(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     th1 = float(angles_deg(rng, 1)[0])

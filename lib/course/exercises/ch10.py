@@ -15,8 +15,11 @@ from jacobians.chain import SerialChain
 from jacobians.grading import Case, Exercise, Mistake, numeric_exercise
 from jacobians.grading.feedback import verdict
 from jacobians.ik import ik
+from jacobians.jacobian import numerical_jacobian
+from jacobians.testing import EPS, fd_tol, pose_tol
 from jacobians.velocity import dls_rates, pinv_rates
 
+from ._checks import assert_close, assert_within, reference_runs, size
 from ._hand import adjoint_steps, log_se3_steps, planar_jv, planar_tip, planar_trig
 from ._kinematics import DEG, Array, adj, inv_T
 from ._latex import bmatrix, degs, num, vec
@@ -69,7 +72,17 @@ def _pose_pair(rng: Generator) -> tuple[Array, Array, Array]:
     return T_sb, T_bd, T_sd
 
 
-@register("ch10_ex1")
+def _library_ch10_ex1(ex: Exercise) -> None:
+    """The error twist carries {b} onto {d} in unit time: T_sb e^[V_b] = T_sd, or e^[V_s] T_sb = T_sd, with the
+    library's exp_se3 (the reference takes a log). The data are exact short decimals; an exponential and a 4x4
+    product: within TOL of |T_sb| |e^[V]|."""
+    g = ex.given
+    E = lie.exp_se3(ex.solution())
+    reached = g["T_sb"] @ E if g["asked"] == "body" else E @ g["T_sb"]
+    assert_close(reached, g["T_sd"], "pose reached", scale=size(g["T_sb"]) * size(E))
+
+
+@register("ch10_ex1", library=_library_ch10_ex1)
 def _ch10_ex1(rng: Generator) -> Exercise:
     T_sb, _, T_sd = _pose_pair(rng)
     asked = str(rng.choice(["body", "space"]))
@@ -115,7 +128,25 @@ def _position_jacobian(arm: SerialChain, theta: ArrayLike) -> Array:
     return np.asarray(geometric_jacobian(arm, theta)[3:5], dtype=float)
 
 
-@register("ch10_ex2")
+def _library_ch10_ex2(ex: Exercise) -> None:
+    """The step solves the linearised error with J_v by central differences of the library's forward kinematics
+    (not its Jacobian): J_fd Δθ = p_d − p(θ_k). J_fd is within ε = fd_tol of J_v entry by entry, so the residual
+    is within ε |Δθ|₁, plus the rounding of the reference's solve (TOL cond(J_v) of |J_v| |Δθ| + |e|)."""
+    g = ex.given
+    arm = robots.planar([float(v) for v in g["lengths"]])
+    th = np.radians(g["theta_deg"])
+
+    def tip(t: Array) -> Array:
+        return _tool_point(arm, t)
+
+    J_fd = numerical_jacobian(tip, th)
+    step, e = ex.solution() - th, g["p_d"] - tip(th)
+    bound = (fd_tol(tip, th) * float(np.sum(np.abs(step)))
+             + 1e-12 * float(np.linalg.cond(J_fd)) * size(2 * size(J_fd) * size(step), e))
+    assert_within(J_fd @ step, e, bound, "linearised position error after the step")
+
+
+@register("ch10_ex2", library=_library_ch10_ex2)
 def _ch10_ex2(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     th_deg = angles_deg(rng, 2, step=15, low=-150, high=150)
@@ -160,7 +191,29 @@ def _ch10_ex2(rng: Generator) -> Exercise:
 
 # ----------------------------------------------------------------- exercise 3: one damped step near a singularity
 
-@register("ch10_ex3")
+def _library_ch10_ex3(ex: Exercise) -> None:
+    """The step minimises |J Δθ − e|² + λ²|Δθ|²: the gradient J_fdᵀ(J_fd Δθ − e) + λ² Δθ vanishes, J_fd by central
+    differences of the library's forward kinematics. With E = J_fd − J (|E_ij| <= ε = fd_tol) the gradient moves by
+    Eᵀ(J_fd Δθ − e − E Δθ) + J_fdᵀ E Δθ, at most ε (|J_fd Δθ − e|₁ + ε |Δθ|₁ + max_j |J_fd,j|₁ |Δθ|₁); the reference
+    (the library's SVD route, gains <= 1/(2λ)) is off by about 512 EPS |e|/λ, which the gradient multiplies by
+    |J|² + λ²."""
+    g = ex.given
+    arm = robots.planar([float(v) for v in g["lengths"]])
+    th, lam = np.radians(g["theta_deg"]), float(g["lam"])
+
+    def tip(t: Array) -> Array:
+        return _tool_point(arm, t)
+
+    J, e, d = numerical_jacobian(tip, th), g["p_d"] - tip(th), ex.solution()
+    eps = fd_tol(tip, th)
+    r = J @ d - e
+    d1 = float(np.sum(np.abs(d)))
+    bound = (eps * (float(np.sum(np.abs(r))) + eps * d1 + float(np.max(np.sum(np.abs(J), axis=0))) * d1)
+             + 512 * EPS * (float(np.linalg.norm(J, 2)) ** 2 + lam ** 2) * float(np.linalg.norm(e)) / lam)
+    assert_within(J.T @ r + lam ** 2 * d, np.zeros_like(d), bound, "gradient of the damped cost at the step")
+
+
+@register("ch10_ex3", library=_library_ch10_ex3)
 def _ch10_ex3(rng: Generator) -> Exercise:
     n = int(rng.choice([2, 3]))
     ls = lengths(rng, n)
@@ -760,6 +813,30 @@ def _ik_example(frame: str) -> Callable[[Generator], tuple[str, dict[str, Any]]]
     return example
 
 
+def _library_ch10_ex4(ex: Exercise) -> None:
+    """On every test case, the loop written out with the library's own pieces (forward kinematics, log, Jacobian,
+    pseudo-inverse: :func:`trail_by_library`) stops at the reference's θ, and where its stop test passed, the
+    library's forward kinematics puts the tool within pose_tol of T_sd.
+
+    Tolerances. A case is kept only if the loop started 1e-11 away stops within 1e-10 + 1e-8 |θ| of it
+    (:func:`_mistakes_of`); two implementations of the loop differ by rounding, about 512 EPS per step, far
+    below that start, so they agree within the same 1e-10 + 1e-8 |θ|. The stop test bounds the error twist's
+    |ω| and |v|; in the body form T = T_sd e^{−[V_b]} (pose_tol's case), in the space form T = e^{−[V_s]} T_sd,
+    whose entries are a row of e^{−[V]} − I times a column of T_sd, bounded the same way."""
+    frame = ex.given["frame"]
+    for (axes, M, T_sd, th0, eps_w, eps_v, k_max), out in reference_runs(ex):
+        chain = _chain(np.asarray(axes, float), np.asarray(M, float), frame)
+        trail = trail_by_library(chain, T_sd, th0, frame, steps=k_max)
+        k = next((j for j, (w, v, _) in enumerate(trail.norms) if (w <= eps_w and v <= eps_v) or j == k_max), None)
+        assert k is not None, "the library's loop blew up before the reference stopped"
+        expected = trail.thetas[k]
+        beyond = np.maximum(np.abs(np.asarray(out, float) - expected) - 1e-8 * np.abs(expected), 0.0)
+        assert_within(beyond, np.zeros_like(expected), 1e-10, "θ where the loop stops (beyond 1e-8 |θ|)")
+        w, v, _ = trail.norms[k]
+        if w <= eps_w and v <= eps_v:
+            assert_within(chain.fk(out), T_sd, pose_tol(T_sd, eps_w, eps_v), "pose reached")
+
+
 #: Random reachable targets with enough steps, before the edge cases (the cap, an unreachable target, the stop
 #: tests): three chains of 2 to 6 joints try the loop itself; the edge cases try what the statement singles out.
 IK_RANDOM_CASES = 3
@@ -773,4 +850,4 @@ register_code("ch10_ex4", "Code: the Newton–Raphson loop", [
     CodeVariant(_loop_statement("space"), ref_ik_space, _case_maker("space"), "my_ik", "joint values",
                 {"frame": "space"}, more_cases=_more_cases("space"), on_timeout=NO_CAP, adapt=_adapter("space"),
                 example=_ik_example("space"), n_cases=IK_RANDOM_CASES),
-])
+], library=_library_ch10_ex4)

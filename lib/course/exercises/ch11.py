@@ -8,8 +8,10 @@ from typing import Any
 import numpy as np
 from numpy.random import Generator
 
+import jacobians as jac
 from jacobians.grading import Exercise, Mistake, numeric_exercise
 
+from ._checks import assert_close, size
 from ._hand import pinv_steps, planar_jv
 from ._kinematics import DEG, Array
 from ._latex import bmatrix, degs, vec
@@ -36,7 +38,23 @@ def _regular_3r(rng: Generator) -> tuple[Array, Array, Array]:
             return ls, th_deg, Jv
 
 
-@register("ch11_ex1")
+def _position_rows(ex: Exercise) -> Array:
+    """The library's position Jacobian (x, y rows of the geometric Jacobian) of the variant's planar arm."""
+    return np.asarray(jac.geometric_jacobian(jac.robots.planar(ex.given["lengths"]),
+                                             np.radians(ex.given["theta_deg"]))[3:5], dtype=float)
+
+
+def _library_ch11_ex1(ex: Exercise) -> None:
+    """ν is fixed by three facts about the library's position Jacobian J (2x3), none of them the cross product:
+    J ν = 0 (it moves no tip), |ν|² = det(J Jᵀ) (Lagrange's identity |r1 × r2|² = |r1|²|r2|² − (r1·r2)²), and
+    det[r1; r2; ν] > 0 (right-handed). Sums of products of entries of size |J|: within TOL of |J|³, |J|⁴."""
+    J, nu = _position_rows(ex), ex.solution()
+    assert_close(J @ nu, np.zeros(2), "J ν", scale=3 * size(J) ** 3)
+    assert_close(nu @ nu, np.linalg.det(J @ J.T), "|ν|² against det(J Jᵀ)", scale=9 * size(J) ** 4)
+    assert np.linalg.det(np.vstack([J, nu])) > 0, "r1, r2, ν are not right-handed"
+
+
+@register("ch11_ex1", library=_library_ch11_ex1)
 def _ch11_ex1(rng: Generator) -> Exercise:
     ls, th_deg, Jv = _regular_3r(rng)
     ref = np.cross(Jv[0], Jv[1])
@@ -65,7 +83,19 @@ def _ch11_ex1(rng: Generator) -> Exercise:
                                  "entry.", method=method)
 
 
-@register("ch11_ex2")
+def _library_ch11_ex2(ex: Exercise) -> None:
+    """The rates are the solution of J θ̇ = ẋ nearest z: J θ̇ = ẋ, and θ̇ − z has no part in the library's null
+    space of J (``analysis.nullspace``). The reference's pseudo-inverse carries cond(J) into the comparison."""
+    J, xdot, z = ex.given["J"], ex.given["x_dot"], ex.given["z"]
+    thd = ex.solution()
+    kappa = float(np.linalg.cond(J))
+    assert_close(J @ thd, xdot, "J θ̇", scale=3 * size(J) * size(thd, z), ops=kappa)
+    N = jac.analysis.nullspace(J)
+    assert_close(N.T @ (thd - z), np.zeros(N.shape[1]), "null-space part of θ̇ − z", scale=3 * size(thd, z),
+                 ops=kappa)
+
+
+@register("ch11_ex2", library=_library_ch11_ex2)
 def _ch11_ex2(rng: Generator) -> Exercise:
     _, _, Jv = _regular_3r(rng)
     J = np.round(Jv, 3)
@@ -103,7 +133,17 @@ def _ch11_ex2(rng: Generator) -> Exercise:
                                  "answer gives ẋ.", method=method)
 
 
-@register("ch11_ex3")
+def _library_ch11_ex3(ex: Exercise) -> None:
+    """The squared singular values are the eigenvalues of the Gram matrix (c J_v)ᵀ(c J_v), largest first (no SVD);
+    compared as squares (a square root would amplify the rounding of a small one), within TOL of 3 c² |J_v|²."""
+    Jv, c = ex.given["J"][3:], float(ex.given["factor"])
+    s = np.asarray(ex.solution(), dtype=float)
+    assert np.all(np.diff(s) <= 0) and s[-1] >= 0, s
+    eig = np.linalg.eigvalsh((c * Jv).T @ (c * Jv))[::-1]
+    assert_close(s ** 2, eig, "squared singular values", scale=3 * c ** 2 * size(Jv) ** 2)
+
+
+@register("ch11_ex3", library=_library_ch11_ex3)
 def _ch11_ex3(rng: Generator) -> Exercise:
     J = np.round(rng.normal(size=(6, 3)), 2)
     J[:3] = np.round(J[:3] / np.linalg.norm(J[:3], axis=0), 2)          # angular rows: unit axes, rad/s
@@ -136,7 +176,15 @@ def _ch11_ex3(rng: Generator) -> Exercise:
                                  "multiply each by the number of new units in a metre.", method=method)
 
 
-@register("ch11_ex4")
+def _library_ch11_ex4(ex: Exercise) -> None:
+    """The manipulability is also the product of the singular values of the library's position Jacobian
+    (``analysis.singular_values``), not sqrt(det(J Jᵀ)): within TOL of |J|²."""
+    J = _position_rows(ex)
+    assert_close(ex.solution(), float(np.prod(jac.analysis.singular_values(J))), "manipulability",
+                 scale=3 * size(J) ** 2)
+
+
+@register("ch11_ex4", library=_library_ch11_ex4)
 def _ch11_ex4(rng: Generator) -> Exercise:
     ls, th_deg, Jv = _regular_3r(rng)
     ref = float(np.sqrt(np.linalg.det(Jv @ Jv.T)))

@@ -8,11 +8,15 @@ from typing import Any
 import numpy as np
 from numpy.random import Generator
 
-from jacobians import lie, robots
+from jacobians import body_jacobian, lie, robots, space_jacobian
 from jacobians.acceleration import acceleration, jacobian_derivative
-from jacobians.dynamics import gravity_torques
+from jacobians.chain import SerialChain
+from jacobians.dynamics import gravity_torques, potential_energy
 from jacobians.grading import Exercise, Mistake, numeric_exercise
+from jacobians.jacobian import numerical_jacobian
+from jacobians.testing import fd2_tol, fd_tol
 
+from ._checks import assert_within, size
 from ._hand import ad_twist, planar_jv, planar_jv_dot, planar_trig
 from ._kinematics import DEG, Array
 from ._latex import bmatrix, degs, vec
@@ -29,7 +33,23 @@ def _rates(rng: Generator, n: int) -> Array:
     return out
 
 
-@register("ch12_ex1")
+def _library_ch12_ex1(ex: Exercise) -> None:
+    """p̈ is the second derivative of the library's forward kinematics along θ(t) = θ + θ̇ t + θ̈ t²/2, by a
+    central second difference at t = 0 (not J θ̈ + J̇ θ̇), within fd2_tol (positions of size Σ L)."""
+    g = ex.given
+    arm = robots.planar_2r(*g["lengths"])
+    th, thd, thdd = np.radians(g["theta_deg"]), g["theta_dot"], g["theta_ddot"]
+
+    def tip(t: float) -> Array:
+        return np.asarray(arm.fk(th + thd * t + thdd * t * t / 2)[:2, 3], dtype=float)
+
+    h = 1e-4
+    p_ddot = (tip(h) - 2 * tip(0.0) + tip(-h)) / h ** 2
+    assert_within(ex.solution(), p_ddot, fd2_tol(tip, 0.0, h=h, scale=float(np.sum(g["lengths"]))),
+                  "tool acceleration")
+
+
+@register("ch12_ex1", library=_library_ch12_ex1)
 def _ch12_ex1(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     th_deg = angles_deg(rng, 2, step=15, low=-150, high=150)
@@ -65,7 +85,29 @@ def _ch12_ex1(rng: Generator) -> Exercise:
                             hint="Differentiate ṗ = J_v θ̇ with the product rule: p̈ = J_v θ̈ + J̇_v θ̇.", method=method)
 
 
-@register("ch12_ex2")
+def _rate_of_columns(axes: Array, thd: Array, frame: str) -> tuple[Array, float]:
+    """d/dt of the Jacobian columns ``axes`` as the joints move at ``thd``, by central differences of the library's
+    Jacobian, and fd_tol of that. The forward kinematics restarts at the current pose: with θ = θ_c + θ',
+    T(θ) = e^[J_s1(θ_c)]θ'1 ··· e^[J_sn(θ_c)]θ'n T(θ_c) = T(θ_c) e^[J_b1(θ_c)]θ'1 ··· e^[J_bn(θ_c)]θ'n, so the
+    chain whose axes at home (M = I, where body and space axes agree) are the current columns has these Jacobians
+    at θ' = 0, and moves like the arm."""
+    chain = SerialChain(axes, np.eye(4))
+    jacobian = space_jacobian if frame == "space" else body_jacobian
+
+    def columns(t: Array) -> Array:
+        return np.asarray(jacobian(chain, t[0] * thd), dtype=float)
+
+    return numerical_jacobian(columns, np.zeros(1))[..., 0], fd_tol(columns, np.zeros(1), scale=size(axes))
+
+
+def _library_ch12_ex2(ex: Exercise) -> None:
+    """J̇_s by central differences of the library's space Jacobian along the motion (:func:`_rate_of_columns`), not
+    the bracket formula; within fd_tol."""
+    rate, bound = _rate_of_columns(ex.given["J_s"], ex.given["theta_dot"], "space")
+    assert_within(ex.solution(), rate, bound, "J̇_s")
+
+
+@register("ch12_ex2", library=_library_ch12_ex2)
 def _ch12_ex2(rng: Generator) -> Exercise:
     pose = spatial_5r_pose(rng)
     J_s = np.round(pose.J_s[:, :3], 6)
@@ -109,7 +151,21 @@ def _ch12_ex2(rng: Generator) -> Exercise:
                                  "J̇_si = [ad of Σ_{j<i} J_sj θ̇_j] J_si; the first column is constant.", method=method)
 
 
-@register("ch12_ex3")
+def _library_ch12_ex3(ex: Exercise) -> None:
+    """The holding torques are the gradient of the library's potential energy, ∂P/∂θ, by central differences
+    (not Σ J_vᵀ m g), within fd_tol; P sums terms of size g Σm ΣL."""
+    g = ex.given
+    arm = robots.planar_2r(*g["lengths"])
+    th = np.radians(g["theta_deg"])
+
+    def energy(t: Array) -> Array:
+        return np.asarray(potential_energy(arm, t, g["masses"], [0.0, -9.81, 0.0]), dtype=float)
+
+    scale = 9.81 * float(np.sum(g["masses"])) * float(np.sum(g["lengths"]))
+    assert_within(ex.solution(), numerical_jacobian(energy, th), fd_tol(energy, th, scale=scale), "torques")
+
+
+@register("ch12_ex3", library=_library_ch12_ex3)
 def _ch12_ex3(rng: Generator) -> Exercise:
     ls = lengths(rng, 2)
     th_deg = angles_deg(rng, 2, step=15, low=-150, high=150)
@@ -150,7 +206,15 @@ def _ch12_ex3(rng: Generator) -> Exercise:
                                  "of mass (zero column after joint i).")
 
 
-@register("ch12_ex4")
+def _library_ch12_ex4(ex: Exercise) -> None:
+    """The rate of the last three body-Jacobian columns by central differences of the library's body Jacobian of
+    the chain restarted at the current pose (:func:`_rate_of_columns`; joints 1 and 2 are still, and columns 3-5
+    depend only on the joints after them), not the bracket formula; within fd_tol."""
+    rate, bound = _rate_of_columns(ex.given["J_b"], ex.given["theta_dot"], "body")
+    assert_within(ex.solution(), rate, bound, "J̇_b")
+
+
+@register("ch12_ex4", library=_library_ch12_ex4)
 def _ch12_ex4(rng: Generator) -> Exercise:
     pose = spatial_5r_pose(rng)
     J_b = np.round(pose.J_b[:, 2:], 6)

@@ -100,6 +100,11 @@ class Catalogue:
             return builder
         return deco
 
+    def unregister(self, exercise_id: str) -> None:
+        """Remove the builder of ``exercise_id`` (a test's made-up exercise, once the test is done); KeyError if
+        there is none."""
+        del self._builders[exercise_id]
+
     def ids(self) -> list[str]:
         """All exercise ids, in chapter order."""
         return sorted(self._builders, key=_order)
