@@ -123,8 +123,9 @@ lint: setup
 
 # every test not marked `browser` (tests/conftest.py: a test under tests/browser, tests/install or tests/site,
 # or one that uses a browser or built-site fixture, or marked by hand), on every core. Without coverage: the
-# tracer costs about 30 % more CPU on these tests (measured: 11.5 -> 15.0 CPU s on tests/test_jacobian.py), and
-# coverage is a report that no test reads; `make coverage` runs the same tests with it.
+# tracer costs 30-50 % more CPU on these tests (measured, CPU seconds: tests/test_jacobian.py 11.5 -> 15.0,
+# tests/test_exercise_properties.py 160 -> 244), and coverage is a report that no test reads; `make coverage`
+# runs the same tests with it.
 LIB_TESTS := -m "not browser" -q lib/jacobians lib/course tests
 test-lib: setup sandbox
 	MPLBACKEND=Agg $(BIN)/pytest -n auto $(LIB_TESTS)
