@@ -29,7 +29,7 @@ SLIDES_PDF_ARGS = $(if $(filter 0,$(SLIDES_PDF)),--no-pdf,$(if $(filter-out 1,$(
 #: animations included
 TEST_SLIDES_PDF := 05_geometric_jacobian
 
-.PHONY: help setup book site test test-site lint test-lib test-js test-live test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
+.PHONY: help setup book site test test-site lint test-lib coverage test-js test-live test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -45,6 +45,7 @@ help:
 	@echo "make book SOLUTIONS=0         the book without the solutions"
 	@echo "make book BOOK_PDF=0 SLIDES_PDF=0  the book without the whole-book PDF and the decks' PDFs"
 	@echo "make test-numerics  the float comparisons on two other OpenBLAS kernels, in reverse order"
+	@echo "make coverage   the library tests (test-lib) with the line coverage of jacobians and course"
 
 # ------------------------------------------------------------------ set-up
 $(PY_STAMP): requirements.txt requirements-book.txt constraints.txt pyproject.toml
@@ -121,9 +122,17 @@ lint: setup
 	node_modules/.bin/tsc -p jsconfig.json
 
 # every test not marked `browser` (tests/conftest.py: a test under tests/browser, tests/install or tests/site,
-# or one that uses a browser or built-site fixture, or marked by hand), on every core
+# or one that uses a browser or built-site fixture, or marked by hand), on every core. Without coverage: the
+# tracer costs 30-50 % more CPU on these tests (measured, CPU seconds: tests/test_jacobian.py 11.5 -> 15.0,
+# tests/test_exercise_properties.py 160 -> 244), and coverage is a report that no test reads; `make coverage`
+# runs the same tests with it.
+LIB_TESTS := -m "not browser" -q lib/jacobians lib/course tests
 test-lib: setup sandbox
-	MPLBACKEND=Agg $(BIN)/pytest -n auto -m "not browser" --cov=jacobians --cov=course --cov-report=term:skip-covered -q lib/jacobians lib/course tests
+	MPLBACKEND=Agg $(BIN)/pytest -n auto $(LIB_TESTS)
+
+# test-lib's tests with the library's line coverage (jacobians, course), printed per file (not part of make test)
+coverage: setup sandbox
+	MPLBACKEND=Agg $(BIN)/pytest -n auto --cov=jacobians --cov=course --cov-report=term:skip-covered $(LIB_TESTS)
 
 # the live views' numeric modules under Node, against values the library writes (no browser)
 test-js: setup
