@@ -539,3 +539,20 @@ def test_the_text_checks_of_a_figure_see_what_it_draws():
     fig.tight_layout()
     assert text_problems(fig) == []
     plt.close(fig)
+
+
+def test_a_label_that_reaches_into_the_neighbouring_plot_is_named():
+    from jacobians.plotting.style import text_problems
+
+    fig = plt.figure(figsize=(4.0, 2.0), dpi=100)
+    left = fig.add_axes([0.1, 0.2, 0.4, 0.7])
+    right = fig.add_axes([0.55, 0.2, 0.4, 0.7])
+    left.set(xticks=[], yticks=[])
+    right.set(xticks=[], yticks=[])
+    right.set_ylabel("a label", fontsize=14, labelpad=2)
+    assert text_problems(fig) == ["'a label' reaches into plot 1"]
+    right.set_ylabel("")
+    twin = left.twinx()   # a twin's labels are on its own (shared) area's edge
+    twin.set_yticks([])
+    assert text_problems(fig) == []
+    plt.close(fig)

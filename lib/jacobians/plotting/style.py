@@ -16,7 +16,7 @@ from collections.abc import Iterator
 from typing import Any
 
 __all__ = ["PALETTE", "COLUMN_COLORS", "set_style", "smallest_text_px", "drawn_texts", "overlapping_texts",
-           "clipped_texts", "text_problems"]
+           "clipped_texts", "texts_in_other_axes", "text_problems"]
 
 _OKABE_ITO = {
     "black": "#000000",
@@ -216,9 +216,34 @@ def clipped_texts(boxes: list[tuple[Any, str, Any]], fig: Any, tolerance: float 
             or b.x1 > edge.x1 + tolerance or b.y1 > edge.y1 + tolerance]
 
 
+def texts_in_other_axes(boxes: list[tuple[Any, str, Any]], fig: Any, margin: float = 2.0) -> list[tuple[str, int]]:
+    """The texts (as :func:`drawn_texts` lists them) of one plot, or of the figure, that reach into the
+    drawing area of another 2-D plot of ``fig`` by more than ``margin`` pixels both ways: an axis label or a
+    legend over a neighbour's curves. Each as (its words, the number of the plot it enters, 1-based in
+    ``fig.axes``). A 3-D plot's area is mostly empty margin and is not counted; a plot's own texts (a
+    legend inside it) are its own business.
+    """
+    found = []
+    for _, what, b in boxes:
+        owner = getattr(_, "axes", None)
+        for i, ax in enumerate(fig.axes):
+            if ax is owner or hasattr(ax, "zaxis") or not ax.get_visible() or not ax.axison:
+                continue
+            # twin or shared plots drawn over the same area are the owner's own area
+            if owner is not None and owner.bbox.bounds == ax.bbox.bounds:
+                continue
+            area = ax.bbox
+            w = min(b.x1, area.x1) - max(b.x0, area.x0)
+            h = min(b.y1, area.y1) - max(b.y0, area.y0)
+            if w > margin and h > margin:
+                found.append((what, i + 1))
+    return found
+
+
 def text_problems(fig: Any) -> list[str]:
     """What is wrong with a figure's text on a fixed canvas, as one full draw shows it: pairs of texts that
-    overlap (:func:`overlapping_texts`) and texts cut off at the canvas edge (:func:`clipped_texts`).
+    overlap (:func:`overlapping_texts`), texts cut off at the canvas edge (:func:`clipped_texts`) and texts
+    that reach into another plot (:func:`texts_in_other_axes`).
 
     >>> from matplotlib.figure import Figure
     >>> fig = Figure(figsize=(2, 1), dpi=100)
@@ -235,6 +260,7 @@ def text_problems(fig: Any) -> list[str]:
 
 
 def describe_text_problems(boxes: list[tuple[Any, str, Any]], fig: Any) -> list[str]:
-    """:func:`overlapping_texts` and :func:`clipped_texts` of ``boxes`` in words."""
+    """:func:`overlapping_texts`, :func:`clipped_texts` and :func:`texts_in_other_axes` of ``boxes`` in words."""
     return ([f"{a!r} overlaps {b!r}" for a, b in overlapping_texts(boxes)]
-            + [f"{what!r} is cut off at the edge" for what in clipped_texts(boxes, fig)])
+            + [f"{what!r} is cut off at the edge" for what in clipped_texts(boxes, fig)]
+            + [f"{what!r} reaches into plot {i}" for what, i in texts_in_other_axes(boxes, fig)])
