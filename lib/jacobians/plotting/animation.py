@@ -42,7 +42,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
-from .style import describe_text_problems, drawn_texts, smallest_text_px
+from .style import describe_text_problems, drawn_texts, smallest_text_px, text_owners
 
 __all__ = ["FrameSource", "animation_html", "compact_png"]
 
@@ -349,9 +349,10 @@ def frame_text_problems(anim: FrameSource, texts: Sequence[Sequence[tuple[Any, s
     redrawn = {id(t) for frame in texts[1:] for t, _, _ in frame}
     fixed = [b for b in texts[0] if id(b[0]) not in redrawn] if anim.moving is not None else []
     seen: dict[str, list[int]] = {}
+    owners = text_owners(anim.fig)
     for k, frame in enumerate(texts):
         boxes = list(frame) if k == 0 else fixed + list(frame)
-        for problem in describe_text_problems(boxes, anim.fig):
+        for problem in describe_text_problems(boxes, anim.fig, owners):
             seen.setdefault(problem, []).append(k + 1)
     return [f"{problem} (frame{'s' if len(ks) > 1 else ''} {_ranges(ks)})" for problem, ks in seen.items()]
 

@@ -16,7 +16,7 @@ from collections.abc import Iterator
 from typing import Any
 
 __all__ = ["PALETTE", "COLUMN_COLORS", "set_style", "smallest_text_px", "drawn_texts", "overlapping_texts",
-           "clipped_texts", "texts_in_other_axes", "text_problems"]
+           "clipped_texts", "text_owners", "texts_in_other_axes", "text_problems"]
 
 _OKABE_ITO = {
     "black": "#000000",
@@ -216,16 +216,26 @@ def clipped_texts(boxes: list[tuple[Any, str, Any]], fig: Any, tolerance: float 
             or b.x1 > edge.x1 + tolerance or b.y1 > edge.y1 + tolerance]
 
 
-def texts_in_other_axes(boxes: list[tuple[Any, str, Any]], fig: Any, margin: float = 2.0) -> list[tuple[str, int]]:
+def text_owners(fig: Any) -> dict[int, Any]:
+    """Each text of ``fig``'s plots (titles, axis and tick labels, legends, annotations) by ``id``, with the
+    plot (Axes) it belongs to: a tick label knows its figure, not its plot."""
+    from matplotlib.text import Text
+
+    return {id(t): ax for ax in fig.axes for t in ax.findobj(Text)}
+
+
+def texts_in_other_axes(boxes: list[tuple[Any, str, Any]], fig: Any, margin: float = 2.0,
+                        owners: dict[int, Any] | None = None) -> list[tuple[str, int]]:
     """The texts (as :func:`drawn_texts` lists them) of one plot, or of the figure, that reach into the
     drawing area of another 2-D plot of ``fig`` by more than ``margin`` pixels both ways: an axis label or a
     legend over a neighbour's curves. Each as (its words, the number of the plot it enters, 1-based in
     ``fig.axes``). A 3-D plot's area is mostly empty margin and is not counted; a plot's own texts (a
     legend inside it) are its own business.
     """
+    owners = text_owners(fig) if owners is None else owners
     found = []
-    for _, what, b in boxes:
-        owner = getattr(_, "axes", None)
+    for t, what, b in boxes:
+        owner = owners.get(id(t))
         for i, ax in enumerate(fig.axes):
             if ax is owner or hasattr(ax, "zaxis") or not ax.get_visible() or not ax.axison:
                 continue
@@ -259,8 +269,10 @@ def text_problems(fig: Any) -> list[str]:
     return describe_text_problems(boxes, fig)
 
 
-def describe_text_problems(boxes: list[tuple[Any, str, Any]], fig: Any) -> list[str]:
-    """:func:`overlapping_texts`, :func:`clipped_texts` and :func:`texts_in_other_axes` of ``boxes`` in words."""
+def describe_text_problems(boxes: list[tuple[Any, str, Any]], fig: Any,
+                           owners: dict[int, Any] | None = None) -> list[str]:
+    """:func:`overlapping_texts`, :func:`clipped_texts` and :func:`texts_in_other_axes` of ``boxes`` in words
+    (``owners``: :func:`text_owners` of ``fig``, if known)."""
     return ([f"{a!r} overlaps {b!r}" for a, b in overlapping_texts(boxes)]
             + [f"{what!r} is cut off at the edge" for what in clipped_texts(boxes, fig)]
-            + [f"{what!r} reaches into plot {i}" for what, i in texts_in_other_axes(boxes, fig)])
+            + [f"{what!r} reaches into plot {i}" for what, i in texts_in_other_axes(boxes, fig, owners=owners)])
