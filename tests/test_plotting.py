@@ -1,5 +1,6 @@
 """Tests of jacobians.plotting: drawn data equal the library's values, updates move artists in place."""
 
+import html
 import os
 import re
 
@@ -489,3 +490,69 @@ def test_animation_html_draws_frames_for_the_slides_when_asked_with_text_large_e
     assert text_px * shown >= 27.0
     assert float(re.search(r'data-smallest-text-px="([\d.]+)"', book.data).group(1)) * shown < 27.0
     assert slide.count("data:image/png;base64") == 3 and "https://" not in slide
+
+
+def test_slide_frames_are_checked_for_overlapping_and_cut_off_text_frame_by_frame():
+    """The slides' frames of an animation, drawn larger, are checked one by one: a moving text that runs
+    into a fixed one in some frames, and a label cut off at the canvas edge, are named with their frames;
+    a clean animation carries an empty list."""
+    from jacobians.plotting import animation
+
+    def source(crowded):
+        fig, ax = plt.subplots(figsize=(6.0, 3.0), dpi=40, layout="constrained")
+        ax.set(xlim=(0, 1), ylim=(0, 1))
+        ax.set_xlabel("x (m)", fontsize=8)
+        ax.tick_params(labelsize=8)
+        ax.text(0.5, 0.5, "fixed", fontsize=8)
+        label = ax.text(0.05, 0.5, "walker", fontsize=8)
+        if crowded:   # a figure text past the right edge: cut off on every frame
+            fig.text(0.97, 0.5, "cut off", fontsize=8)
+        # the walker reaches the fixed text in the last two frames only (if crowded)
+        stops = (0.05, 0.2, 0.45, 0.5) if crowded else (0.05, 0.1, 0.15, 0.2)
+
+        def draw(k):
+            label.set_x(stops[k])
+        return P.FrameSource(fig, draw, 4, moving=[label])
+
+    animation.set_slide_frames((1280.0, 562.0), 27.0)
+    try:
+        with pytest.warns(UserWarning, match=r"overlaps or is cut off.*'fixed' overlaps 'walker' \(frames 3-4\)"):
+            crowded = P.animation_html(source(True))
+        clean = P.animation_html(source(False))
+    finally:
+        animation.set_slide_frames(None)
+    slide = crowded._repr_mimebundle_()[animation.SLIDE_MIME]
+    problems = html.unescape(re.search(r'data-text-problems="([^"]*)"', slide).group(1))
+    assert problems == "'cut off' is cut off at the edge (frames 1-4); 'fixed' overlaps 'walker' (frames 3-4)"
+    assert re.search(r'data-text-problems=""', clean._repr_mimebundle_()[animation.SLIDE_MIME])
+    # the book's player, which the slides do not show here, is not marked
+    assert "data-text-problems" not in crowded.data
+
+
+def test_the_text_checks_of_a_figure_see_what_it_draws():
+    from jacobians.plotting.style import text_problems
+
+    fig, ax = plt.subplots(figsize=(3.0, 2.0), dpi=100)
+    ax.set_ylabel("a long y label that is cut", fontsize=30)
+    assert "'a long y label that is cut' is cut off at the edge" in text_problems(fig)
+    ax.set_ylabel("y", fontsize=10)
+    fig.tight_layout()
+    assert text_problems(fig) == []
+    plt.close(fig)
+
+
+def test_a_label_that_reaches_into_the_neighbouring_plot_is_named():
+    from jacobians.plotting.style import text_problems
+
+    fig = plt.figure(figsize=(4.0, 2.0), dpi=100)
+    left = fig.add_axes([0.1, 0.2, 0.4, 0.7])
+    right = fig.add_axes([0.55, 0.2, 0.4, 0.7])
+    left.set(xticks=[], yticks=[])
+    right.set(xticks=[], yticks=[])
+    right.set_ylabel("a label", fontsize=14, labelpad=2)
+    assert text_problems(fig) == ["'a label' reaches into plot 1"]
+    right.set_ylabel("")
+    twin = left.twinx()   # a twin's labels are on its own (shared) area's edge
+    twin.set_yticks([])
+    assert text_problems(fig) == []
+    plt.close(fig)

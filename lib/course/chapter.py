@@ -254,38 +254,16 @@ SVG_OVERLAP_ATTR = "data-text-overlaps"
 def text_overlaps(fig: Any) -> list[tuple[str, str]]:
     """Pairs of a figure's drawn texts whose boxes overlap (each at least a third of the smaller's height
     and a tenth of its width: two lines that merely touch, or a subscript's reach, do not count). Only
-    texts the figure draws count (a 3-D axis keeps tick labels it does not draw)."""
+    texts the figure draws count (a 3-D axis keeps tick labels it does not draw): the same rule as the
+    animations' slide frames (:func:`jacobians.plotting.style.overlapping_texts`)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.text import Text
+
+    from jacobians.plotting.style import drawn_texts, overlapping_texts
 
     canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
-    boxes = []
-    original = Text.draw
-
-    def draw(self: Any, renderer: Any) -> Any:
-        done = original(self, renderer)
-        if self.get_visible() and self.get_text().strip():
-            try:
-                b = self.get_window_extent(renderer)
-            except (RuntimeError, ValueError):
-                return done
-            if b.width > 0 and b.height > 0 and fig.bbox.overlaps(b):
-                boxes.append((self.get_text().strip().replace("\n", " ")[:30], b))
-        return done
-
-    Text.draw = draw  # type: ignore[method-assign]
-    try:
+    with drawn_texts(fig) as boxes:
         canvas.draw()
-    finally:
-        Text.draw = original  # type: ignore[method-assign]
-    found = []
-    for i, (a, ba) in enumerate(boxes):
-        for b, bb in boxes[i + 1:]:
-            w = min(ba.x1, bb.x1) - max(ba.x0, bb.x0)
-            h = min(ba.y1, bb.y1) - max(ba.y0, bb.y0)
-            if w > 0.1 * min(ba.width, bb.width) and h > 0.33 * min(ba.height, bb.height):
-                found.append((a, b))
-    return found
+    return overlapping_texts([b for b in boxes if fig.bbox.overlaps(b[2])])
 
 
 def clean(A: ArrayLike, digits: int = 4) -> NDArray[np.float64]:

@@ -108,7 +108,9 @@ CONTENT = """(i) => {
       const anim = im.closest("[data-smallest-text-px]");
       return { drawn: Math.min(r.width, r.height * im.naturalWidth / Math.max(im.naturalHeight, 1)),
                natural: im.naturalWidth, src: im.currentSrc || im.src,
-               textPx: anim ? anim.getAttribute("data-smallest-text-px") : null }; });
+               textPx: anim ? anim.getAttribute("data-smallest-text-px") : null,
+               textProblems: anim ? anim.getAttribute("data-text-problems") : null,
+               figure: (im.closest("figure[id]") || { id: "" }).id }; });
   let viewText = null;
   for (const view of slide.querySelectorAll(".jac-live")) {
     const walker2 = document.createTreeWalker(view, NodeFilter.SHOW_TEXT);
@@ -412,6 +414,16 @@ def _figure_problems(w: dict[str, Any], animations: bool) -> list[str]:
                            f"(needs {RASTER_DENSITY:g}x): {im['src'][-50:]}")
             if overlaps:
                 bad.append(f"{where}: texts overlap in the figure: {overlaps}")
+            # an animation's frames drawn for the slides were checked frame by frame as they were drawn
+            # (jacobians.plotting.animation.frame_text_problems): the same at every size, said once
+            if animations and size == SIZES[0]:
+                problems = im.get("textProblems")
+                if problems is None:
+                    bad.append(f"{where}: animation {im.get('figure') or '(no figure id)'}: its frames' text was "
+                               "not checked (drawn without course.chapter.start_page?)")
+                elif problems:
+                    bad.append(f"{where}: animation {im.get('figure') or '(no figure id)'}: in its slide frames, "
+                               f"{problems}")
     for s in w["slides"]:
         for im in s["imgs"]:
             if (im["textPx"] is not None) == animations and im["w"] < MIN_FIGURE_PX:
@@ -430,7 +442,8 @@ def test_figures_are_drawn_for_projection(deck_browser, usb, source):
 
 @pytest.mark.parametrize("source", SOURCES, ids=IDS)
 def test_animations_text_at_projection_size(deck_browser, usb, source):
-    """An animation's frames, as drawn at 1280x720 and 1024x768: smallest text 24 px and 20 px, wide. (Not
+    """An animation's frames, as drawn at 1280x720 and 1024x768: smallest text 24 px and 20 px, wide, and in
+    no frame two texts overlapping or a text cut off at the edge. (Not
     held to twice the drawn pixels: a player embeds 60-160 PNG frames, and twice their size is four times
     the deck's weight.)"""
     bad = _figure_problems(walk(deck_browser, usb, source), animations=True)

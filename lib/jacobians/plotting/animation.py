@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import base64
 import functools
+import html
 import io
 import re
 import tempfile
@@ -41,7 +42,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
-from .style import smallest_text_px
+from .style import describe_text_problems, drawn_texts, smallest_text_px, text_owners
 
 __all__ = ["FrameSource", "animation_html", "compact_png"]
 
@@ -294,26 +295,38 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
     if not isinstance(anim, FrameSource):
         raise TypeError(f"Expected a FrameSource (or a matplotlib Animation), got {type(anim).__name__}")
     limit = float(embed_limit_mb) * 1024 * 1024
+    slides_on = _SLIDE["box"] is not None
     try:
-        frames = _encoded_frames(anim, colors, limit, "frames", stacklevel=3)
+        texts: list[list[tuple[Any, str, Any]]] | None = [] if slides_on else None
+        frames = _encoded_frames(anim, colors, limit, "frames", stacklevel=3, texts=texts)
         # the smallest text of the frames, in frame pixels (the decks' tests scale it by the shown width)
         try:
             text_px = f"{smallest_text_px(anim.fig):.2f}"
         except ValueError:  # no text at all
             text_px = "none"
         slide = _slide_player(anim, default_mode, colors, limit)
+        # where the slides show the book's own frames, those are checked as the slides' would be
+        problems = frame_text_problems(anim, texts) if slides_on and slide is None and texts else None
     finally:
         plt.close(anim.fig)
-    return _animation_html_type()(_jac_anim(frames, text_px, anim.interval, default_mode), slide)
+    return _animation_html_type()(_jac_anim(frames, text_px, anim.interval, default_mode, problems), slide)
 
 
-def _encoded_frames(anim: FrameSource, colors: int, limit: float, what: str, stacklevel: int) -> list[str]:
+def _encoded_frames(anim: FrameSource, colors: int, limit: float, what: str, stacklevel: int,
+                    texts: list[list[tuple[Any, str, Any]]] | None = None) -> list[str]:
     """``anim``'s frames as base64 palette PNGs, up to ``limit`` bytes in all (the rest dropped, with a warning
-    at the caller of :func:`animation_html`)."""
+    at the caller of :func:`animation_html`). With a list ``texts``, each frame's drawn texts are appended to
+    it (:func:`jacobians.plotting.style.drawn_texts`), one list a frame."""
     frames: list[str] = []
     total = 0
     for k in range(anim.n_frames):
-        data = base64.b64encode(compact_png(anim.frame(k), colors)).decode("ascii")
+        if texts is None:
+            image = anim.frame(k)
+        else:
+            with drawn_texts(anim.fig) as drawn:
+                image = anim.frame(k)
+            texts.append(drawn)
+        data = base64.b64encode(compact_png(image, colors)).decode("ascii")
         total += len(data)
         if total >= limit:
             warnings.warn(f"animation_html: {what} beyond {limit / 1e6:.1f} MB were dropped; "
@@ -323,10 +336,53 @@ def _encoded_frames(anim: FrameSource, colors: int, limit: float, what: str, sta
     return frames
 
 
-def _jac_anim(frames: list[str], text_px: str, interval: float, default_mode: str) -> str:
-    """The player of ``frames``, marked with its smallest text in frame pixels (read by the decks' tests)."""
+def frame_text_problems(anim: FrameSource, texts: Sequence[Sequence[tuple[Any, str, Any]]]) -> list[str]:
+    """The texts that overlap or are cut off at the canvas edge in any frame of ``anim``, each said once with
+    the frames it is seen in (1-based), from the texts drawn frame by frame (:func:`_encoded_frames`).
+
+    A blitted frame draws only the moving artists over the first frame's picture: the texts of the first
+    frame that no later frame draws again are the fixed ones, and belong to every frame. A source that
+    renders its frames itself draws no matplotlib text: nothing to check.
+    """
+    if not texts:
+        return []
+    redrawn = {id(t) for frame in texts[1:] for t, _, _ in frame}
+    fixed = [b for b in texts[0] if id(b[0]) not in redrawn] if anim.moving is not None else []
+    seen: dict[str, list[int]] = {}
+    owners = text_owners(anim.fig)
+    for k, frame in enumerate(texts):
+        boxes = list(frame) if k == 0 else fixed + list(frame)
+        for problem in describe_text_problems(boxes, anim.fig, owners):
+            seen.setdefault(problem, []).append(k + 1)
+    return [f"{problem} (frame{'s' if len(ks) > 1 else ''} {_ranges(ks)})" for problem, ks in seen.items()]
+
+
+def _ranges(ks: list[int]) -> str:
+    """1, 2, 3, 5 -> "1-3, 5"."""
+    out: list[str] = []
+    start = prev = ks[0]
+    for k in [*ks[1:], None]:
+        if k is not None and k == prev + 1:
+            prev = k
+            continue
+        out.append(f"{start}-{prev}" if prev > start else f"{start}")
+        if k is not None:
+            start = prev = k
+    return ", ".join(out)
+
+
+#: attribute of an animation's player (``div.jac-anim``) drawn for the slides: what is wrong with the text of its
+#: frames (:func:`frame_text_problems`), "" when nothing; the decks' tests fail on anything else
+TEXT_PROBLEMS_ATTR = "data-text-problems"
+
+
+def _jac_anim(frames: list[str], text_px: str, interval: float, default_mode: str,
+              problems: list[str] | None = None) -> str:
+    """The player of ``frames``, marked with its smallest text in frame pixels (read by the decks' tests) and,
+    for the slides, what is wrong with its frames' text (:data:`TEXT_PROBLEMS_ATTR`)."""
     player = _strip_cdn(_player(frames, interval, default_mode))
-    return f'<div class="jac-anim" data-smallest-text-px="{text_px}">{player}</div>'
+    checked = "" if problems is None else f' {TEXT_PROBLEMS_ATTR}="{html.escape("; ".join(problems), quote=True)}"'
+    return f'<div class="jac-anim" data-smallest-text-px="{text_px}"{checked}>{player}</div>'
 
 
 @functools.cache
@@ -377,6 +433,11 @@ def _slide_player(anim: FrameSource, default_mode: str, colors: int, limit: floa
     fig.set_dpi(float(fig.dpi) * grow)
     fig.set_size_inches(width_in / grow, height_in / grow)
     anim.invalidate()
-    frames = _encoded_frames(anim, colors, limit, "slide frames", stacklevel=4)
+    texts: list[list[tuple[Any, str, Any]]] = []
+    frames = _encoded_frames(anim, colors, limit, "slide frames", stacklevel=4, texts=texts)
     text_px = min(smallest_text_px(fig), _moving_text_px(anim))
-    return _jac_anim(frames, f"{text_px:.2f}", anim.interval, default_mode)
+    problems = frame_text_problems(anim, texts)
+    if problems:
+        warnings.warn("animation_html: the text of the slides' frames overlaps or is cut off: "
+                      + "; ".join(problems), stacklevel=3)
+    return _jac_anim(frames, f"{text_px:.2f}", anim.interval, default_mode, problems)
