@@ -29,7 +29,7 @@ SLIDES_PDF_ARGS = $(if $(filter 0,$(SLIDES_PDF)),--no-pdf,$(if $(filter-out 1,$(
 #: animations included
 TEST_SLIDES_PDF := 05_geometric_jacobian
 
-.PHONY: help setup book site test test-site lint test-lib coverage test-js test-live test-notebooks test-browser test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
+.PHONY: help setup book site test test-site lint test-lib coverage test-js test-live test-notebooks test-browser test-pages test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
 help:
 	@echo "make book       build the book into _build/html"
@@ -146,13 +146,18 @@ test-notebooks: setup
 	$(PY) -m tools.to_ipynb _build/nbval
 	cd _build/nbval && ../../$(BIN)/pytest --nbval-lax -n 2 --dist loadscope -p no:cacheprovider -q .
 
-# the built site and the decks in Chromium: tests/browser, and the tests of tests/slides that open a deck (the
-# others run in test-lib), in one run on both cores (a module stays whole in one worker, with its browser)
-# (two runs: the decks' tests start their own Playwright, and one pytest process can hold only one)
+# the built site and the decks in Chromium: tests/browser (test-pages), and the tests of tests/slides that open a
+# deck (test-slides; the others run in test-lib), each run on both cores (a module stays whole in one worker, with
+# its browser). Two runs, because the decks' tests start their own Playwright and one pytest process can hold only
+# one; they run side by side, since their tests spend much of their time waiting on the browser: two runs of two
+# workers keep the two cores busier than one run after the other (each prints whole when it ends).
 # (the browser tests that need no built book are test-live's)
 test-browser: setup browser
+	$(MAKE) -j2 --output-sync=target test-pages test-slides
+
+# the built book's pages in Chromium (part of test-browser)
+test-pages: setup browser
 	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadfile $(addprefix --ignore=,$(BOOKLESS_BROWSER))
-	$(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadfile
 
 # The browser tests that need no built book: the live views on the test harness pages (numbers against the
 # library, keyboard, contrast in both modes) and in a real JupyterLab. In make test they run on the chain without
