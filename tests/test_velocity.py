@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from fp_bounds import solve_bound
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import jacobians as jac
 from jacobians import velocity as vel
-from jacobians.testing import random_chain, random_theta
+from jacobians.testing import chain_curvature, random_chain, random_theta
 
 RNG = np.random.default_rng(11)
 
@@ -71,7 +72,10 @@ def test_dls_tends_to_pinv_as_damping_goes_to_zero():
     ref = vel.pinv_rates(J, V)
     errs = [np.linalg.norm(vel.dls_rates(J, V, lam) - ref) for lam in (1e-1, 1e-2, 1e-3, 1e-4)]
     assert all(a > b for a, b in zip(errs[:-1], errs[1:], strict=True))
-    assert errs[-1] < 1e-6
+    # x_λ - x_0 = -Σ λ² / (σ_i (σ_i² + λ²)) (u_i·V) v_i for a full-row-rank J: at most λ² |V| / σ_min³,
+    # plus each solve's rounding (solve_bound, from the condition number)
+    s_min = np.linalg.svd(J, compute_uv=False)[-1]
+    assert errs[-1] <= 1e-8 * np.linalg.norm(V) / s_min**3 + solve_bound(J, V, ref) + solve_bound(J, V, ref, 1e-4)
     assert np.allclose(vel.dls_rates(J, V, 0.0), ref)
 
 
@@ -137,11 +141,23 @@ def test_resolved_rate_tracks_a_circle():
     assert np.allclose(out.thetas[0], theta0)
     # positions are the forward kinematics of the recorded joints
     assert np.allclose(out.positions, arm.fk(out.thetas)[:, :2, 3])
-    assert out.errors.max() < 1e-2
-    # Euler steps: halving dt halves the error (first order), so the error is the integrator's
-    path2, vels2 = _circle(arm, theta0, 0.3, 399, 0.005)
-    out2 = vel.resolved_rate(arm, theta0, path2, dt=0.005, target_velocities=vels2)
-    assert 0.4 < out2.errors.max() / out.errors.max() < 0.6
+    # the error is the integrator's: with J_v J_v⁺ = I each Euler step gives e' = (1 - K dt) e + r_d - r_p, r_d the
+    # path's own Taylor remainder (|p̈_d| dt² / 2 = radius w² dt² / 2) and r_p the arm's (D |Δ|₁² / 2,
+    # chain_curvature), so | |e'| - (1 - K dt)|e| | <= b_k at every step, and e_k <= B_k, B_{k+1} = (1 - K dt) B_k + b_k:
+    # O(dt), the bound for dt/2 about half the bound for dt
+    bounds = []
+    for N, dt_, run in ((200, 0.01, out), (399, 0.005, None)):
+        path_, vels_ = _circle(arm, theta0, 0.3, N, dt_)
+        w = 2 * np.pi / ((N - 1) * dt_)                 # the circle's angular rate (_circle)
+        run = run or vel.resolved_rate(arm, theta0, path_, dt=dt_, target_velocities=vels_)
+        B = run.errors[0]
+        for k in range(N - 1):
+            b = 0.3 * w**2 * dt_**2 / 2 + chain_curvature(arm) * np.abs(run.thetas[k + 1] - run.thetas[k]).sum() ** 2 / 2
+            assert abs(run.errors[k + 1] - (1 - 2.0 * dt_) * run.errors[k]) <= b + 1e-12 * (1 + np.abs(path_).max())
+            B = (1 - 2.0 * dt_) * B + b
+            assert run.errors[k + 1] <= B + 1e-12 * (1 + np.abs(path_).max())      # plus the rounding of p (TOL)
+        bounds.append(B)
+    assert bounds[1] < 0.55 * bounds[0] and bounds[0] < 0.05       # under 5 cm on a circle of radius 30 cm
     # the rates solve J_v qdot = v_d + K e at each step
     k = 50
     J_v = jac.geometric_jacobian(arm, out.thetas[k])[3:5]

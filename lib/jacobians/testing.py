@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from math import comb, factorial
 from typing import Any, TypeAlias
 
 import numpy as np
@@ -20,7 +21,7 @@ from .lie import _exp_se3, _exp_so3
 
 __all__ = ["random_rotation", "random_transform", "random_chain", "random_theta",
            "EPS", "TOL", "close", "within", "fd_tol", "fd2_tol", "root_tol", "ode_tol",
-           "pose_tol"]
+           "pose_tol", "chain_curvature", "clik_step_tol", "euler_step_tol", "taylor_tol"]
 
 #: What the ``rng`` arguments accept: a generator, a seed, or None for a fresh one.
 RngLike: TypeAlias = "np.random.Generator | int | None"
@@ -305,3 +306,159 @@ def pose_tol(T_d: ArrayLike, eps_omega: float, eps_v: float) -> float:
     size = float(eps_omega) + float(eps_v)
     row = float(np.sqrt(1.0 + np.sum(T_d[..., :3, 3] ** 2, axis=-1).max()))
     return row * size * float(np.exp(size)) + TOL * max(1.0, float(np.max(np.abs(T_d))))
+
+
+def chain_curvature(chain: SerialChain) -> float:
+    """D with ``|∂²p/∂θ_i∂θ_j| <= D`` for the tool point p of a revolute chain, at every configuration.
+
+    With the screw axes ``S_j'`` at θ (space frame), ``∂p/∂θ_j = [S_j'] p̃`` and, for
+    ``i <= j``, ``∂²p/∂θ_i∂θ_j = [S_i'][S_j'] p̃``: ``[S_j'] p̃`` is the free vector
+    ``w_j = ω_j × (p - q_j) + h_j ω_j`` (q_j on axis j, pitch h_j), and ``[S_i']`` turns
+    it into ``ω_i × w_j``, no longer than ``|w_j| <= |p - q_j| + |h_j|``. The
+    distance ``|p - q_j|`` is at most ``|q_{j+1} - q_j| + ... + |q_n - q_{n-1}| + |p - q_n|``,
+    and each term joins two points of one link (the axis points ``q_k``, ``q_{k+1}``
+    of link k, the tool and ``q_n`` of the last link), so it is the same at every
+    configuration: D is the largest of these sums plus the pitch, from the home
+    pose. Along a step Δ, ``|d²p/ds²| = |Σ Δ_i Δ_j ∂²p/∂θ_i∂θ_j| <= D |Δ|₁²``. A
+    prismatic joint stretches its link, so D would depend on θ: it is refused.
+
+    >>> import jacobians as jac
+    >>> chain_curvature(jac.robots.planar_2r(1.0, 0.5))      # the tip is 1.5 from the first axis
+    1.5
+    """
+    S = np.asarray(chain.screw_axes, dtype=float)
+    if any(t != "R" for t in chain.joint_types):
+        raise ValueError(f"chain_curvature needs revolute joints only, got {chain.joint_types!r}")
+    w, v = S[:3].T, S[3:].T
+    q = np.cross(w, v)                                   # the point of each axis nearest the origin, at home
+    pitch = np.abs(np.sum(w * v, axis=1))
+    tip = np.asarray(chain.home, dtype=float)[:3, 3]
+    hops = np.r_[np.linalg.norm(np.diff(q, axis=0), axis=1), np.linalg.norm(tip - q[-1])]
+    reach = np.cumsum(hops[::-1])[::-1]                  # reach[j] = |q_{j+1} - q_j| + ... + |p - q_n|
+    return float(np.max(reach + pitch))
+
+
+def clik_step_tol(chain: SerialChain, J: ArrayLike, delta: ArrayLike, e_o: float, w_d: float, k_dt: float,
+                  scale: float = 1.0, ops: float = 512.0) -> tuple[float, float]:
+    """Bounds ``(b_o, b_p)`` on how far one axis-angle CLIK step leaves the ideal ``(1 - K dt)`` contraction.
+
+    One step of ``ik.clik`` (pseudo-inverse, J the 6×n geometric Jacobian of full row
+    rank, so ``J Δ = (R R_dᵀ w_d + K dt e_o, Δp_d + K dt e_p)`` with ``w_d = log(R_{d,k+1} R_{d,k}ᵀ)``,
+    ``Δp_d = p_{d,k+1} - p_{d,k}`` the path's own increments, the default feed-forward
+    times dt) gives
+
+    * position: ``e_p' = p_d' - p(θ + Δ) = (1 - K dt) e_p - r_p``, r_p the Taylor remainder of
+      p along Δ: ``|r_p| <= D |Δ|₁² / 2`` (:func:`chain_curvature`);
+    * orientation: the joints turn the tool by ``Q = exp([J_ω Δ + c])``; the angular velocity
+      along the step varies by ``|ω'(s)| = |Σ_{i<j} Δ_iΔ_j ω_i × ω_j| <= |Δ|₁² / 2``, so
+      ``|c| <= |Δ|₁² / 4`` to second order. With ``X = R_d Rᵀ = exp([e_o])``,
+      ``X' = exp([w_d]) X exp(-[Xᵀw_d + K dt e_o + c]) = exp([w_d]) exp(-[w_d + K dt e_o + Xc]) X``,
+      and BCH gives ``X' = exp(-[K dt e_o + Xc + w_d × K dt e_o / 2 + ...]) exp([e_o])``. The
+      part along e_o leaves ``exp([(1 - K dt) e_o])`` exactly; the rest, of size
+      ``|c| + |w_d| K dt |e_o| / 2``, moves the log by at most ``(θ/2)/sin(θ/2)`` times
+      itself (the norm of the inverse Jacobian of SO(3)'s log at angle θ, here
+      ``θ = |e_o| + |Δ|₁ + |w_d|``).
+
+    The terms left out are of third order (``|Δ|₁³``, ``|w_d|² K dt |e_o|``); for
+    ``|Δ|₁, |w_d|, |e_o| <= 1/2`` they are below the second-order ones, so twice the
+    second-order bound holds (as in :func:`root_tol`); the position's bound is exact
+    Taylor, D holding at every configuration. Rounding: the errors are
+    computed to ``ops · EPS · max(1, scale)`` (scale: the size of the positions), and
+    the pseudo-inverse solve to ``κ(J)`` times that. Hence, in norms,
+    ``| |e_o'| - (1 - K dt)|e_o| | <= b_o`` and likewise for e_p with ``b_p``.
+
+    >>> import jacobians as jac
+    >>> arm = jac.robots.planar_2r(1.0, 0.5)
+    >>> b_o, b_p = clik_step_tol(arm, jac.geometric_jacobian(arm, [0.3, 1.0]), [0.01, -0.02], 0.0, 0.0, 0.2)
+    >>> round(b_p / 1e-4, 6)                       # 1.5 · 0.03² / 2: the rounding is 1e-12 of it
+    6.75
+    """
+    J = np.asarray(J, dtype=float)
+    d1 = float(np.sum(np.abs(np.asarray(delta, dtype=float))))
+    e_o, w_d, k_dt = abs(float(e_o)), abs(float(w_d)), float(k_dt)
+    if max(d1, w_d, e_o) > 0.5:
+        raise ValueError(f"clik_step_tol holds for steps, path increments and errors up to 0.5, got "
+                         f"|Δ|₁ = {d1:.3g}, |w_d| = {w_d:.3g}, |e_o| = {e_o:.3g}")
+    s = np.linalg.svd(J, compute_uv=False)
+    kappa = float(s[0] / s[-1]) if s[-1] > 0 else float("inf")
+    rounding = ops * EPS * (1.0 + kappa) * max(1.0, float(scale))
+    theta = e_o + d1 + w_d
+    log_gain = 1.0 if theta == 0 else (theta / 2) / np.sin(theta / 2)
+    b_p = chain_curvature(chain) * d1 * d1 / 2.0 + rounding
+    b_o = 2.0 * log_gain * (d1 * d1 / 4.0 + w_d * k_dt * e_o / 2.0) + rounding
+    return float(b_o), float(b_p)
+
+
+def euler_step_tol(delta: ArrayLike, margin: float, J_A: ArrayLike, ops: float = 512.0) -> float:
+    """Bound on ``| |e_φ'| - (1 - K dt)|e_φ| |`` for one Euler-angle CLIK step on a fixed target.
+
+    ``ik.clik(..., orientation="zyx" or "zyz")`` steps ``J_A Δ = K dt (e_φ, e_p)``, J_A the
+    analytic Jacobian (6×6, regular), and ``∂φ/∂θ = B(φ)⁻¹ J_ω`` is its first block, so
+    ``e_φ' = (1 - K dt) e_φ - r``, r the Taylor remainder of φ along Δ:
+    ``φ'' = ∂B⁻¹[φ'] ω + B⁻¹ ω'`` with ``|ω| <= |Δ|₁`` (unit axes), ``|ω'| <= |Δ|₁² / 2``
+    (:func:`clik_step_tol`). For ZYX (margin ``m = |cos β|``, β the pitch) and ZYZ
+    (``m = |sin β|``, β the middle angle) every row of B⁻¹ is ``(c_α t, s_α t, 1)``,
+    ``(-s_α, c_α, 0)`` or ``(c_α, s_α, 0) / m`` with ``|t| <= 1/m``: ``‖B⁻¹‖ <= b = sqrt(1 + 2/m²)``,
+    and its derivatives in α and β have Frobenius norms ``sqrt(2)/m`` and ``sqrt(2)/m²``:
+    ``‖∂B⁻¹‖ <= b' = 2/m²``. So ``|r| <= (b b' + b/2) |Δ|₁² / 2``, with m the smallest margin
+    along the step: the margin is 1-Lipschitz in β and β moves by at most ``b |Δ|₁``, so
+    ``m >= m₀ - b(m₀/2) |Δ|₁`` as long as that is at least ``m₀/2`` (else ValueError). The
+    solve adds ``ops · EPS · κ(J_A)`` (the angles are of order 1).
+
+    >>> round(euler_step_tol([0.01, 0.0, 0.0], 1.0, np.eye(6)) / 1e-4, 3)    # m = 1 - b(1/2) · 0.01 = 0.97
+    2.321
+    """
+    d1 = float(np.sum(np.abs(np.asarray(delta, dtype=float))))
+    m0 = float(margin)
+
+    def b_of(m: float) -> float:
+        return float(np.sqrt(1.0 + 2.0 / m**2))
+
+    m = m0 - b_of(m0 / 2) * d1
+    if not m >= m0 / 2:
+        raise ValueError(f"euler_step_tol: the step |Δ|₁ = {d1:.3g} may take the angles to their singularity "
+                         f"(margin {m0:.3g})")
+    b, db = b_of(m), 2.0 / m**2
+    s = np.linalg.svd(np.asarray(J_A, dtype=float), compute_uv=False)
+    kappa = float(s[0] / s[-1]) if s[-1] > 0 else float("inf")
+    return float((b * db + b / 2) * d1 * d1 / 2 + ops * EPS * (1.0 + kappa))
+
+
+def taylor_tol(g: Callable[[float], ArrayLike], h: float, order: int = 2, scale: float = 1.0,
+               ops: float = 512.0) -> float:
+    """Bound on ``max |g(h) - 2^k g(h/2)|`` for a g that vanishes to order k at 0 (a Taylor remainder).
+
+    If ``g(0) = g'(0) = ... = g^(k-1)(0) = 0``, Taylor's theorem gives
+    ``g(s) = s^k g_k + R(s)``, ``|R(s)| <= M s^(k+1) / (k+1)!``, ``M = max |g^(k+1)|`` on [0, h]; the
+    k-th order terms cancel in ``g(h) - 2^k g(h/2)``, which is at most
+    ``M h^(k+1) / (k+1)! · (1 + 2^k / 2^(k+1)) = 1.5 M h^(k+1) / (k+1)!``. This is the
+    check that a remainder is of order k, with the window derived instead of "the ratio of
+    two remainders is 2^k ± 10 %": a remainder of order k - 1 (a wrong first-order term)
+    leaves ``h^(k-1) |g_(k-1)| (1 - 2^k / 2^(k-1))``, far outside for any h where the bound is
+    small. M comes from the (k+1)-th central difference with the wider step ``H = 0.05``
+    at 0, h/2 and h, taken twice (as M3 in :func:`fd_tol`); each value of g is off by
+    ``ops · EPS · max(scale, |g|)`` (scale: the size of the terms g is a difference of),
+    so the combination by ``(1 + 2^k)`` times that.
+
+    >>> g = lambda s: np.sin(s) - s                          # of order 3 at 0
+    >>> bound = taylor_tol(g, 1e-2, order=3)               # 1.5 M 1e-8 / 24 + 9 · 512 EPS, M ~ max |sin| near 0
+    >>> g_bug = lambda s: g(s) + 1e-6 * s**2               # a second-order term of 1e-6: off by 1e-10
+    >>> within(g(1e-2), 8 * g(5e-3), bound), within(g_bug(1e-2), 8 * g_bug(5e-3), bound)
+    (True, False)
+    >>> within(np.sin(1e-2), 8 * np.sin(5e-3), taylor_tol(np.sin, 1e-2, order=3))   # sin is of order 1
+    False
+    """
+    h, k, H = float(h), int(order), 0.05
+    if k < 1:
+        raise ValueError(f"Expected order >= 1, got {order}")
+
+    def val(t: float) -> NDArray[np.float64]:
+        return np.asarray(g(t), dtype=float)
+
+    M = 0.0
+    for c in (0.0, h / 2, h):
+        # the (k+1)-th central difference: sum_j (-1)^j C(k+1, j) g(c + ((k+1)/2 - j) H) / H^(k+1)
+        d = sum((-1.0) ** j * comb(k + 1, j) * val(c + ((k + 1) / 2 - j) * H) for j in range(k + 2)) / H ** (k + 1)
+        M = max(M, 2.0 * float(np.max(np.abs(d), initial=0.0)))
+    F = max(float(scale), float(np.max(np.abs(val(h)), initial=0.0)), float(np.max(np.abs(val(h / 2)), initial=0.0)))
+    return float(1.5 * M * h ** (k + 1) / factorial(k + 1) + (1 + 2**k) * ops * EPS * F)

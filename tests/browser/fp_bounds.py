@@ -181,3 +181,21 @@ def compare_step(step: Step, reach: float, js_rate, js_position, js_sigma_min, t
         allowed = (step.dt * rate_abs + 2.0 * EPS * float(np.max(np.abs(theta)))) / theta_scale
         out["thetas"] = (scaled_err(js_theta_next, step.theta_next), max(TOL, allowed))
     return out
+
+
+def newton_step_bound(J, V, step, theta, scale):
+    """How far the library's and MR's Newton step θ + J⁺V from the same θ may differ (|·|_2).
+
+    J⁺V: the pseudo-inverse solve of a 6×6 system, bound from its condition number
+    (:func:`solve_bound`). V = log(T⁻¹T_d) comes from two
+    implementations of the matrix logarithm, fed the same T up to γ|T| per entry. For a
+    rotation error of angle φ the logarithm's derivative (the inverse of the left Jacobian
+    of SO(3), a normal matrix) has norm max(1, φ / (2 sin(φ/2))) <= π/2, and an angle
+    computed as arccos((tr R - 1)/2) adds 3γ / sin φ; the translation part
+    G⁻¹(ω) p adds as much again times |p| <= scale. So V's inputs make V accurate to
+    dv = 2 γ scale (π/2 + 3 / sin φ), and θ + step adds one rounding of each entry.
+    """
+    g = gamma(6, 6)
+    phi = float(np.linalg.norm(V[:3]))
+    dv = 2.0 * g * scale * (np.pi / 2 + 3.0 / max(np.sin(phi), EPS))
+    return solve_bound(J, V, step, 0.0, rcond=1e-15, dv=dv) + 2 * EPS * float(np.abs(theta).max())
