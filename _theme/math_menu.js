@@ -5,7 +5,8 @@
 // right-clicks it or double-clicks it, this loads the vendored MathJax with its
 // menu (show or copy the TeX, zoom, speech settings) and its explorer (arrow
 // keys walk through the formula and it is spoken), typesets that formula again
-// from its TeX (data-tex), and passes the reader's action on to it. Other
+// from its TeX (data-tex; as CommonHTML, whose fonts load then, where the page's
+// own formulas are SVG), and passes the reader's action on to it. Other
 // formulas follow when they are used. Everything comes from _static/mathjax.
 (function () {
   "use strict";

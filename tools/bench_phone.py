@@ -26,7 +26,8 @@ Targets (the course's): math visible within 8 s and live views ready within
 12 s on a chapter page; every first visit at most 2 MB.
 
 Give ``--site`` twice to compare two builds in one run (the machine's load
-changes from hour to hour, so a before/after pair is only fair in one run)::
+changes from hour to hour, so a before/after pair is only fair in one run; the
+sites take turns page by page, and the tables per site come at the end)::
 
     .venv/bin/python -m tools.bench_phone [--site _build/html] [--site /tmp/old-site] [--pages ...]
 """
@@ -201,24 +202,32 @@ def main(argv: list[str] | None = None) -> int:
         browser = pw.chromium.launch(executable_path=CHROMIUM, args=[
             "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
             "--disable-background-networking", "--disable-component-update", "--disable-sync"])
+        servers: list[tuple[http.server.ThreadingHTTPServer, str]] = []
         try:
-            for site in sites:
-                server, base = serve(site)
-                try:
+            servers.extend(serve(site) for site in sites)
+            # page by page, each site in turn: the machine's load drifts during a run, and a drift must not fall
+            # on one site's pages only
+            rows: dict[Path, list[str]] = {site: [] for site in sites}
+            for page in args.pages:
+                for site, (_, base) in zip(sites, servers, strict=True):
+                    try:
+                        r = visit(browser, base + page)
+                    except Exception as exc:  # a page that never loads is a result too: print it, go on
+                        row = f"{page:42s} did not load within {TIMEOUT_S} s: {str(exc).splitlines()[0]}"
+                    else:
+                        row = (f"{page:42s} {_s(r['dcl'])} {_s(r['lcp'])} {_s(r['math1'])} {_s(r['math'])} "
+                               f"{_s(r['live'])} {r['bytes'] / 1e6:7.3f}")
+                    rows[site].append(row)
+                    print(row if len(sites) == 1 else f"{row}  ({site})", flush=True)
+            if len(sites) > 1:
+                for site in sites:
                     print(f"\nsite {site}")
                     print(f"{'page':42s} {'DCL':>6s} {'LCP':>6s} {'math1':>6s} {'math':>6s} {'live':>6s} {'MB':>7s}")
-                    for page in args.pages:
-                        try:
-                            r = visit(browser, base + page)
-                        except Exception as exc:  # a page that never loads is a result too: print it, go on
-                            print(f"{page:42s} did not load within {TIMEOUT_S} s: {str(exc).splitlines()[0]}")
-                            continue
-                        print(f"{page:42s} {_s(r['dcl'])} {_s(r['lcp'])} {_s(r['math1'])} {_s(r['math'])} "
-                              f"{_s(r['live'])} {r['bytes'] / 1e6:7.3f}", flush=True)
-                finally:
-                    server.shutdown()
-                    server.server_close()
+                    print("\n".join(rows[site]))
         finally:
+            for server, _ in servers:
+                server.shutdown()
+                server.server_close()
             browser.close()
     return 0
 

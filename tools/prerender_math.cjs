@@ -5,20 +5,23 @@
 // Usage: node tools/prerender_math.cjs [--fragments <spec.json>] <static-dir> <macros-json> <page.html>...
 //
 // In each page, every Sphinx math element (<span class="math">\(..\)</span>,
-// <div class="math">\[..\]</div> or a bare \begin{env}..\end{env}) gets the
-// CommonHTML MathJax would write in the browser, with its hidden MathML for
-// screen readers (mjx-assistive-mml); the element keeps its TeX in data-tex
-// (the on-demand menu, _theme/math_menu.js, typesets it again from there).
-// The CSS of the characters the page uses goes into one <style> in its head
-// (not MathJax's own id, MJX-CHTML-styles: MathJax in the page would replace it),
-// the fonts are the vendored woff-v2 files under <static-dir>/mathjax. The
-// page's MathJax configuration and startup.js are removed. A TeX error stops
-// the run with the page and the formula.
+// <div class="math">\[..\]</div> or a bare \begin{env}..\end{env}) gets MathJax's SVG output, with its hidden
+// MathML for screen readers (mjx-assistive-mml); the element keeps its TeX in data-tex (the on-demand menu,
+// _theme/math_menu.js, typesets it again from there). SVG rather than CommonHTML: a formula drawn with paths needs
+// no font, so a page downloads none of MathJax's fonts (on a slow phone the first screen's math no longer waits
+// for them) and its HTML and fonts together weigh about a third less. The glyphs' paths are written once per
+// page (MathJax's global font cache: one hidden <svg id="MJX-SVG-global-cache"> at the start of the body), each
+// formula refers to them with <use>; the shapes are filled with currentColor, so they follow the text's colour
+// (dark mode). Sizes are in em of MathJax's font, as the CommonHTML output's were (see SVG.prototype.ex below).
+// The output's CSS goes into one <style> in the page's head (not MathJax's own id: MathJax in the page, loaded by
+// the menu, would replace it). <static-dir> is the site's _static (unused by the SVG output; kept so that the
+// callers stay as they were). The page's MathJax configuration and startup.js are removed. A TeX error stops the
+// run with the page and the formula.
 //
 // Fragments (--fragments): {"<page.html>": [{"src", "out", "key"}]}. For each entry, src is a JSON list of HTML
 // strings with math in \( \) and \[ \] (HTML-escaped TeX, as the library's statement_html writes it, for the
-// exercise pages' statements); string k is typeset with that page's MathJax document, so that the page's CSS
-// covers its characters, and written to <out>/<k>.js as window.__courseStatements["<key>/<k>"] = "<html>".
+// exercise pages' statements); string k is typeset with that page's MathJax document, so that the page's glyph
+// cache holds its glyphs, and written to <out>/<k>.js as window.__courseStatements["<key>/<k>"] = "<html>".
 //
 // Prints one JSON line per page: {"page", "math", "css"} (formulas, fragments' included; CSS bytes).
 "use strict";
@@ -27,7 +30,7 @@ const fs = require("fs");
 const path = require("path");
 const { mathjax } = require("mathjax-full/js/mathjax.js");
 const { TeX } = require("mathjax-full/js/input/tex.js");
-const { CHTML } = require("mathjax-full/js/output/chtml.js");
+const { SVG } = require("mathjax-full/js/output/svg.js");
 const { liteAdaptor } = require("mathjax-full/js/adaptors/liteAdaptor.js");
 const { RegisterHTMLHandler } = require("mathjax-full/js/handlers/html.js");
 const { AssistiveMmlHandler } = require("mathjax-full/js/a11y/assistive-mml.js");
@@ -38,6 +41,13 @@ require("mathjax-full/js/input/tex/AllPackages.js");
 const PACKAGES = ["base", "ams", "newcommand", "configmacros", "noundefined", "action", "amscd", "bbox",
   "boldsymbol", "braket", "cancel", "cases", "centernot", "color", "empheq", "enclose", "extpfeil",
   "gensymb", "html", "mathtools", "upgreek", "unicode", "verb"];
+
+// The SVG output gives its sizes in ex of the text around a formula, which MathJax in a browser measures and
+// Node cannot (the page's ex is not MathJax's); in em instead (MathJax's font at the text's size, as the
+// CommonHTML output drew it), a formula has the same size on the page whatever the page's font.
+SVG.prototype.ex = function (m) {
+  return Math.abs(m) < 0.001 ? "0" : m.toFixed(3).replace(/\.?0+$/, "") + "em";
+};
 
 const adaptor = liteAdaptor();
 AssistiveMmlHandler(RegisterHTMLHandler(adaptor));
@@ -70,7 +80,7 @@ function source(tag, text) {
 
 // What an earlier run wrote: the typeset formulas (back to their TeX), the page's math CSS and menu settings
 const TYPESET = /<(span|div)( class="[^"]*"[^>]*?) data-tex="([^"]*)">(<span class="eqno">[\s\S]*?<\/span>)?<mjx-container[\s\S]*?<\/mjx-container><\/\1>/g;
-const OURS = /<style id="course-math-styles">[\s\S]*?<\/style>\n?|<script type="application\/json" id="math-menu-config">[\s\S]*?<\/script>\n?/g;
+const OURS = /<style id="course-math-styles">[\s\S]*?<\/style>\n?|<script type="application\/json" id="math-menu-config">[\s\S]*?<\/script>\n?|<svg [^>]*id="MJX-SVG-global-cache"[\s\S]*?<\/svg>\n?/g;
 
 /** The page as Sphinx wrote it, if an earlier run typeset it (so that a page can be typeset again). */
 function untypeset(html) {
@@ -116,13 +126,11 @@ function renderFragments(list, doc, errors) {
   return count;
 }
 
-function render(page, staticDir, macros, fragments) {
+function render(page, macros, fragments) {
   let html = untypeset(fs.readFileSync(page, "utf8"));
-  const fontURL = path.relative(path.dirname(page), path.join(staticDir, "mathjax/es5/output/chtml/fonts/woff-v2"))
-    .split(path.sep).join("/");
   const doc = mathjax.document("", {
     InputJax: new TeX({ packages: PACKAGES, macros }),
-    OutputJax: new CHTML({ fontURL, adaptiveCSS: true }),
+    OutputJax: new SVG({ fontCache: "global" }),
   });
   let count = 0;
   const errors = [];
@@ -154,6 +162,9 @@ function render(page, staticDir, macros, fragments) {
     const style = adaptor.textContent(doc.outputJax.styleSheet(doc));
     css = style.length;
     const menu = JSON.stringify({ macros }).replace(/</g, "\\u003c");
+    // the glyphs' paths, before the first formula that uses them (the parser shows each formula as it reads it)
+    const cache = adaptor.outerHTML(doc.outputJax.pageElements(doc));
+    html = html.replace(/<body[^>]*>/, (open) => `${open}${cache}\n`);
     html = html.replace("</head>", `<style id="course-math-styles">\n${style}</style>\n`
       + `<script type="application/json" id="math-menu-config">${menu}</script>\n</head>`);
   }
@@ -175,7 +186,7 @@ function main(argv) {
     return 2;
   }
   const macros = JSON.parse(macrosJson);
-  for (const page of pages) process.stdout.write(JSON.stringify(render(page, staticDir, macros, fragments[page])) + "\n");
+  for (const page of pages) process.stdout.write(JSON.stringify(render(page, macros, fragments[page])) + "\n");
   return 0;
 }
 

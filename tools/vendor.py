@@ -12,7 +12,7 @@ and that every copied tree is used):
   package), so there is no widget manager and no require.js;
   ``_ext/offline_fixes.py`` stops the build if a page ever shows a Jupyter
   widget. The book's pages load no MathJax: their math is typeset at build
-  time (``_ext/math_prerender.py``) and uses only its fonts. The rest is
+  time (``_ext/math_prerender.py``, SVG: no font). MathJax is
   loaded when a reader asks for MathJax's menu or explorer
   (``_theme/math_menu.js``) and by the decks.
 * the decks vendor nothing: they are a Sphinx build of the same sources
@@ -72,7 +72,8 @@ class Package:
 #: (_config.yml) and ``_theme/math_menu.js`` list them: the start-up loader, the
 #: core, TeX input with the packages the pages use (others, e.g. \\boldsymbol or
 #: \\cancel, autoload from input/tex/extensions), CommonHTML output with its TeX
-#: font and woff-v2 files (the fonts of the math typeset at build time too), the
+#: font and woff-v2 files (for the formulas the menu typesets again; the math
+#: typeset at build time is SVG and needs no font), the
 #: hidden MathML that screen readers read, and, loaded on demand, the menu and
 #: the explorer (speech: the speech rule engine with its English rules, and the
 #: MathML input that its semantic enrichment reads). Not the

@@ -89,8 +89,8 @@ _RUN = """async (tags) => {
 }"""
 
 
-# MathJax's CHTML output draws each formula twice: a box of glyphs for the eye (``mjx-math``, aria-hidden; each
-# character is CSS ``::before`` content, so the box holds elements but no text) and MathML for assistive
+# MathJax draws each formula twice: a box of glyphs for the eye (the SVG output's ``svg``, or the CHTML output's
+# ``mjx-math`` (the decks'), aria-hidden; paths, or CSS ``::before`` content: elements but no text) and MathML for assistive
 # technology (``mjx-assistive-mml``). On a chapter the glyph boxes are half the page's elements (ch. 6: about
 # 10,000 of 20,500), and axe-core's cost grows with the element count, not with the rules asked for (one rule
 # takes about as long as all of them). So before axe runs, each glyph box is emptied (kept, with its own size, so
@@ -102,7 +102,7 @@ _HOLLOW_GLYPH_BOXES = """() => {
   const FOCUSABLE = 'a[href], area[href], button, input, select, textarea, iframe, object, embed, summary, '
     + '[tabindex], [contenteditable]:not([contenteditable="false"]), audio[controls], video[controls]';
   const bad = [];
-  const boxes = Array.from(document.querySelectorAll('mjx-container > mjx-math'));
+  const boxes = Array.from(document.querySelectorAll('mjx-container > mjx-math, mjx-container > svg'));
   const empty = boxes.filter((m) => {
     const why = [];
     if (m.getAttribute('aria-hidden') !== 'true') why.push('not aria-hidden');

@@ -4,8 +4,9 @@ One chapter page is opened once; every request it makes must go to the local
 server (the book works offline). Checked on it, in turn:
 
 * before any action: every formula of the page is typeset (an
-  ``mjx-container`` with its hidden MathML, ``mjx-assistive-mml``, for screen
-  readers), and the page requested no MathJax script;
+  ``mjx-container`` of MathJax's SVG output with its hidden MathML,
+  ``mjx-assistive-mml``, for screen readers), each glyph it draws is a path of
+  the page's glyph cache, and the page requested no MathJax script nor font;
 * the reader tabs to a formula: MathJax with its menu and explorer is loaded
   from ``_static/mathjax`` (no other address), and the formula is typeset
   again from its TeX;
@@ -54,17 +55,25 @@ def test_math_is_typeset_in_the_page_without_mathjax(math_page):
     counts = page.evaluate("""() => {
       const boxes = Array.from(document.querySelectorAll('span.math, div.math'));
       return {boxes: boxes.length, tex: boxes.filter(b => b.dataset.tex).length,
-              typeset: boxes.filter(b => b.querySelector(':scope > mjx-container[jax="CHTML"]')).length,
+              typeset: boxes.filter(b => b.querySelector(':scope > mjx-container[jax="SVG"]')).length,
               mathml: boxes.filter(b => b.querySelector('mjx-assistive-mml > math')).length,
               focusable: boxes.filter(b => b.closest('a, button, summary, label')
                                            || b.querySelector(':scope > mjx-container[tabindex="0"]')).length,
-              mathjax: !!window.MathJax};
+              mathjax: !!window.MathJax,
+              // every glyph a formula draws is a path of the page's glyph cache
+              glyphs: document.querySelectorAll('mjx-container use').length,
+              lost: Array.from(document.querySelectorAll('mjx-container use')).filter(u => {
+                const ref = u.getAttribute('href') || u.getAttribute('xlink:href') || '';
+                return !(ref.startsWith('#') && document.getElementById(ref.slice(1)) instanceof SVGPathElement);
+              }).length};
     }""")
     assert counts["boxes"] > 20, counts
     assert counts["tex"] == counts["typeset"] == counts["mathml"] == counts["focusable"] == counts["boxes"], counts
     assert not counts["mathjax"], "the page loaded MathJax before anyone asked for its menu"
     assert not [r for r in requests if r.endswith(".js") and "/mathjax/" in r], requests
-    assert any(r.endswith(".woff") and "/mathjax/" in r for r in requests), "no MathJax font was loaded"
+    # the SVG output draws with paths: no MathJax font is needed until a reader asks for the menu
+    assert not [r for r in requests if "/mathjax/" in r], requests
+    assert counts["glyphs"] > 100 and counts["lost"] == 0, counts
     assert not foreign and not failed, foreign + failed
 
 
