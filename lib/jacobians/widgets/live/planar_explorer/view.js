@@ -255,6 +255,11 @@ function buildControls(side, { n, limit, velScale }, model, uid) {
   html("th", { scope: "col" }, hr, "");
   for (let i = 0; i < n; i++) html("th", { scope: "col", style: `color:${ink(columnColor(i))}` }, hr, `col ${i + 1}`);
   const tbody = html("tbody", {}, table);
+  // the rows of both kinds, built once: update puts in the tbody those of the Jacobian shown
+  const rows = { twist: tableRows(TWIST_ROWS, n), analytic: tableRows(ANALYTIC_ROWS, n) };
+  // the caption of each Jacobian, built once: update puts in the caption that of the Jacobian shown
+  const captions = Object.fromEntries(FRAMES.map((f) => [f, [...sub(html("span", {}), SYMBOLS[f]).childNodes,
+    f === "analytic" ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${f} Jacobian`]]));
   const status = html("p", { class: "jl-status" }, side);
   const say = announcer(side);  // the key numbers, once the reader stops moving a control
   sub(status, ["σ", "min"]);
@@ -264,26 +269,29 @@ function buildControls(side, { n, limit, velScale }, model, uid) {
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   const legend = html("ul", { class: "jl-legend" }, side);
   const legendCols = html("li", {}, legend);
+  for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
+  const legendText = side.ownerDocument.createTextNode("");
+  legendCols.append(legendText);
   legendItem(legend, PALETTE.velocity, ["velocity ellipse of J", ["", "v"], `: ‖θ̇‖ = 1 (×${velScale} s)`]);
   const forceItem = legendItem(legend, PALETTE.force, [""], true);
   legendItem(legend, PALETTE.muted, ["axes of {s} and {b}; drag a joint or the dashed ring at the tool"]);
-  return { sliders, values, play, sweepSel, select, caption, tbody, sigmaText, say, banner, legendCols, forceItem };
+  return { sliders, values, play, sweepSel, select, caption, captions, tbody, rows, sigmaText, say, banner, legendText, forceItem };
 }
 
 /** @typedef {ReturnType<typeof buildScene> & ReturnType<typeof buildControls> & {o: Options}} Parts */
 
 /**
- * The table's rows for these labels (the rows change between the twist's six and the analytic Jacobian's three).
- * @param {HTMLTableSectionElement} tbody @param {ReadonlyArray<SubText>} labels @param {number} n
- * @returns {HTMLTableCellElement[][]}
+ * The table's rows for these labels, not yet in the table (the twist's six, or the analytic Jacobian's three).
+ * @param {ReadonlyArray<SubText>} labels @param {number} n
+ * @returns {{trs: HTMLTableRowElement[], cells: HTMLTableCellElement[][]}}
  */
-function tableRows(tbody, labels, n) {
-  tbody.textContent = "";
-  return labels.map((lab) => {
-    const tr = html("tr", {}, tbody);
+function tableRows(labels, n) {
+  const trs = labels.map((lab) => {
+    const tr = html("tr", {});
     sub(html("th", { scope: "row" }, tr), lab);
-    return Array.from({ length: n }, () => html("td", {}, tr, ""));
+    return tr;
   });
+  return { trs, cells: trs.map((tr) => Array.from({ length: n }, () => html("td", {}, tr, ""))) };
 }
 
 /** θ from the model, a number a joint (0 for what is not one). @param {Model} model @param {number} n @returns {Vec} */
@@ -300,8 +308,7 @@ function readFrame(model) {
 /**
  * The picture and the numbers for θ and the frame (update); `shown` is what was drawn last, and becomes this.
  * Returns what the view shows.
- * @param {Parts} parts @param {Vec} th @param {Frame} frame @param {PlanarState & {cells?: HTMLTableCellElement[][],
- *   rowsFor?: ReadonlyArray<SubText>}} shown
+ * @param {Parts} parts @param {Vec} th @param {Frame} frame @param {PlanarState} shown
  */
 function update(parts, th, frame, shown) {
   const { chain, n, reach, singTol, forceScale, forceClip, L, head, tiny } = parts.o;
@@ -373,24 +380,16 @@ function update(parts, th, frame, shown) {
     banner.style.borderColor = PALETTE[level];
   }
   // numbers
-  const labels = frame === "analytic" ? ANALYTIC_ROWS : TWIST_ROWS;
-  if (shown.rowsFor !== labels) {
-    shown.cells = tableRows(parts.tbody, labels, n);
-    shown.rowsFor = labels;
-  }
-  const cells = /** @type {HTMLTableCellElement[][]} */ (shown.cells);
+  const { trs, cells } = frame === "analytic" ? parts.rows.analytic : parts.rows.twist;
   if (frame !== shown.frame) {
-    const { caption, legendCols } = parts;
-    caption.textContent = "";
-    sub(caption, SYMBOLS[frame]).append(frame === "analytic"
-      ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${frame} Jacobian`);
-    legendCols.textContent = "";
-    for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
-    legendCols.append(frame === "space" ? "linear parts of the columns, at the origin of {s}"
+    const { caption, captions, legendText, tbody } = parts;
+    if (tbody.firstChild !== trs[0]) tbody.replaceChildren(...trs); // the rows of this Jacobian, built in build
+    caption.replaceChildren(...captions[frame]);
+    setText(legendText, frame === "space" ? "linear parts of the columns, at the origin of {s}"
       : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
         : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
   }
-  for (let r = 0; r < labels.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
+  for (let r = 0; r < cells.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
   for (let i = 0; i < n; i++) showAngle(parts.values[i], parts.sliders[i], th[i], th[i]);
   if (parts.select.value !== frame) parts.select.value = frame;
   Object.assign(shown, { theta: th, frame, J, sigmaMin: s, level, force: forceState });
