@@ -306,13 +306,62 @@ function readFrame(model) {
 }
 
 /**
+ * The force ellipse of J_v at the tool (update): 1/σ_i along the directions of J_v's singular vectors (Infinity at a
+ * singularity), drawn ×forceScale and clipped at forceClip, a dotted line where it is clipped, and its legend.
+ * Returns "inf", "clipped" or null.
+ * @param {Parts} parts @param {number[]} tip @param {number[][]} Jv
+ */
+function updateForce(parts, tip, Jv) {
+  const { reach, forceScale, forceClip } = parts.o;
+  const { force, clipLine, forceItem } = parts;
+  const f = forceEllipsoid(Jv);
+  const drawn = f.axes.map((a) => Math.min(a * forceScale, forceClip));
+  const clipped = f.axes.map((a) => !(a * forceScale <= forceClip));
+  setEllipse(force, tip, drawn[0], drawn[1], f.directions, 1e-4 * reach);
+  /** @type {string[]} */
+  const seg = [];
+  clipped.forEach((c, i) => {
+    if (!c) return;
+    const u = [f.directions[0][i], f.directions[1][i]];
+    seg.push(`${tip[0] - forceClip * u[0]},${tip[1] - forceClip * u[1]}`, `${tip[0] + forceClip * u[0]},${tip[1] + forceClip * u[1]}`);
+  });
+  clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
+  clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
+  const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
+  setText(/** @type {ChildNode} */ (forceItem.lastChild), forceState === "inf"
+    ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
+    : forceState === "clipped"
+      ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
+      : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
+  return forceState;
+}
+
+/**
+ * The table of J, its caption and the legend of the columns (update): the rows and caption of the frame's Jacobian
+ * (built in build) put in when the frame changed, then its numbers.
+ * @param {Parts} parts @param {Frame} frame @param {Mat} J @param {PlanarState} shown
+ */
+function updateNumbers(parts, frame, J, shown) {
+  const { trs, cells } = frame === "analytic" ? parts.rows.analytic : parts.rows.twist;
+  if (frame !== shown.frame) {
+    const { caption, captions, legendText, tbody } = parts;
+    if (tbody.firstChild !== trs[0]) tbody.replaceChildren(...trs);
+    caption.replaceChildren(...captions[frame]);
+    setText(legendText, frame === "space" ? "linear parts of the columns, at the origin of {s}"
+      : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
+        : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
+  }
+  for (let r = 0; r < cells.length; r++) for (let i = 0; i < parts.o.n; i++) setText(cells[r][i], fixed(J[r][i]));
+}
+
+/**
  * The picture and the numbers for θ and the frame (update); `shown` is what was drawn last, and becomes this.
  * Returns what the view shows.
  * @param {Parts} parts @param {Vec} th @param {Frame} frame @param {PlanarState} shown
  */
 function update(parts, th, frame, shown) {
-  const { chain, n, reach, singTol, forceScale, forceClip, L, head, tiny } = parts.o;
-  const { link, joints, tool, handle, bx, by, cols, ellipse, force, clipLine, forceItem, sigmaText, say, banner } = parts;
+  const { chain, n, reach, singTol, L, head, tiny } = parts.o;
+  const { link, joints, tool, handle, bx, by, cols, ellipse, sigmaText, say, banner } = parts;
   const e = evaluate(chain, th);
   const J = frame === "space" ? e.Js : frame === "body" ? e.Jb : frame === "geometric" ? e.Jg
     : planarAnalyticJacobian(chain, th);
@@ -335,26 +384,7 @@ function update(parts, th, frame, shown) {
   const Jv = [e.Jg[3], e.Jg[4]];
   const { axes, directions } = velocityEllipsoid(Jv);
   setEllipse(ellipse, tip, axes[0] * parts.o.velScale, axes[1] * parts.o.velScale, directions, 1e-4 * reach);
-  // force ellipse: 1/σ_i along the same directions (Infinity at a singularity), drawn ×forceScale, clipped
-  const f = forceEllipsoid(Jv);
-  const drawn = f.axes.map((a) => Math.min(a * forceScale, forceClip));
-  const clipped = f.axes.map((a) => !(a * forceScale <= forceClip));
-  setEllipse(force, tip, drawn[0], drawn[1], f.directions, 1e-4 * reach);
-  /** @type {string[]} */
-  const seg = [];
-  clipped.forEach((c, i) => {
-    if (!c) return;
-    const u = [f.directions[0][i], f.directions[1][i]];
-    seg.push(`${tip[0] - forceClip * u[0]},${tip[1] - forceClip * u[1]}`, `${tip[0] + forceClip * u[0]},${tip[1] + forceClip * u[1]}`);
-  });
-  clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
-  clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
-  const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
-  setText(/** @type {ChildNode} */ (forceItem.lastChild), forceState === "inf"
-    ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
-    : forceState === "clipped"
-      ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
-      : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
+  const forceState = updateForce(parts, tip, Jv); // 1/σ_i along the same directions
   const s = Math.max(axes[1], 0);
   /** @type {"ok" | "warning" | "singular"} */
   let level;
@@ -379,17 +409,7 @@ function update(parts, th, frame, shown) {
     banner.hidden = level === "ok";
     banner.style.borderColor = PALETTE[level];
   }
-  // numbers
-  const { trs, cells } = frame === "analytic" ? parts.rows.analytic : parts.rows.twist;
-  if (frame !== shown.frame) {
-    const { caption, captions, legendText, tbody } = parts;
-    if (tbody.firstChild !== trs[0]) tbody.replaceChildren(...trs); // the rows of this Jacobian, built in build
-    caption.replaceChildren(...captions[frame]);
-    setText(legendText, frame === "space" ? "linear parts of the columns, at the origin of {s}"
-      : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
-        : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
-  }
-  for (let r = 0; r < cells.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
+  updateNumbers(parts, frame, J, shown);
   for (let i = 0; i < n; i++) showAngle(parts.values[i], parts.sliders[i], th[i], th[i]);
   if (parts.select.value !== frame) parts.select.value = frame;
   Object.assign(shown, { theta: th, frame, J, sigmaMin: s, level, force: forceState });
