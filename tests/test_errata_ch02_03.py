@@ -266,7 +266,7 @@ def test_ch03_animation_arrows_inside():
     The live view (story ``body_columns``) that replaced it has a right panel that holds every arrow."""
     anim = section(CH03, "ch03-animation")
     assert "{live-view} story" in anim and ":story: body_columns" in anim
-    from jacobians.widgets.live import story_model, story_theta, story_times
+    from course.stories import story_model, story_theta, story_times
 
     model = story_model("body_columns")
     xr0 = model["box_right"][0]

@@ -1,4 +1,4 @@
-"""jacobians.widgets.live: the story models (chapters 1, 3, 7), their motion θ(t), and StoryView."""
+"""course.stories: the story models (chapters 1, 3, 7) on jacobians.widgets.live.story: their motion θ(t), and StoryView."""
 
 from __future__ import annotations
 
@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 
 import jacobians as jac
+from course.stories import STORIES, StoryView, story_model, story_theta, story_theta_dot, story_times
 from jacobians.testing import close, fd_tol, within
-from jacobians.widgets.live import MODELS, STORIES, StoryView, story_model, story_theta, story_theta_dot, story_times
+from jacobians.widgets.live import MODELS
 
 
 @pytest.mark.parametrize("story", STORIES)
@@ -65,3 +66,20 @@ def test_story_view_widget_frame_and_theta():
     assert w.t == story_times(m)[10]
     assert close(w.theta, story_theta(m, story_times(m)[10]))
     assert close(w.chain.fk(w.theta), jac.robots.planar_3r(1.0, 0.8, 0.5).fk(w.theta))
+
+
+def test_the_library_holds_no_story_and_its_drawings_are_the_views():
+    """The stories are the course's: the library registers none; each names a drawing of story/view.js."""
+    import re
+    from pathlib import Path
+
+    from jacobians.widgets.live.story import DRAWINGS, register_story
+
+    assert {build.__module__ for build in STORIES.values()} == {"course.stories"}  # every story is the course's
+    assert sorted(STORIES) == sorted(DRAWINGS)
+    view = (Path(__file__).resolve().parents[1] / "lib/jacobians/widgets/live/story/view.js").read_text(encoding="utf-8")
+    table = re.search(r"export const DRAWINGS = \{([^}]*)\}", view)
+    assert table is not None
+    assert sorted(re.findall(r"(\w+):", table.group(1))) == sorted(DRAWINGS)
+    with pytest.raises(ValueError, match="Expected a story drawn by story/view.js"):
+        register_story("spin")

@@ -99,8 +99,8 @@ BENCH_JS = """({S, M, n, seed, redraw}) => {
 }"""
 
 
-VIEW_JS = """({view, model, n, kind, seed}) => {
-  window.mountView(view, model);
+VIEW_JS = """async ({view, model, n, kind, seed}) => {
+  await window.mountView(view, model);
   const el = document.getElementById("host");
   let s = seed >>> 0;
   const rand = () => { s = (1664525 * s + 1013904223) >>> 0; return s / 4294967296; };
@@ -211,7 +211,7 @@ def run(n: int) -> dict[str, Any]:
                      ("resolved_rate: step", "resolved_rate", resolved_rate_model(), "step"),
                      ("resolved_rate: damping (new run)", "resolved_rate",
                       resolved_rate_model(method="dls"), "damping")]
-            from jacobians.widgets.live import STORIES, story_model
+            from course.stories import STORIES, story_model
 
             cases += [(f"story {s}: time slider", "story", story_model(s), "story") for s in STORIES]
             for label, view, model, kind in cases:

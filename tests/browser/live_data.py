@@ -27,3 +27,26 @@ def with_data(body: str) -> str:
 def live_data(el: Any) -> dict[str, Any]:
     """The view's data-* attributes, parsed, from a Playwright element handle."""
     return el.evaluate(DATA_JS)  # type: ignore[no-any-return]
+
+
+#: (el) => what a view shows, as a view's spec's ``check`` reads it (``jacobians.widgets.live._base.Shown``): its
+#: data-* keys (``view``, ``theta``, ``step``, ...), ``model`` (data-model), ``state`` (the numbers it drew,
+#: ``el.jacLive``, its DOM references left out), ``tables`` (each table's text rows by its last class) and ``text``
+SHOWN_JS = with_data("""(() => {
+  const tables = {};
+  for (const t of el.querySelectorAll("table")) {
+    tables[t.classList[t.classList.length - 1] || "table"] = [...t.querySelectorAll("tbody tr")]
+      .map((tr) => [...tr.querySelectorAll("td")].map((c) => c.textContent));
+  }
+  const state = {};
+  for (const [k, v] of Object.entries(el.jacLive || {})) {
+    try { state[k] = JSON.parse(JSON.stringify(v) ?? "null"); } catch { /* a DOM reference: not a number shown */ }
+  }
+  return { ...data, model: JSON.parse(el.dataset.model || "null"), state, tables, text: el.innerText,
+    markup: el.innerHTML };
+})()""")
+
+
+def shown(el: Any) -> dict[str, Any]:
+    """What the view shows (``SHOWN_JS``), from a Playwright element handle: what a spec's ``check`` takes."""
+    return el.evaluate(SHOWN_JS)  # type: ignore[no-any-return]

@@ -15,9 +15,9 @@ import numpy as np
 from live_data import with_data
 
 import jacobians as jac
-from jacobians.widgets.live import story_theta, story_theta_dot, story_times
+from jacobians.widgets.live.story import TOL, story_state, story_times
+from jacobians.widgets.live.story import largest_difference as story_difference
 
-TOL = 1e-12
 HALF_ULP = 0.005 + 1e-9  # the table shows 2 decimals
 
 # The view's state (every number it drew) and the drawn SVG, read at once.
@@ -48,32 +48,13 @@ def chain_of(model: dict[str, Any]) -> jac.SerialChain:
 
 
 def library_state(model: dict[str, Any], chain: jac.SerialChain, t: float) -> dict[str, np.ndarray]:
-    """What the view must show at time t, computed by the library."""
-    th = story_theta(model, t)
-    T = chain.fk(th)
-    out = {"theta": th, "p": T[:2, 3], "xb": T[:2, 0], "yb": T[:2, 1], "points": chain.joint_positions(th)[:, :2]}
-    if model["story"] == "body_columns":
-        vb = jac.body_jacobian(chain, th)[3:5]
-        out["vb"] = vb.T
-        out["vs"] = (T[:2, :2] @ vb).T
-    else:
-        qd = story_theta_dot(model, t) if model["story"] == "fixed_axis" else np.asarray(model["theta_dot"])
-        Vs = jac.space_jacobian(chain, th) @ qd
-        Vb = jac.body_jacobian(chain, th) @ qd
-        out.update(thetaDot=qd, omegaS=Vs[:3], vS=Vs[3:], omegaB=Vb[:3], vB=Vb[3:],
-                   pDot=(jac.geometric_jacobian(chain, th) @ qd)[3:])
-    return out
+    """What the view must show at time t, computed by the library (``story_state``; ``chain`` is the model's)."""
+    return story_state(model, t)
 
 
 def largest_difference(model: dict[str, Any], chain: jac.SerialChain, got: dict[str, Any]) -> float:
     """max over the state's arrays of |js - lib| / max(1, max |lib|)."""
-    want = library_state(model, chain, got["t"])
-    worst = 0.0
-    for k, v in want.items():
-        g = np.asarray(got[k], dtype=float)
-        assert g.shape == v.shape, (k, g.shape, v.shape)
-        worst = max(worst, float(np.abs(g - v).max() / max(1.0, np.abs(v).max())))
-    return worst
+    return story_difference(model, got)
 
 
 def _number(cell: str) -> float:

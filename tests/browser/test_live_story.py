@@ -20,7 +20,7 @@ import story_views as sv
 from live_data import DATA_JS, live_data, with_data
 from test_live_views import FIT_JS
 
-from jacobians.widgets.live import STORIES, story_model, story_times
+from course.stories import STORIES, story_model, story_times
 
 ROOT = Path(__file__).resolve().parents[2]
 N_TIMES = 200

@@ -24,22 +24,15 @@ import math
 from pathlib import Path
 
 import bookcheck
-import live_views
 import pytest
-from live_data import DATA_JS
+from live_data import DATA_JS, SHOWN_JS
 
-from jacobians.widgets import live_spatial as spatial
-from jacobians.widgets.live import story_model
+from jacobians.widgets.live import VIEWS
 
 ROOT = Path(__file__).resolve().parents[2]
 
-MODELS = [
-    ["v-planar", "planar_explorer", live_views.planar_model("planar_3r", [0.5, 1.2, -0.8], "space")],
-    ["v-rate", "resolved_rate", live_views.resolved_rate_model("planar_2r")],
-    ["v-story", "story", story_model("three_velocities")],
-    ["v-columns", "columns_explorer", spatial.columns_model(column=3)],
-    ["v-gimbal", "gimbal_lock", spatial.gimbal_model()],
-]
+#: [host id, view, model]: every registered view, with its spec's example options
+MODELS = [[f"v-{name.replace('_', '-')}", name, spec.model_from_options(spec.example)] for name, spec in VIEWS.items()]
 
 CONTRAST_JS = r"""(el) => {
   const parse = (s) => {
@@ -159,18 +152,19 @@ def test_every_view_writes_the_same_data_keys(themed):
     """One contract for what a view shows on its host element (AUTHORING.md, "Adding a live view"): the same
     keys in every view, read by every test through live_data.DATA_JS, with each view's own keys beside them."""
     page, errors = themed
-    own = {"planar_explorer": {"frame", "playing"}, "resolved_rate": {"step", "playing"},
-           "story": {"story", "step", "playing"}, "columns_explorer": {"column", "moved", "changedS", "changedB"},
-           "gimbal_lock": {"wrist", "rep"}}
-    with_level = {"planar_explorer", "resolved_rate", "gimbal_lock"}
     for view_id, view, model in MODELS:
         got = page.eval_on_selector(f"#{view_id}", DATA_JS)
-        common = {"view", "ready", "theta", "lmSuppressShortcuts"} | ({"level"} if view in with_level else set())
-        assert set(got) == common | own[view], f"{view}: {sorted(got)}"
+        common = {"view", "ready", "theta", "lmSuppressShortcuts"}
+        assert set(got) == common | VIEWS[view].data_keys, f"{view}: {sorted(got)}"  # its own keys: the spec's
         assert got["view"] == view and got["ready"] == 1
-        n = len(model["wrists"][model["wrist"]]["S"][0]) if view == "gimbal_lock" else len(model["S"][0])
+        # the joints of the arm shown: the model's screw axes (a view with several arms: the one shown)
+        S = model["S"] if "S" in model else model["wrists"][model["wrist"]]["S"]
+        n = len(S[0])
         theta = got["theta"]
         assert len(theta) == n and all(isinstance(t, (int, float)) and math.isfinite(t) for t in theta), theta
         assert got.get("level", "ok") in {"ok", "warning", "singular", "wrist"}
         assert got.get("playing", 0) == 0 and isinstance(got.get("step", 0), int)
+        check = VIEWS[view].check
+        assert check is not None, f"{view}: its spec has no check"
+        check(page.eval_on_selector(f"#{view_id}", SHOWN_JS))  # what it shows is the library's (raises if not)
     assert errors == []

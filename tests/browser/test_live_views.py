@@ -146,6 +146,30 @@ def test_keyboard_moves_the_arm_and_the_table_is_the_library_jacobian(harness, r
         assert len(got["table"]) == (3 if frame == "analytic" else 6)
 
 
+NEW_ELEMENTS_JS = """(el) => {
+  // every element the view holds once drawn; then the frame switched through all four and back, and θ moved:
+  // the elements it holds then that it did not make in build
+  const made = new Set(el.querySelectorAll("*"));
+  const select = el.querySelector("select.jl-frame");
+  const slider = el.querySelector("input.jl-theta");
+  for (const f of ["analytic", "body", "geometric", "analytic", "space"]) {
+    select.value = f;
+    select.dispatchEvent(new Event("change", { bubbles: true }));
+    slider.value = String(Number(slider.value) + 0.1);
+    slider.dispatchEvent(new Event("input", { bubbles: true }));
+  }
+  return [...el.querySelectorAll("*")].filter((e) => !made.has(e)).map((e) => e.outerHTML.slice(0, 80));
+}"""
+
+
+def test_update_creates_no_element(harness):
+    """build makes every element once; switching the Jacobian (twist rows ↔ analytic rows) only swaps them."""
+    _, open_view, _, _ = harness
+    el = open_view("planar_3r", [0.5, 1.2, -0.8], "space")
+    assert el.evaluate(NEW_ELEMENTS_JS) == []
+    assert el.evaluate("(el) => el.dataset.frame") == "space"
+
+
 def test_singularity_banner_and_no_nan(harness):
     page, open_view, seen, _ = harness
     el = open_view("planar_2r", [0.3, 1.2], "body")

@@ -16,39 +16,25 @@ in a view is at least 24 px on the slide. Screenshots go to
 
 from __future__ import annotations
 
-import functools
 import json
 import math
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 import pytest
-from live_data import with_data
+from live_data import SHOWN_JS
 from tools import build_slides
-
-import jacobians as jac
 
 ROOT = Path(__file__).resolve().parents[2]
 SITE = ROOT / "_build" / "html"
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
-HALF_ULP = 0.005 + 1e-9
 SOURCES = [s for s in build_slides.deck_sources() if "{live-view}" in s.read_text(encoding="utf-8")]
 #: decks whose live view must be on a slide (all four views are in the decks)
 MUST = {"01_twists": "story", "03_body_jacobian": "story", "07_conversions": "story",
         "04_space_vs_body": "columns_explorer", "06_analytic_jacobian": "gimbal_lock",
         "09_using_the_jacobian": "resolved_rate"}
 
-READ = with_data("""(() => {
-  const rows = (sel) => [...el.querySelectorAll(sel + " tbody tr")].map((tr) => [...tr.querySelectorAll("td")]
-    .map((c) => c.textContent));
-  return { view: data.view, model: JSON.parse(el.dataset.model), theta: data.theta ?? null,
-    frame: data.frame ?? null, level: data.level ?? null, wrist: data.wrist ?? null, rep: data.rep ?? null,
-    step: data.step ?? null,
-    planar: rows("table.jl-matrix:not(.jl-space):not(.jl-body):not(.jl-B):not(.jl-J):not(.jl-Ja)"),
-    Js: rows("table.jl-space"), Jb: rows("table.jl-body"), B: rows("table.jl-B"), J: rows("table.jl-J"),
-    Ja: rows("table.jl-Ja"), text: el.innerText, markup: el.innerHTML };
-})()""")
+READ = SHOWN_JS  # what the view shows, as its spec's check reads it
 
 SET = """([el, sel, v]) => {
   const s = el.querySelector(sel);
@@ -68,78 +54,6 @@ OUTSIDE = """() => {
 }"""
 
 
-def _numbers(rows: list[list[str]]) -> np.ndarray:
-    return np.array([[float(c.replace("\u2212", "-")) for c in row] for row in rows])
-
-
-def _close(rows: list[list[str]], ref) -> bool:
-    shown, ref = _numbers(rows), np.asarray(ref, dtype=float)
-    return shown.shape == ref.shape and float(np.abs(shown - ref).max()) <= HALF_ULP
-
-
-def _planar(got: dict, el: Any = None) -> None:
-    from jacobians.widgets.live import PlanarExplorer
-
-    n = len(got["theta"])
-    robot = {2: "planar_2r", 3: "planar_3r"}[n]
-    assert np.array_equal(got["model"]["S"], getattr(jac.robots, robot)().screw_axes)
-    w = PlanarExplorer(robot, theta=got["theta"], frame=got["frame"])
-    assert _close(got["planar"], w.J), (got["planar"], w.J)
-
-
-def _columns(got: dict, el: Any = None) -> None:
-    from jacobians.widgets.live_spatial import ColumnsExplorer
-
-    w = ColumnsExplorer("spatial_5r", theta=got["theta"], column=got["model"]["column"])
-    assert np.array_equal(got["model"]["S"], w.chain.screw_axes)
-    assert _close(got["Js"], w.Js) and _close(got["Jb"], w.Jb)
-
-
-def _gimbal(got: dict, el: Any = None) -> None:
-    from jacobians.widgets.live_spatial import GimbalLock
-
-    w = GimbalLock(got["wrist"], theta=got["theta"], rep=got["rep"])
-    assert _close(got["J"], w.J) and _close(got["B"], w.B)
-    if np.isnan(w.Ja).any():
-        assert all(c == "\u2014" for row in got["Ja"] for c in row)
-    else:
-        assert _close(got["Ja"], w.Ja), (got["Ja"], w.Ja)
-
-
-def _resolved_rate(got: dict, el: Any = None) -> None:
-    from jacobians.widgets.live import ResolvedRate
-
-    m = got["model"]
-    robot = {2: "planar_2r", 3: "planar_3r"}[len(m["S"][0])]
-    w = ResolvedRate(robot, path=m["path"], method=m["method"], damping=m["damping"])
-    run, k = w.run, got["step"]
-    assert np.allclose(got["theta"], run.thetas[k], atol=1e-9)   # the arm drawn
-    t = np.linspace(0.0, w.duration, w.n_steps)[k]
-    assert f"t = {t:.2f} s" in got["text"] and f"(Jv) = {float(run.sigma_min[k]):.3f} m" in got["text"]
-
-
-def _story(got: dict, el: Any = None) -> None:
-    """The story replay (chapters 1, 3, 7): the shown frame's numbers, arrows and table are the library's."""
-    from jacobians.widgets.live import story_model
-
-    model = got["model"]
-    assert model == json.loads(json.dumps(story_model(model["story"])))
-    assert el is not None
-    _story_views().check_view(el, model)
-
-
-@functools.cache
-def _story_views() -> Any:
-    """tests/browser/story_views.py (the story view's checks against the library), loaded by path."""
-    import importlib.util
-
-    spec = importlib.util.spec_from_file_location("story_views", ROOT / "tests" / "browser" / "story_views.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
 #: the drawn labels of the current slide's live view, in CSS px of the 1280x720 slide (unscaled)
 SVG_LABELS = """() => {
   const scale = Reveal.getScale(), out = [];
@@ -153,16 +67,17 @@ SVG_LABELS = """() => {
 MIN_LABEL_PX = 24 - 0.5   # 24 px on a slide, less half a pixel of rounding
 
 
-#: view -> the check of the numbers it shows against the library (its spec's widget)
-CHECKS = {"planar_explorer": _planar, "columns_explorer": _columns, "gimbal_lock": _gimbal,
-          "resolved_rate": _resolved_rate, "story": _story}
-
-
 def _views() -> dict[str, tuple[str, float, Any]]:
-    """view -> (the slider moved, its value before the key press: the spec's probe; the check)."""
+    """view -> (the slider moved, its value before the key press: the spec's probe; the check of what the view
+    shows against the library: the spec's)."""
     from jacobians.widgets.live import VIEWS as SPECS
 
-    return {name: (*spec.probe, CHECKS.get(name)) for name, spec in SPECS.items()}
+    return {name: (*spec.probe, _checked(spec.check)) for name, spec in SPECS.items()}
+
+
+def _checked(check: Any) -> Any:
+    """A spec's check as the test calls it: on what the view shows (the element is not needed)."""
+    return lambda got, el=None: check(got)
 
 
 VIEWS = _views()
@@ -220,8 +135,12 @@ def test_live_view_slides_show_the_librarys_numbers_and_arrows_still_move_on(dec
 
 
 def test_every_registered_view_has_its_library_check():
-    """A view added to jacobians.widgets.live has its slide's numbers compared with its widget's here."""
-    assert set(CHECKS) == set(VIEWS), f"views without a check in CHECKS: {sorted(set(VIEWS) - set(CHECKS))}"
+    """A view added to jacobians.widgets.live has its slide's numbers compared with its widget's here: its spec
+    gives the check."""
+    from jacobians.widgets.live import VIEWS as SPECS
+
+    missing = sorted(name for name, spec in SPECS.items() if spec.check is None)
+    assert not missing, f"views whose spec has no check: {missing}"
 
 
 def test_the_live_views_data_model_is_plain_json():
@@ -229,4 +148,4 @@ def test_the_live_views_data_model_is_plain_json():
     from jacobians.widgets.live import VIEWS as SPECS
 
     for spec in SPECS.values():
-        json.dumps(spec.model(), allow_nan=False)
+        json.dumps(spec.model_from_options(spec.example), allow_nan=False)

@@ -81,10 +81,10 @@ MODELS: dict[str, Callable[..., dict[str, Any]]] = {name: spec.model for name, s
 # The views' own names, importable from here as before the views had folders.
 from .planar_explorer import PLANAR_FRAMES, PlanarExplorer, planar_model  # noqa: E402
 from .resolved_rate import PATHS, ResolvedRate, planar_path, resample, resolved_rate_model, start_configuration  # noqa: E402
-from .story import STORIES, StoryView, story_model, story_theta, story_theta_dot, story_times  # noqa: E402
+from .story import STORIES, StoryView, register_story, story_model, story_theta, story_theta_dot, story_times  # noqa: E402
 
 __all__ = ["VIEWS", "MODELS", "ViewSpec", "LiveView", "module_source", "live_dir", "LIMIT", "ROBOTS",
            "angles", "number", "text", "whole", "chain_model", "checked_theta", "planar_chain",
            "PlanarExplorer", "planar_model", "PLANAR_FRAMES",
            "ResolvedRate", "resolved_rate_model", "planar_path", "start_configuration", "resample", "PATHS",
-           "StoryView", "story_model", "story_theta", "story_theta_dot", "story_times", "STORIES"]
+           "StoryView", "story_model", "story_theta", "story_theta_dot", "story_times", "STORIES", "register_story"]

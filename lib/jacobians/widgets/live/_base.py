@@ -10,6 +10,7 @@ widget class that gives the library's numbers of what the view shows. The packag
 from __future__ import annotations
 
 import base64
+import inspect
 import math
 import os
 import re
@@ -77,7 +78,10 @@ class ViewSpec:
     the library's numbers of what the view shows (the library check the browser tests compare with);
     ``probe`` is a slider of the view (a CSS selector) and a value for it: the deck test moves it and
     compares the numbers shown with ``widget``'s; ``example`` gives every option a text the directive
-    accepts (the registry's test builds the model from it).
+    accepts (the registry's test builds the model from it); ``data_keys`` are the ``data-*`` keys the view
+    writes on its host beside those every view writes (``view``, ``ready``, ``theta``); ``check`` is the
+    library check of what a mounted view shows (a :data:`Shown`): it raises AssertionError naming what
+    differs from the library's numbers (``widget``'s), and the browser tests call it on every view.
     """
 
     name: str
@@ -87,6 +91,8 @@ class ViewSpec:
     probe: tuple[str, float]
     example: Mapping[str, str] = field(default_factory=dict)
     folder: Path = field(default=HERE)
+    data_keys: frozenset[str] = frozenset()
+    check: Callable[[Mapping[str, Any]], None] | None = None
 
     def __post_init__(self) -> None:
         if not _NAME.fullmatch(self.name):
@@ -113,11 +119,45 @@ class ViewSpec:
         if unknown:
             raise ValueError(f"Expected options {', '.join(self.options)} for {self.name}, got {unknown}: "
                              f"options {sorted(options)} do not all apply to {self.name}")
+        needed = [k for k, p in inspect.signature(self.model).parameters.items()
+                  if p.default is inspect.Parameter.empty and k not in options]
+        if needed:
+            raise ValueError(f"Expected the option{'s' * (len(needed) > 1)} {', '.join(':' + k + ':' for k in needed)} "
+                             f"for {self.name}, got {sorted(options)}")
         return self.model(**{k: self.options[k](v) for k, v in options.items()})
 
 
 #: view name -> its spec: the one registry of the live views (the package fills it from its folders)
 VIEWS: dict[str, ViewSpec] = {}
+
+
+# ---------------------------------------------------------------- what a mounted view shows
+#: What a mounted view shows, as the browser tests read it (``tests/browser/live_data.py``'s ``SHOWN_JS``):
+#: ``view``, ``theta`` and the other ``data-*`` keys (``frame``, ``level``, ``step``, ...; None when the view
+#: writes none), ``model`` (its ``data-model``), ``state`` (the numbers it drew, ``el.jacLive``), ``tables``
+#: (each table's text rows, keyed by its last class: ``jl-space``, ``js-numbers``, ...) and ``text``.
+Shown = Mapping[str, Any]
+
+
+def shown_numbers(rows: Sequence[Sequence[str]]) -> NDArray[np.float64]:
+    """A shown table's rows as numbers (the minus sign U+2212 read as '-')."""
+    return np.array([[float(c.replace("\u2212", "-")) for c in row] for row in rows], dtype=float)
+
+
+def expect(ok: bool, what: str) -> None:
+    """Raise AssertionError saying ``what`` differs when ``ok`` is false (a view's check)."""
+    if not ok:
+        raise AssertionError(what)
+
+
+def expect_table(shown: Shown, table: str, ref: Any, decimals: int = 2) -> None:
+    """The table ``table`` shows ``ref`` rounded to ``decimals`` (within half a unit of the last place)."""
+    rows = shown["tables"].get(table)
+    expect(rows is not None, f"{shown['view']}: no table {table!r} shown (tables {sorted(shown['tables'])})")
+    got, want = shown_numbers(rows), np.asarray(ref, dtype=float)
+    half = 0.5 * 10.0 ** -decimals + 1e-9
+    expect(got.shape == want.shape and float(np.abs(got - want).max()) <= half,
+           f"{shown['view']}: table {table} shows {rows}, the library {want.round(decimals + 2).tolist()}")
 
 
 # ---------------------------------------------------------------- the modules' text

@@ -128,20 +128,10 @@ function declutter(items) {
 }
 
 /**
- * An orthographic 3-D view in `parent`.
- * options: center (3), extent (world radius that must fit), azimuth, elevation (rad),
- * label (the aria-label: what is drawn), help (a visible line of how to turn it), id.
- * Returns {svg, layers: {back, solid, front}, camera, project, render, setCamera, items, destroy, onCamera}.
- * @param {Element} parent
- * @param {ViewOptions} options
+ * The view's elements in `parent`: a box holding the SVG drawing (its three layers) and the line of help.
+ * @param {Element} parent @param {ViewOptions} options
  */
-export function createView3D(parent, options) {
-  const center = options.center || [0, 0, 0];
-  const extent = options.extent || 1;
-  const scale = (0.5 * VIEWBOX) / extent; // SVG units per metre
-  /** @type {Camera} */
-  const home = { azimuth: options.azimuth ?? -1.0, elevation: options.elevation ?? 0.45 };
-  const camera = { ...home };
+function viewElements(parent, options) {
   const box = html("div", { class: "jl-view3d" }, parent);
   const helpId = `${options.id || "jl3d"}-help`;
   const root = svg("svg", {
@@ -154,52 +144,42 @@ export function createView3D(parent, options) {
     front: svg("g", { class: "jl-front" }, root) };
   const help = html("p", { class: "jl-help", id: helpId }, box,
     options.help || "Turn the view: drag it, or focus it (Tab) and press the arrow keys; Home resets.");
-  /** @returns {Basis} */
-  function cameraBasis() {
-    const ca = Math.cos(camera.azimuth), sa = Math.sin(camera.azimuth);
-    const ce = Math.cos(camera.elevation), se = Math.sin(camera.elevation);
-    return { r: [-sa, ca, 0], u: [-se * ca, -se * sa, ce], d: [ce * ca, ce * sa, se] };
+  return { box, root, layers, help };
+}
+
+/**
+ * The camera's basis: r (right), u (up) and d (towards the viewer), world unit vectors.
+ * @param {Camera} camera @returns {Basis}
+ */
+function cameraBasis(camera) {
+  const ca = Math.cos(camera.azimuth), sa = Math.sin(camera.azimuth);
+  const ce = Math.cos(camera.elevation), se = Math.sin(camera.elevation);
+  return { r: [-sa, ca, 0], u: [-se * ca, -se * sa, ce], d: [ce * ca, ce * sa, se] };
+}
+
+/**
+ * The visible items of the solid layer back to front (the nearest drawn last), moving elements only when the
+ * order changed.
+ * @param {SVGGElement} layer @param {Item[]} items
+ */
+function orderSolid(layer, items) {
+  const solid = items.filter((it) => it.layer === "solid" && it.visible);
+  solid.sort((a, b) => a.depth - b.depth);
+  let i = 0;
+  let inOrder = true;
+  for (const child of layer.children) {
+    if (i >= solid.length || child !== solid[i].el) { inOrder = false; break; }
+    i++;
   }
-  let basis = cameraBasis();
-  function updateBasis() {
-    basis = cameraBasis();
-  }
-  /** World point -> [x, y, depth] in SVG units (y down).
-   * @type {Projector}
-   */
-  function project(p) {
-    const q = sub3(p, center);
-    return [scale * dot3(q, basis.r), -scale * dot3(q, basis.u), dot3(q, basis.d)];
-  }
-  /** @type {Item[]} */
-  const items = [];
-  /** @type {((camera: Camera) => void)[]} */
-  const listeners = [];
-  function render() {
-    for (const it of items) it.draw(project, basis);
-    declutter(items);
-    const solid = items.filter((it) => it.layer === "solid" && it.visible);
-    solid.sort((a, b) => a.depth - b.depth);
-    let i = 0;
-    let inOrder = true;
-    for (const child of layers.solid.children) {
-      if (i >= solid.length || child !== solid[i].el) { inOrder = false; break; }
-      i++;
-    }
-    if (!inOrder || i !== solid.length) for (const it of solid) layers.solid.appendChild(it.el);
-  }
-  /** @param {number} azimuth @param {number} elevation */
-  function setCamera(azimuth, elevation) {
-    camera.azimuth = Number.isFinite(azimuth) ? azimuth : camera.azimuth;
-    camera.elevation = Math.max(-MAX_ELEVATION, Math.min(MAX_ELEVATION,
-      Number.isFinite(elevation) ? elevation : camera.elevation));
-    updateBasis();
-    render();
-    root.dataset.azimuth = camera.azimuth.toFixed(4);
-    root.dataset.elevation = camera.elevation.toFixed(4);
-    listeners.forEach((f) => f(camera));
-  }
-  // ---- the reader turns it
+  if (!inOrder || i !== solid.length) for (const it of solid) layer.appendChild(it.el);
+}
+
+/**
+ * The reader turns the view: a drag (a pointer), the arrow keys (Home: back to `home`). Returns the remover.
+ * @param {SVGSVGElement} root @param {Camera} camera @param {Camera} home
+ * @param {(azimuth: number, elevation: number) => void} setCamera
+ */
+function bindTurning(root, camera, home, setCamera) {
   /** @type {{x: number, y: number, id: number} | null} */
   let drag = null;
   /** @param {PointerEvent} ev */
@@ -239,15 +219,20 @@ export function createView3D(parent, options) {
     ev.preventDefault();
     ev.stopPropagation(); // a deck must not change slides while the view is being turned
   };
-  root.addEventListener("pointerdown", onDown);
-  root.addEventListener("pointermove", onMove);
-  root.addEventListener("pointerup", onUp);
-  root.addEventListener("pointercancel", onUp);
-  root.addEventListener("keydown", onKey);
-  root.dataset.azimuth = camera.azimuth.toFixed(4);
-  root.dataset.elevation = camera.elevation.toFixed(4);
+  /** @type {[string, (ev: any) => void][]} */
+  const handlers = [["pointerdown", onDown], ["pointermove", onMove], ["pointerup", onUp], ["pointercancel", onUp],
+    ["keydown", onKey]];
+  for (const [type, f] of handlers) root.addEventListener(type, f);
+  return () => {
+    for (const [type, f] of handlers) root.removeEventListener(type, f);
+  };
+}
 
-  // ---- items: each keeps world data, draw() projects it
+/**
+ * The makers of the view's items, each drawn into its layer and kept in `items` (world data; draw() projects it).
+ * @param {Record<Layer, SVGGElement>} layers @param {Item[]} items
+ */
+function itemMakers(layers, items) {
   /**
    * @template {Item} T
    * @param {T} item
@@ -269,17 +254,62 @@ export function createView3D(parent, options) {
   const dot = (layer, attrs) => add(dotItem(layers[layer], layer, attrs));
   /** @type {(layer: Layer, attrs: Attrs, segments?: number) => Ring} */
   const ring = (layer, attrs, segments) => add(ringItem(layers[layer], layer, attrs, segments));
+  return { segment, polyline, arrow, label, dot, ring };
+}
+
+/**
+ * An orthographic 3-D view in `parent`.
+ * options: center (3), extent (world radius that must fit), azimuth, elevation (rad),
+ * label (the aria-label: what is drawn), help (a visible line of how to turn it), id.
+ * Returns {svg, layers: {back, solid, front}, camera, project, render, setCamera, items, destroy, onCamera}.
+ * @param {Element} parent
+ * @param {ViewOptions} options
+ */
+export function createView3D(parent, options) {
+  const center = options.center || [0, 0, 0];
+  const extent = options.extent || 1;
+  const scale = (0.5 * VIEWBOX) / extent; // SVG units per metre
+  /** @type {Camera} */
+  const home = { azimuth: options.azimuth ?? -1.0, elevation: options.elevation ?? 0.45 };
+  const camera = { ...home };
+  const { box, root, layers, help } = viewElements(parent, options);
+  let basis = cameraBasis(camera);
+  /** World point -> [x, y, depth] in SVG units (y down).
+   * @type {Projector}
+   */
+  function project(p) {
+    const q = sub3(p, center);
+    return [scale * dot3(q, basis.r), -scale * dot3(q, basis.u), dot3(q, basis.d)];
+  }
+  /** @type {Item[]} */
+  const items = [];
+  /** @type {((camera: Camera) => void)[]} */
+  const listeners = [];
+  function render() {
+    for (const it of items) it.draw(project, basis);
+    declutter(items);
+    orderSolid(layers.solid, items);
+  }
+  /** @param {number} azimuth @param {number} elevation */
+  function setCamera(azimuth, elevation) {
+    camera.azimuth = Number.isFinite(azimuth) ? azimuth : camera.azimuth;
+    camera.elevation = Math.max(-MAX_ELEVATION, Math.min(MAX_ELEVATION,
+      Number.isFinite(elevation) ? elevation : camera.elevation));
+    basis = cameraBasis(camera);
+    render();
+    root.dataset.azimuth = camera.azimuth.toFixed(4);
+    root.dataset.elevation = camera.elevation.toFixed(4);
+    listeners.forEach((f) => f(camera));
+  }
+  const unbind = bindTurning(root, camera, home, setCamera);
+  root.dataset.azimuth = camera.azimuth.toFixed(4);
+  root.dataset.elevation = camera.elevation.toFixed(4);
   return {
-    svg: root, box, help, layers, camera, items, project, render, setCamera, segment, polyline, arrow, label, dot,
-    ring, scale,
+    svg: root, box, help, layers, camera, items, project, render, setCamera, ...itemMakers(layers, items), scale,
     /** @param {(camera: Camera) => void} f */
     onCamera(f) { listeners.push(f); },
     destroy() {
-      root.removeEventListener("pointerdown", onDown);
-      root.removeEventListener("pointermove", onMove);
-      root.removeEventListener("pointerup", onUp);
-      root.removeEventListener("pointercancel", onUp);
-      root.removeEventListener("keydown", onKey);
+      unbind();
       listeners.length = 0;
     },
   };

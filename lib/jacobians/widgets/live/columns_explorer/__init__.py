@@ -20,7 +20,7 @@ from .... import robots
 from ....chain import SerialChain
 from ....jacobian import body_jacobian, space_jacobian
 from ....plotting import arm_reach
-from .._base import LIMIT, LiveView, ViewSpec, angles, checked_theta, palette, text, whole
+from .._base import LIMIT, LiveView, Shown, ViewSpec, angles, checked_theta, expect, expect_table, palette, text, whole
 
 __all__ = ["ColumnsExplorer", "columns_model", "reach_bounds", "COLUMN_ROBOTS", "VIEW_MARGIN", "SPEC"]
 
@@ -128,9 +128,17 @@ class ColumnsExplorer(LiveView):
         return self.Js
 
 
+def check_shown(shown: Shown) -> None:
+    """The tables J_s and J_b the view shows are the library's at the θ shown, on the arm of its model."""
+    w = ColumnsExplorer("spatial_5r", theta=shown["theta"], column=shown["model"]["column"])
+    expect(np.array_equal(shown["model"]["S"], w.chain.screw_axes), "columns_explorer: not the spatial 5R arm")
+    expect_table(shown, "jl-space", w.Js)
+    expect_table(shown, "jl-body", w.Jb)
+
 
 SPEC = ViewSpec(name="columns_explorer", model=columns_model, widget=ColumnsExplorer,
                 options={"robot": text, "theta": angles, "column": whole},
                 probe=("input.jl-theta:nth-of-type(2)", -0.85),
                 example={"robot": "spatial_5r", "theta": "0.1 0.2 0.3 0.4 0.5", "column": "2"},
-                folder=Path(__file__).resolve().parent)
+                folder=Path(__file__).resolve().parent,
+                data_keys=frozenset({"column", "moved", "changedS", "changedB"}), check=check_shown)

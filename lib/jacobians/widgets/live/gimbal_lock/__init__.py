@@ -23,7 +23,7 @@ from .... import robots
 from ....chain import SerialChain
 from ....jacobian import analytic_jacobian, geometric_jacobian, pose_coordinates
 from ....plotting.style import COLUMN_COLORS
-from .._base import LiveView, ViewSpec, angles, checked_theta, palette, text
+from .._base import LiveView, Shown, ViewSpec, angles, checked_theta, expect, expect_table, palette, text
 
 __all__ = ["GimbalLock", "gimbal_model", "WRISTS", "WRIST_TOOL", "REPS", "GIMBAL_LIMIT_DEG", "NEAR_LOCK",
            "WRIST_SINGULAR", "SPEC"]
@@ -120,8 +120,23 @@ class GimbalLock(LiveView):
         with np.errstate(invalid="ignore", divide="ignore"):
             return analytic_jacobian(self.chain, self._th(), self.rep, on_singularity="nan")
 
+
+def check_shown(shown: Shown) -> None:
+    """J, B and J_a the view shows are the library's at the wrist, θ and representation shown ("—" in J_a's
+    cells at the lock, where it does not exist)."""
+    w = GimbalLock(shown["wrist"], theta=shown["theta"], rep=shown["rep"])
+    expect_table(shown, "jl-J", w.J)
+    expect_table(shown, "jl-B", w.B)
+    if np.isnan(w.Ja).any():
+        dashes = all(c == "\u2014" for row in shown["tables"]["jl-Ja"] for c in row)
+        expect(dashes, "gimbal_lock: J_a shown at the lock")
+    else:
+        expect_table(shown, "jl-Ja", w.Ja)
+
+
 SPEC = ViewSpec(name="gimbal_lock", model=gimbal_model, widget=GimbalLock,
                 options={"robot": text, "theta": angles, "rep": text},
                 probe=("input.jl-theta:nth-of-type(2)", 89),
                 example={"robot": "zyx_wrist", "theta": "0.1 1.5 -0.2", "rep": "zyz"},
-                folder=Path(__file__).resolve().parent)
+                folder=Path(__file__).resolve().parent, data_keys=frozenset({"wrist", "rep", "level"}),
+                check=check_shown)

@@ -23,7 +23,20 @@ from ....chain import SerialChain
 from ....frames import check_frame
 from ....jacobian import analytic_jacobian, jacobian
 from ....plotting import arm_reach
-from .._base import LIMIT, LiveView, ViewSpec, angles, chain_model, checked_theta, planar_chain, text, whole
+from .._base import (
+    LIMIT,
+    LiveView,
+    Shown,
+    ViewSpec,
+    angles,
+    chain_model,
+    checked_theta,
+    expect,
+    expect_table,
+    planar_chain,
+    text,
+    whole,
+)
 
 __all__ = ["PlanarExplorer", "planar_model", "PLANAR_FRAMES", "SPEC"]
 
@@ -75,8 +88,19 @@ class PlanarExplorer(LiveView):
         return jacobian(self.chain, th, check_frame(self.frame))
 
 
+def check_shown(shown: Shown) -> None:
+    """The Jacobian the view shows is the library's (:attr:`PlanarExplorer.J`) at the arm and frame shown."""
+    from .... import robots
+
+    robot = {2: "planar_2r", 3: "planar_3r"}[len(shown["theta"])]
+    same = np.array_equal(shown["model"]["S"], getattr(robots, robot)().screw_axes)
+    expect(same, f"planar_explorer: not the {robot}")
+    expect_table(shown, "jl-matrix", PlanarExplorer(robot, theta=shown["theta"], frame=shown["frame"]).J)
+
+
 SPEC = ViewSpec(name="planar_explorer", model=planar_model, widget=PlanarExplorer,
                 options={"robot": text, "theta": angles, "frame": text, "sweep": whole},
                 probe=("input.jl-theta", 0.35),
                 example={"robot": "planar_3r", "theta": "0.1 0.2 0.3", "frame": "body", "sweep": "0"},
-                folder=Path(__file__).resolve().parent)
+                folder=Path(__file__).resolve().parent, data_keys=frozenset({"frame", "playing", "level"}),
+                check=check_shown)

@@ -255,6 +255,11 @@ function buildControls(side, { n, limit, velScale }, model, uid) {
   html("th", { scope: "col" }, hr, "");
   for (let i = 0; i < n; i++) html("th", { scope: "col", style: `color:${ink(columnColor(i))}` }, hr, `col ${i + 1}`);
   const tbody = html("tbody", {}, table);
+  // the rows of both kinds, built once: update puts in the tbody those of the Jacobian shown
+  const rows = { twist: tableRows(TWIST_ROWS, n), analytic: tableRows(ANALYTIC_ROWS, n) };
+  // the caption of each Jacobian, built once: update puts in the caption that of the Jacobian shown
+  const captions = Object.fromEntries(FRAMES.map((f) => [f, [...sub(html("span", {}), SYMBOLS[f]).childNodes,
+    f === "analytic" ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${f} Jacobian`]]));
   const status = html("p", { class: "jl-status" }, side);
   const say = announcer(side);  // the key numbers, once the reader stops moving a control
   sub(status, ["σ", "min"]);
@@ -264,26 +269,29 @@ function buildControls(side, { n, limit, velScale }, model, uid) {
   const banner = html("p", { class: "jl-banner", role: "status" }, side);
   const legend = html("ul", { class: "jl-legend" }, side);
   const legendCols = html("li", {}, legend);
+  for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
+  const legendText = side.ownerDocument.createTextNode("");
+  legendCols.append(legendText);
   legendItem(legend, PALETTE.velocity, ["velocity ellipse of J", ["", "v"], `: ‖θ̇‖ = 1 (×${velScale} s)`]);
   const forceItem = legendItem(legend, PALETTE.force, [""], true);
   legendItem(legend, PALETTE.muted, ["axes of {s} and {b}; drag a joint or the dashed ring at the tool"]);
-  return { sliders, values, play, sweepSel, select, caption, tbody, sigmaText, say, banner, legendCols, forceItem };
+  return { sliders, values, play, sweepSel, select, caption, captions, tbody, rows, sigmaText, say, banner, legendText, forceItem };
 }
 
 /** @typedef {ReturnType<typeof buildScene> & ReturnType<typeof buildControls> & {o: Options}} Parts */
 
 /**
- * The table's rows for these labels (the rows change between the twist's six and the analytic Jacobian's three).
- * @param {HTMLTableSectionElement} tbody @param {ReadonlyArray<SubText>} labels @param {number} n
- * @returns {HTMLTableCellElement[][]}
+ * The table's rows for these labels, not yet in the table (the twist's six, or the analytic Jacobian's three).
+ * @param {ReadonlyArray<SubText>} labels @param {number} n
+ * @returns {{trs: HTMLTableRowElement[], cells: HTMLTableCellElement[][]}}
  */
-function tableRows(tbody, labels, n) {
-  tbody.textContent = "";
-  return labels.map((lab) => {
-    const tr = html("tr", {}, tbody);
+function tableRows(labels, n) {
+  const trs = labels.map((lab) => {
+    const tr = html("tr", {});
     sub(html("th", { scope: "row" }, tr), lab);
-    return Array.from({ length: n }, () => html("td", {}, tr, ""));
+    return tr;
   });
+  return { trs, cells: trs.map((tr) => Array.from({ length: n }, () => html("td", {}, tr, ""))) };
 }
 
 /** θ from the model, a number a joint (0 for what is not one). @param {Model} model @param {number} n @returns {Vec} */
@@ -298,14 +306,62 @@ function readFrame(model) {
 }
 
 /**
+ * The force ellipse of J_v at the tool (update): 1/σ_i along the directions of J_v's singular vectors (Infinity at a
+ * singularity), drawn ×forceScale and clipped at forceClip, a dotted line where it is clipped, and its legend.
+ * Returns "inf", "clipped" or null.
+ * @param {Parts} parts @param {number[]} tip @param {number[][]} Jv
+ */
+function updateForce(parts, tip, Jv) {
+  const { reach, forceScale, forceClip } = parts.o;
+  const { force, clipLine, forceItem } = parts;
+  const f = forceEllipsoid(Jv);
+  const drawn = f.axes.map((a) => Math.min(a * forceScale, forceClip));
+  const clipped = f.axes.map((a) => !(a * forceScale <= forceClip));
+  setEllipse(force, tip, drawn[0], drawn[1], f.directions, 1e-4 * reach);
+  /** @type {string[]} */
+  const seg = [];
+  clipped.forEach((c, i) => {
+    if (!c) return;
+    const u = [f.directions[0][i], f.directions[1][i]];
+    seg.push(`${tip[0] - forceClip * u[0]},${tip[1] - forceClip * u[1]}`, `${tip[0] + forceClip * u[0]},${tip[1] + forceClip * u[1]}`);
+  });
+  clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
+  clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
+  const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
+  setText(/** @type {ChildNode} */ (forceItem.lastChild), forceState === "inf"
+    ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
+    : forceState === "clipped"
+      ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
+      : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
+  return forceState;
+}
+
+/**
+ * The table of J, its caption and the legend of the columns (update): the rows and caption of the frame's Jacobian
+ * (built in build) put in when the frame changed, then its numbers.
+ * @param {Parts} parts @param {Frame} frame @param {Mat} J @param {PlanarState} shown
+ */
+function updateNumbers(parts, frame, J, shown) {
+  const { trs, cells } = frame === "analytic" ? parts.rows.analytic : parts.rows.twist;
+  if (frame !== shown.frame) {
+    const { caption, captions, legendText, tbody } = parts;
+    if (tbody.firstChild !== trs[0]) tbody.replaceChildren(...trs);
+    caption.replaceChildren(...captions[frame]);
+    setText(legendText, frame === "space" ? "linear parts of the columns, at the origin of {s}"
+      : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
+        : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
+  }
+  for (let r = 0; r < cells.length; r++) for (let i = 0; i < parts.o.n; i++) setText(cells[r][i], fixed(J[r][i]));
+}
+
+/**
  * The picture and the numbers for θ and the frame (update); `shown` is what was drawn last, and becomes this.
  * Returns what the view shows.
- * @param {Parts} parts @param {Vec} th @param {Frame} frame @param {PlanarState & {cells?: HTMLTableCellElement[][],
- *   rowsFor?: ReadonlyArray<SubText>}} shown
+ * @param {Parts} parts @param {Vec} th @param {Frame} frame @param {PlanarState} shown
  */
 function update(parts, th, frame, shown) {
-  const { chain, n, reach, singTol, forceScale, forceClip, L, head, tiny } = parts.o;
-  const { link, joints, tool, handle, bx, by, cols, ellipse, force, clipLine, forceItem, sigmaText, say, banner } = parts;
+  const { chain, n, reach, singTol, L, head, tiny } = parts.o;
+  const { link, joints, tool, handle, bx, by, cols, ellipse, sigmaText, say, banner } = parts;
   const e = evaluate(chain, th);
   const J = frame === "space" ? e.Js : frame === "body" ? e.Jb : frame === "geometric" ? e.Jg
     : planarAnalyticJacobian(chain, th);
@@ -328,26 +384,7 @@ function update(parts, th, frame, shown) {
   const Jv = [e.Jg[3], e.Jg[4]];
   const { axes, directions } = velocityEllipsoid(Jv);
   setEllipse(ellipse, tip, axes[0] * parts.o.velScale, axes[1] * parts.o.velScale, directions, 1e-4 * reach);
-  // force ellipse: 1/σ_i along the same directions (Infinity at a singularity), drawn ×forceScale, clipped
-  const f = forceEllipsoid(Jv);
-  const drawn = f.axes.map((a) => Math.min(a * forceScale, forceClip));
-  const clipped = f.axes.map((a) => !(a * forceScale <= forceClip));
-  setEllipse(force, tip, drawn[0], drawn[1], f.directions, 1e-4 * reach);
-  /** @type {string[]} */
-  const seg = [];
-  clipped.forEach((c, i) => {
-    if (!c) return;
-    const u = [f.directions[0][i], f.directions[1][i]];
-    seg.push(`${tip[0] - forceClip * u[0]},${tip[1] - forceClip * u[1]}`, `${tip[0] + forceClip * u[0]},${tip[1] + forceClip * u[1]}`);
-  });
-  clipLine.setAttribute("points", seg.slice(0, 2).join(" "));
-  clipLine.setAttribute("visibility", seg.length ? "visible" : "hidden");
-  const forceState = clipped.some((c) => c) ? (f.axes.some((a) => a === Infinity) ? "inf" : "clipped") : null;
-  setText(/** @type {ChildNode} */ (forceItem.lastChild), forceState === "inf"
-    ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): infinite along the dotted line, clipped at ${fixed(forceClip, 2)} m`
-    : forceState === "clipped"
-      ? `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)}): longer than drawn along the dotted line`
-      : `force ellipse, ‖τ‖ = 1 (×${fixed(forceScale, 2)})`);
+  const forceState = updateForce(parts, tip, Jv); // 1/σ_i along the same directions
   const s = Math.max(axes[1], 0);
   /** @type {"ok" | "warning" | "singular"} */
   let level;
@@ -372,25 +409,7 @@ function update(parts, th, frame, shown) {
     banner.hidden = level === "ok";
     banner.style.borderColor = PALETTE[level];
   }
-  // numbers
-  const labels = frame === "analytic" ? ANALYTIC_ROWS : TWIST_ROWS;
-  if (shown.rowsFor !== labels) {
-    shown.cells = tableRows(parts.tbody, labels, n);
-    shown.rowsFor = labels;
-  }
-  const cells = /** @type {HTMLTableCellElement[][]} */ (shown.cells);
-  if (frame !== shown.frame) {
-    const { caption, legendCols } = parts;
-    caption.textContent = "";
-    sub(caption, SYMBOLS[frame]).append(frame === "analytic"
-      ? "(θ), the analytic Jacobian of (x, y, φ), φ the tool's angle" : `(θ), the ${frame} Jacobian`);
-    legendCols.textContent = "";
-    for (let i = 0; i < n; i++) html("span", { class: "jl-key", style: `background:${columnColor(i)}` }, legendCols);
-    legendCols.append(frame === "space" ? "linear parts of the columns, at the origin of {s}"
-      : frame === "body" ? "linear parts of the columns, turned into {s} axes, at the tool"
-        : "the columns' (ẋ, ẏ), the tool velocity per unit joint rate, at the tool");
-  }
-  for (let r = 0; r < labels.length; r++) for (let i = 0; i < n; i++) setText(cells[r][i], fixed(J[r][i]));
+  updateNumbers(parts, frame, J, shown);
   for (let i = 0; i < n; i++) showAngle(parts.values[i], parts.sliders[i], th[i], th[i]);
   if (parts.select.value !== frame) parts.select.value = frame;
   Object.assign(shown, { theta: th, frame, J, sigmaMin: s, level, force: forceState });

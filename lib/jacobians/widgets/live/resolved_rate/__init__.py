@@ -19,7 +19,7 @@ from .... import velocity as _velocity
 from ....chain import SerialChain
 from ....jacobian import geometric_jacobian
 from ....plotting import arm_reach
-from .._base import LiveView, ViewSpec, chain_model, number, planar_chain, text
+from .._base import LiveView, Shown, ViewSpec, chain_model, expect, number, planar_chain, text
 
 __all__ = ["ResolvedRate", "resolved_rate_model", "planar_path", "start_configuration", "resample", "PATHS", "SPEC"]
 
@@ -139,8 +139,22 @@ class ResolvedRate(LiveView):
         return np.asarray(self.run.thetas[int(self.step)])
 
 
+def check_shown(shown: Shown) -> None:
+    """The arm drawn, the time and σ_min(J_v) shown are the library's run's at the step shown."""
+    m = shown["model"]
+    robot = {2: "planar_2r", 3: "planar_3r"}[len(m["S"][0])]
+    w = ResolvedRate(robot, path=m["path"], method=m["method"], damping=m["damping"])
+    run, k = w.run, shown["step"]
+    # the view integrates the same steps in the same order: only the last bits of the joint angles differ
+    expect(np.allclose(shown["theta"], run.thetas[k], atol=1e-9), f"resolved_rate: θ at step {k} is not the run's")
+    t = np.linspace(0.0, w.duration, w.n_steps)[k]
+    for want in (f"t = {t:.2f} s", f"(Jv) = {float(run.sigma_min[k]):.3f} m"):
+        expect(want in shown["text"], f"resolved_rate: {want!r} not shown at step {k}")
+
+
 SPEC = ViewSpec(name="resolved_rate", model=resolved_rate_model, widget=ResolvedRate,
                 options={"robot": text, "path": text, "method": text, "damping": number},
                 probe=("input.jr-step", 80),
                 example={"robot": "planar_3r", "path": "circle", "method": "dls", "damping": "0.05"},
-                folder=Path(__file__).resolve().parent)
+                folder=Path(__file__).resolve().parent, data_keys=frozenset({"step", "playing", "level"}),
+                check=check_shown)

@@ -136,37 +136,32 @@ export function simulate(chain, { path, drawn, method, damping, nSteps, duration
 }
 
 /**
- * The drawing pad of the path (bind): the Draw button shows a pad over the picture; a drag draws a stroke, or, with
- * the picture focused, the arrow keys move a pen (Shift: finer), Enter places a point, Backspace takes one back, the
- * button uses the points placed, Escape cancels. A stroke of two distinct points or more goes to run.use.
- * Returns the listeners to add, as [target, type, handler].
- * @param {{root: SVGSVGElement, ink: SVGPolylineElement, pen: SVGPathElement, pad: SVGRectElement,
- *   drawBtn: HTMLButtonElement, help: HTMLElement, say: (text: string) => void, reach: number, R: number}} parts
- * @param {{tool: () => ArrayLike<number> | null, stop: () => void, use: (pts: Point2[]) => void}} run
- * @returns {[EventTarget, string, (ev: any) => void][]}
+ * @typedef {{root: SVGSVGElement, ink: SVGPolylineElement, pen: SVGPathElement, pad: SVGRectElement,
+ *   drawBtn: HTMLButtonElement, help: HTMLElement, say: (text: string) => void, reach: number, R: number}} PadParts
+ * @typedef {{tool: () => ArrayLike<number> | null, stop: () => void, use: (pts: Point2[]) => void}} PadRun
+ * @typedef {[EventTarget, string, (ev: any) => void]} Listener
+ * What the pad holds while the reader draws: whether it is shown, a pointer's stroke (while the pointer is down),
+ * the points placed with the keyboard, and where the keyboard's pen is (world m).
+ * @typedef {{drawing: boolean, stroke: Point2[] | null, keyed: Point2[], penAt: Point2}} PadState
  */
-function drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, run) {
-  /** @type {[EventTarget, string, (ev: any) => void][]} */
-  const on = [];
-  let drawing = false;
-  /** @type {Point2[] | null} */
-  let stroke = null; // a pointer's stroke, while the pointer is down
-  /** @type {Point2[]} */
-  let keyed = []; // the points placed with the keyboard
-  /** @type {Point2} */
-  let penAt = [0, 0];
+
+/**
+ * The pad shown or hidden, its ink and pen drawn, and a stroke used as the path.
+ * @param {PadParts} parts @param {PadRun} run @param {PadState} st
+ */
+function padDisplay({ root, ink, pen, pad, drawBtn, help, reach }, run, st) {
   const rootLabel = root.getAttribute("aria-label") || "";
   /** @param {Point2[]} P */
   const inkPoints = (P) => ink.setAttribute("points", P.map((q) => `${q[0]},${q[1]}`).join(" "));
   const showPen = () => {
     const d = 0.05 * reach;
-    pen.setAttribute("d", `M${penAt[0] - d},${penAt[1]} h${2 * d} M${penAt[0]},${penAt[1] - d} v${2 * d}`);
-    inkPoints(keyed.length ? [...keyed, penAt] : []);
+    pen.setAttribute("d", `M${st.penAt[0] - d},${st.penAt[1]} h${2 * d} M${st.penAt[0]},${st.penAt[1] - d} v${2 * d}`);
+    inkPoints(st.keyed.length ? [...st.keyed, st.penAt] : []);
   };
   /** @param {boolean} d */
   const setDrawing = (d) => {
-    drawing = d;
-    keyed = [];
+    st.drawing = d;
+    st.keyed = [];
     pad.setAttribute("visibility", d ? "visible" : "hidden");
     pen.setAttribute("visibility", d ? "visible" : "hidden");
     drawBtn.setAttribute("aria-pressed", String(d));
@@ -174,7 +169,7 @@ function drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, run) 
     help.textContent = d ? PEN_HELP : RUN_HELP;
     if (d) {
       const tool = run.tool();
-      penAt = tool ? [Math.round(tool[0] * 100) / 100, Math.round(tool[1] * 100) / 100] : [0, 0];
+      st.penAt = tool ? [Math.round(tool[0] * 100) / 100, Math.round(tool[1] * 100) / 100] : [0, 0];
       showPen();
       root.setAttribute("tabindex", "0");
       root.setAttribute("aria-label", `${rootLabel}. Drawing pad: the pen starts at the tool. ${PEN_HELP}`);
@@ -189,64 +184,99 @@ function drawingPad({ root, ink, pen, pad, drawBtn, help, say, reach, R }, run) 
     setDrawing(false);
     if (resample(pts, 2)) run.use(pts);
   };
-  on.push([drawBtn, "click", () => {
-    run.stop();
-    if (!drawing) {
-      setDrawing(true);
-      root.focus();
-    } else if (keyed.length >= 2) commit(keyed);
-    else setDrawing(false);
-  }]);
-  /** @type {Record<string, Point2>} */
-  const PEN_MOVES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
-  on.push([root, "keydown", (/** @type {KeyboardEvent} */ ev) => {
-    if (!drawing) return;
-    const where = () => `(${fixed(penAt[0], 2)}, ${fixed(penAt[1], 2)}) m`;
+  return { inkPoints, showPen, setDrawing, commit };
+}
+/** @typedef {ReturnType<typeof padDisplay>} PadDisplay */
+
+/** @type {Record<string, Point2>} */
+const PEN_MOVES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+
+/**
+ * The keyboard's pen, with the picture focused: the arrow keys move it (Shift: finer), Enter places a point,
+ * Backspace takes one back, Escape cancels.
+ * @param {PadParts} parts @param {PadState} st @param {PadDisplay} shown @returns {Listener}
+ */
+function penKeys({ root, drawBtn, say, reach, R }, st, shown) {
+  return [root, "keydown", (/** @type {KeyboardEvent} */ ev) => {
+    if (!st.drawing) return;
+    const where = () => `(${fixed(st.penAt[0], 2)}, ${fixed(st.penAt[1], 2)}) m`;
     const move = PEN_MOVES[ev.key];
     if (move) {
       const h = ev.shiftKey ? 0.01 * reach : 0.05 * reach;
-      penAt = /** @type {Point2} */ (penAt.map((x, i) => Math.max(-R, Math.min(R, Math.round((x + h * move[i]) * 1e4) / 1e4))));
+      st.penAt = /** @type {Point2} */ (st.penAt.map((x, i) => Math.max(-R, Math.min(R, Math.round((x + h * move[i]) * 1e4) / 1e4))));
       say(`pen at ${where()}`);
     } else if (ev.key === "Enter" || ev.key === " ") {
-      keyed.push(penAt);
-      say(`point ${keyed.length} at ${where()}`);
+      st.keyed.push(st.penAt);
+      say(`point ${st.keyed.length} at ${where()}`);
     } else if (ev.key === "Backspace") {
-      keyed.pop();
-      say(`${keyed.length} points`);
+      st.keyed.pop();
+      say(`${st.keyed.length} points`);
     } else if (ev.key === "Escape") {
-      setDrawing(false);
+      shown.setDrawing(false);
       drawBtn.focus();
       say("drawing cancelled");
     } else return;
-    if (drawing) showPen();
+    if (st.drawing) shown.showPen();
     ev.preventDefault();
     ev.stopPropagation(); // the view's own keys (step, play) and a deck's wait until the drawing ends
-  }]);
-  on.push([pad, "pointerdown", (ev) => {
-    const p = toWorld(root, ev);
-    if (!p) return;
-    capture(pad, ev);
-    stroke = [p];
-    inkPoints(stroke);
-    ev.preventDefault();
-  }]);
-  on.push([pad, "pointermove", (ev) => {
-    const p = stroke && toWorld(root, ev);
-    if (!p || !stroke) return;
-    stroke.push(p);
-    inkPoints(stroke);
-  }]);
+  }];
+}
+
+/**
+ * A pointer's stroke on the pad: down starts it, each move adds a point, up (or cancel) uses it.
+ * @param {PadParts} parts @param {PadState} st @param {PadDisplay} shown @returns {Listener[]}
+ */
+function penStroke({ root, pad }, st, shown) {
   /** @param {PointerEvent} ev */
   const finish = (ev) => {
-    if (!stroke) return;
+    if (!st.stroke) return;
     const last = ev.type === "pointerup" && toWorld(root, ev);
-    if (last) stroke.push(last); // a touch's last move can come only with the lift
-    const pts = stroke;
-    stroke = null;
-    commit(pts);
+    if (last) st.stroke.push(last); // a touch's last move can come only with the lift
+    const pts = st.stroke;
+    st.stroke = null;
+    shown.commit(pts);
   };
-  on.push([pad, "pointerup", finish], [pad, "pointercancel", finish]);
-  return on;
+  return [
+    [pad, "pointerdown", (ev) => {
+      const p = toWorld(root, ev);
+      if (!p) return;
+      capture(pad, ev);
+      st.stroke = [p];
+      shown.inkPoints(st.stroke);
+      ev.preventDefault();
+    }],
+    [pad, "pointermove", (ev) => {
+      const p = st.stroke && toWorld(root, ev);
+      if (!p || !st.stroke) return;
+      st.stroke.push(p);
+      shown.inkPoints(st.stroke);
+    }],
+    [pad, "pointerup", finish], [pad, "pointercancel", finish],
+  ];
+}
+
+/**
+ * The drawing pad of the path (bind): the Draw button shows a pad over the picture; a drag draws a stroke, or, with
+ * the picture focused, the arrow keys move a pen (Shift: finer), Enter places a point, Backspace takes one back, the
+ * button uses the points placed, Escape cancels. A stroke of two distinct points or more goes to run.use.
+ * Returns the listeners to add, as [target, type, handler].
+ * @param {PadParts} parts @param {PadRun} run @returns {Listener[]}
+ */
+function drawingPad(parts, run) {
+  /** @type {PadState} */
+  const st = { drawing: false, stroke: null, keyed: [], penAt: [0, 0] };
+  const shown = padDisplay(parts, run, st);
+  const { root, drawBtn } = parts;
+  /** @type {Listener} */
+  const button = [drawBtn, "click", () => {
+    run.stop();
+    if (!st.drawing) {
+      shown.setDrawing(true);
+      root.focus();
+    } else if (st.keyed.length >= 2) shown.commit(st.keyed);
+    else shown.setDrawing(false);
+  }];
+  return [button, penKeys(parts, st, shown), ...penStroke(parts, st, shown)];
 }
 
 /**

@@ -2,10 +2,11 @@
 // Story animations as a live view: a motion replayed with a Play /
 // Pause button and a time slider (a labelled <input>, one frame per arrow
 // key), drawn in SVG from the chain and the motion embedded at build time by
-// the {live-view} directive (jacobians.widgets.live.story_model). The view
+// the {live-view} directive (a story of course.stories). The view
 // computes in the browser only what it draws, with kinematics.js, at each
 // frame; tests/browser/test_live_story.py compares those numbers with the
-// library. Three stories:
+// library. The view knows no story: it computes the same state at every frame (storyState) and
+// draws it with the drawing the model names (`story`, a key of DRAWINGS); three drawings:
 //
 //   fixed_axis        (chapter 1) a body turning about a fixed vertical axis through q:
 //                     v_s at the origin of {s} stays put, ṗ turns with the body.
@@ -60,8 +61,6 @@ import {
  */
 /** @typedef {(s: StoryFrame) => Arrows} StoryUpdate a story's redraw at one frame; returns the arrows drawn */
 
-/** @type {string[]} */
-export const STORIES = ["fixed_axis", "body_columns", "three_velocities"];
 // the palette's colours as the page's mode draws them (palette.js)
 const C = { orange: graphic("orange"), blue: graphic("blue"), vermillion: graphic("vermillion"), green: graphic("green"),
   sky: graphic("sky"), black: graphic("ink") };
@@ -122,21 +121,20 @@ export function storyState(chain, m, t) {
   const R2 = [[T[0][0], T[0][1]], [T[1][0], T[1][1]]];
   /** @type {StoryFrame} */
   const out = { t, theta, p, xb: [R2[0][0], R2[1][0]], yb: [R2[0][1], R2[1][1]], points: e.points.map((q) => [q[0], q[1]]) };
-  if (m.story === "body_columns") {
-    const vb = [0, 1, 2].map((i) => [e.Jb[3][i], e.Jb[4][i]]); // right: linear parts of J_b's columns, in {b}
-    out.vb = vb;
-    out.vs = vb.map((v) => [R2[0][0] * v[0] + R2[0][1] * v[1], R2[1][0] * v[0] + R2[1][1] * v[1]]); // left, in {s}
-  } else {
-    const qd = m.story === "fixed_axis" ? storyThetaDot(m, t) : m.theta_dot;
-    const Vs = mulJ(e.Js, [0, 1, 2, 3, 4, 5], qd);
-    const Vb = mulJ(e.Jb, [0, 1, 2, 3, 4, 5], qd);
-    out.thetaDot = qd;
-    out.omegaS = Vs.slice(0, 3);
-    out.vS = Vs.slice(3);
-    out.omegaB = Vb.slice(0, 3);
-    out.vB = Vb.slice(3);
-    out.pDot = mulJ(e.Jg, [3, 4, 5], qd);
-  }
+  // the linear parts of J_b's columns, in {b} (vb) and turned into {s} (vs)
+  const vb = e.Jb[0].map((_, i) => [e.Jb[3][i], e.Jb[4][i]]);
+  out.vb = vb;
+  out.vs = vb.map((v) => [R2[0][0] * v[0] + R2[0][1] * v[1], R2[1][0] * v[0] + R2[1][1] * v[1]]);
+  // the velocities at the motion's joint rates
+  const qd = storyThetaDot(m, t);
+  const Vs = mulJ(e.Js, [0, 1, 2, 3, 4, 5], qd);
+  const Vb = mulJ(e.Jb, [0, 1, 2, 3, 4, 5], qd);
+  out.thetaDot = qd;
+  out.omegaS = Vs.slice(0, 3);
+  out.vS = Vs.slice(3);
+  out.omegaB = Vb.slice(0, 3);
+  out.vB = Vb.slice(3);
+  out.pDot = mulJ(e.Jg, [3, 4, 5], qd);
   return out;
 }
 
@@ -314,6 +312,7 @@ function buildArm({ m, n, plot }, label, title, named) {
  */
 function buildBodyColumns(c) {
   const { m, plot, head, legend, caption, tableRows, setRow } = c;
+  plot.classList.add("js-two"); // two drawings side by side
   const { P, arm } = buildArm(c, "The planar 3R arm in {s}, with the velocity of the tool point when each joint alone turns at 1 rad/s",
     "the arm in {s}; tool velocity per joint (×0.6)", true);
   const right = html("div", { class: "js-panel" }, plot);
@@ -388,8 +387,12 @@ function buildThreeVelocities(c) {
   };
 }
 
-/** Each story's build, by the model's `story`. @type {Record<string, (c: StoryContext) => StoryUpdate>} */
-const BUILDS = { fixed_axis: buildFixedAxis, body_columns: buildBodyColumns, three_velocities: buildThreeVelocities };
+/**
+ * The drawings: the model's `story` names the one that draws it (the course's stories, course.stories, name
+ * theirs; jacobians.widgets.live.story.DRAWINGS lists these names).
+ * @type {Record<string, (c: StoryContext) => StoryUpdate>}
+ */
+export const DRAWINGS = { fixed_axis: buildFixedAxis, body_columns: buildBodyColumns, three_velocities: buildThreeVelocities };
 
 /** The model's keys a story reads. @param {Model} model @returns {StoryModel} */
 function readStory(model) {
@@ -398,7 +401,9 @@ function readStory(model) {
   for (const k of ["story", "offset", "rate", "waves", "t_end", "frames", "closed", "speed", "box", "box_right",
     "scale", "theta_dot", "vel_scale", "axis_len", "q"]) keys[k] = model.get(k);
   const m = /** @type {StoryModel} */ (keys);
-  if (!STORIES.includes(m.story)) throw new Error(`Expected story one of ${STORIES.join(", ")}, got ${JSON.stringify(m.story)}`);
+  if (!Object.keys(DRAWINGS).includes(m.story)) {
+    throw new Error(`Expected story one of ${Object.keys(DRAWINGS).join(", ")}, got ${JSON.stringify(m.story)}`);
+  }
   return m;
 }
 
@@ -413,7 +418,7 @@ function build(el, model) {
   const n = chain.n;
   const reach = Number(model.get("reach")) || 1;
   el.dataset.story = m.story;
-  const { plot, side } = layout(el, `js-plot${m.story === "body_columns" ? " js-two" : ""}`);
+  const { plot, side } = layout(el, "js-plot");
   const legend = html("ul", { class: "jl-legend" });
   const table = html("table", { class: "js-numbers" });
   const caption = html("caption", {}, table);
@@ -435,7 +440,7 @@ function build(el, model) {
   };
   /** @type {StoryContext["setRow"]} */
   const setRow = (key, v, d = 2) => v.forEach((x, i) => setText(rows[key][i], fixed(x, d)));
-  const drawStory = BUILDS[m.story]({ m, chain, n, head: 0.06 * reach, plot, legend, caption, tableRows, setRow });
+  const drawStory = DRAWINGS[m.story]({ m, chain, n, head: 0.06 * reach, plot, legend, caption, tableRows, setRow });
 
   // the controls: the time slider, Play / Pause, θ
   const id = `${uid}-time`;
