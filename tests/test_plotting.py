@@ -556,3 +556,38 @@ def test_a_label_that_reaches_into_the_neighbouring_plot_is_named():
     twin.set_yticks([])
     assert text_problems(fig) == []
     plt.close(fig)
+
+
+def test_a_label_that_a_line_of_its_own_plot_runs_through_is_named():
+    """A plot's curve through a label, or a marker on it, is found (a label on a box of its own is not:
+    it is drawn over the lines on purpose), in a still figure and in an animation's frames."""
+    from jacobians.plotting import animation
+    from jacobians.plotting.style import text_problems
+
+    fig, ax = plt.subplots(figsize=(3.0, 2.0), dpi=100)
+    ax.set(xlim=(0, 10), ylim=(0, 10), xticks=[], yticks=[])
+    ax.plot([0, 10], [5, 5], label="the curve")
+    crossed = ax.text(5, 5, "crossed", ha="center", va="center")
+    ax.plot([2], [8], "o", ms=12, label="a joint")
+    on_joint = ax.text(2, 8, "{s}", ha="center", va="center")
+    assert text_problems(fig) == ["'crossed' lies on 'the curve'", "'{s}' lies on 'a joint'"]
+    crossed.set_bbox({"facecolor": "white", "edgecolor": "none"})   # a label on its own box: readable
+    on_joint.set(x=2.6, ha="left")                                   # beside the marker
+    assert text_problems(fig) == []
+    plt.close(fig)
+
+    # an animation: the label is fixed, the line moves through it in frames 2 and 3 (of 4)
+    fig, ax = plt.subplots(figsize=(3.0, 2.0), dpi=100)
+    ax.set(xlim=(0, 10), ylim=(0, 10), xticks=[], yticks=[])
+    ax.text(5, 5, "fixed", ha="center", va="center")
+    (walker,) = ax.plot([0, 10], [0, 0], label="walker")
+
+    def draw(k):
+        walker.set_ydata([[0, 5, 5, 9][k]] * 2)
+        return [walker]
+
+    source = P.FrameSource(fig, draw, 4, moving=[walker])
+    texts, lines = [], []
+    animation._encoded_frames(source, 16, 1e9, "frames", 2, texts=texts, lines=lines)
+    assert animation.frame_text_problems(source, texts, lines) == ["'fixed' lies on 'walker' (frames 2-3)"]
+    plt.close(fig)

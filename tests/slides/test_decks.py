@@ -100,6 +100,19 @@ CONTENT = """(i) => {
     const minW = Math.min(p.r.width, q.r.width), minH = Math.min(p.r.height, q.r.height);
     if (w > 2 && h > 2 && w > 0.25 * minW && h > 0.4 * minH) overlaps.push(p.what + " / " + q.what);
   }
+  // the labels a live view draws (its SVG text: a 3-D view's numbers, frame names, axis letters; a chart's ticks),
+  // one drawing at a time, by the same rule (not a story's: it plays on its own while the slide is measured)
+  for (const drawing of slide.querySelectorAll(".jac-live:not([data-story]) svg")) {
+    const labels = [...drawing.querySelectorAll("text")].filter((t) => t.textContent.trim() && shown(t))
+      .map((t) => ({ r: rect(t), what: "view label " + t.textContent.trim().slice(0, 12) }));
+    for (let a = 0; a < labels.length; a++) for (let b = a + 1; b < labels.length; b++) {
+      const p = labels[a].r, q = labels[b].r;
+      const w = Math.min(p.right, q.right) - Math.max(p.left, q.left);
+      const h = Math.min(p.bottom, q.bottom) - Math.max(p.top, q.top);
+      if (w > 2 && h > 2 && w > 0.25 * Math.min(p.width, q.width) && h > 0.4 * Math.min(p.height, q.height))
+        overlaps.push(labels[a].what + " / " + labels[b].what);
+    }
+  }
   // figures as drawn on the screen: their drawn width (less object-fit's bands) against their own size, and
   // the smallest text of a live view (HTML text: its font size times reveal's scale; SVG text: its font size
   // times the SVG's scale on the screen)

@@ -313,19 +313,24 @@ def animation_html(anim: FrameSource | _animation.Animation, *, default_mode: st
 
 
 def _encoded_frames(anim: FrameSource, colors: int, limit: float, what: str, stacklevel: int,
-                    texts: list[list[tuple[Any, str, Any]]] | None = None) -> list[str]:
+                    texts: list[list[tuple[Any, str, Any]]] | None = None,
+                    lines: list[list[tuple[Any, str, Any]]] | None = None) -> list[str]:
     """``anim``'s frames as base64 palette PNGs, up to ``limit`` bytes in all (the rest dropped, with a warning
     at the caller of :func:`animation_html`). With a list ``texts``, each frame's drawn texts are appended to
-    it (:func:`jacobians.plotting.style.drawn_texts`), one list a frame."""
+    it (:func:`jacobians.plotting.style.drawn_texts`), one list a frame; with ``lines`` as well, each frame's
+    drawn plotted lines to that."""
     frames: list[str] = []
     total = 0
     for k in range(anim.n_frames):
         if texts is None:
             image = anim.frame(k)
         else:
-            with drawn_texts(anim.fig) as drawn:
+            drawn_lines: list[tuple[Any, str, Any]] = []
+            with drawn_texts(anim.fig, drawn_lines if lines is not None else None) as drawn:
                 image = anim.frame(k)
             texts.append(drawn)
+            if lines is not None:
+                lines.append(drawn_lines)
         data = base64.b64encode(compact_png(image, colors)).decode("ascii")
         total += len(data)
         if total >= limit:
@@ -336,23 +341,31 @@ def _encoded_frames(anim: FrameSource, colors: int, limit: float, what: str, sta
     return frames
 
 
-def frame_text_problems(anim: FrameSource, texts: Sequence[Sequence[tuple[Any, str, Any]]]) -> list[str]:
-    """The texts that overlap or are cut off at the canvas edge in any frame of ``anim``, each said once with
-    the frames it is seen in (1-based), from the texts drawn frame by frame (:func:`_encoded_frames`).
+def frame_text_problems(anim: FrameSource, texts: Sequence[Sequence[tuple[Any, str, Any]]],
+                        lines: Sequence[Sequence[tuple[Any, str, Any]]] | None = None) -> list[str]:
+    """The texts that overlap, are cut off at the canvas edge, or that a plotted line runs through in any
+    frame of ``anim``, each said once with the frames it is seen in (1-based), from the texts (and lines)
+    drawn frame by frame (:func:`_encoded_frames`).
 
-    A blitted frame draws only the moving artists over the first frame's picture: the texts of the first
-    frame that no later frame draws again are the fixed ones, and belong to every frame. A source that
-    renders its frames itself draws no matplotlib text: nothing to check.
+    A blitted frame draws only the moving artists over the first frame's picture: the texts and lines of
+    the first frame that no later frame draws again are the fixed ones, and belong to every frame. A source
+    that renders its frames itself draws no matplotlib text: nothing to check.
     """
     if not texts:
         return []
-    redrawn = {id(t) for frame in texts[1:] for t, _, _ in frame}
-    fixed = [b for b in texts[0] if id(b[0]) not in redrawn] if anim.moving is not None else []
+    lines = lines if lines is not None else [[] for _ in texts]
+
+    def fixed_of(drawn: Sequence[Sequence[tuple[Any, str, Any]]]) -> list[tuple[Any, str, Any]]:
+        redrawn = {id(t) for frame in drawn[1:] for t, _, _ in frame}
+        return [b for b in drawn[0] if id(b[0]) not in redrawn] if anim.moving is not None else []
+
+    fixed, fixed_lines = fixed_of(texts), fixed_of(lines)
     seen: dict[str, list[int]] = {}
     owners = text_owners(anim.fig)
-    for k, frame in enumerate(texts):
+    for k, (frame, frame_lines) in enumerate(zip(texts, lines, strict=True)):
         boxes = list(frame) if k == 0 else fixed + list(frame)
-        for problem in describe_text_problems(boxes, anim.fig, owners):
+        drawn = list(frame_lines) if k == 0 else fixed_lines + list(frame_lines)
+        for problem in describe_text_problems(boxes, anim.fig, owners, lines=drawn):
             seen.setdefault(problem, []).append(k + 1)
     return [f"{problem} (frame{'s' if len(ks) > 1 else ''} {_ranges(ks)})" for problem, ks in seen.items()]
 

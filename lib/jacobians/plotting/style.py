@@ -16,7 +16,7 @@ from collections.abc import Iterator
 from typing import Any
 
 __all__ = ["PALETTE", "COLUMN_COLORS", "set_style", "smallest_text_px", "drawn_texts", "overlapping_texts",
-           "clipped_texts", "text_owners", "texts_in_other_axes", "text_problems"]
+           "clipped_texts", "text_owners", "texts_in_other_axes", "texts_over_lines", "drawn_line", "text_problems"]
 
 _OKABE_ITO = {
     "black": "#000000",
@@ -144,19 +144,35 @@ def smallest_text_px(fig: Any) -> float:
 
 
 @contextlib.contextmanager
-def drawn_texts(fig: Any) -> Iterator[list[tuple[Any, str, Any]]]:
+def drawn_texts(fig: Any, lines: list[tuple[Any, str, Any]] | None = None) -> Iterator[list[tuple[Any, str, Any]]]:
     """Record every text ``fig`` draws inside the ``with`` block, as (text artist, its words, its box in
     display pixels), in drawing order.
 
     Only what is drawn counts: a canvas draw, or ``fig.draw_artist`` of the moving artists of a blitted
     frame; hidden texts, empty strings and the tick labels a 3-D axis keeps but does not draw do not.
-    Each text is listed once, at its last drawn box.
+    Each text is listed once, at its last drawn box. With a list ``lines``, the plotted lines drawn (a
+    plot's ``ax.lines``: curves, segments, markers; not its grid, ticks or legend) are appended to it as
+    :func:`drawn_line` records them.
     """
+    from matplotlib.lines import Line2D
     from matplotlib.text import Text
 
     found: dict[int, tuple[Any, str, Any]] = {}
     order: list[int] = []
     original = Text.draw
+    original_line = Line2D.draw
+    seen_lines: dict[int, tuple[Any, str, Any]] = {}
+    line_order: list[int] = []
+
+    def draw_line(self: Any, renderer: Any) -> Any:
+        done = original_line(self, renderer)
+        if self.get_figure(root=True) is fig and self.axes is not None and any(self is ln for ln in self.axes.lines):
+            shape = drawn_line(self)
+            if shape is not None:
+                if id(self) not in seen_lines:
+                    line_order.append(id(self))
+                seen_lines[id(self)] = shape
+        return done
 
     def draw(self: Any, renderer: Any) -> Any:
         done = original(self, renderer)
@@ -173,11 +189,47 @@ def drawn_texts(fig: Any) -> Iterator[list[tuple[Any, str, Any]]]:
 
     out: list[tuple[Any, str, Any]] = []
     Text.draw = draw  # type: ignore[method-assign]
+    if lines is not None:
+        Line2D.draw = draw_line  # type: ignore[method-assign]
     try:
         yield out
     finally:
         Text.draw = original  # type: ignore[method-assign]
+        Line2D.draw = original_line  # type: ignore[method-assign]
         out.extend(found[i] for i in order)
+        if lines is not None:
+            lines.extend(seen_lines[i] for i in line_order)
+
+
+def drawn_line(line: Any) -> tuple[Any, str, Any] | None:
+    """A plotted line as it was last drawn: (the line, its label, (its vertices in display pixels as an
+    (n, 2) array or None if no line joins them, the half width of its stroke in pixels, the half size of
+    its markers in pixels or 0 if none)); None if it shows nothing. A 3-D plot's line holds its projection
+    once drawn, so the same holds for it."""
+    import numpy as np
+
+    if not line.get_visible() or (line.get_alpha() is not None and line.get_alpha() == 0):
+        return None
+    xy = np.asarray(line.get_xydata(), dtype=float)
+    if xy.ndim != 2 or len(xy) == 0:
+        return None
+    pts = line.get_transform().transform(xy)
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    if len(pts) == 0:
+        return None
+    px = line.get_figure(root=True).dpi / 72.0
+    stroked = line.get_linestyle() not in ("None", "none", " ", "") and line.get_linewidth() > 0
+    marker = line.get_marker()
+    marked = marker not in (None, "None", "none", " ", "")
+    if not stroked and not marked:
+        return None
+    half_marker = 0.5 * line.get_markersize() * px + 0.5 * line.get_markeredgewidth() * px if marked else 0.0
+    name = str(line.get_label())
+    if name.startswith("_"):   # matplotlib's name of an unlabelled line
+        axes = line.get_figure(root=True).axes
+        where = next((i + 1 for i, ax in enumerate(axes) if ax is line.axes), 0)
+        name = f"a line of plot {where}"
+    return (line, name, (pts, 0.5 * line.get_linewidth() * px if stroked else None, half_marker))
 
 
 def overlapping_texts(boxes: list[tuple[Any, str, Any]]) -> list[tuple[str, str]]:
@@ -216,6 +268,75 @@ def clipped_texts(boxes: list[tuple[Any, str, Any]], fig: Any, tolerance: float 
             or b.x1 > edge.x1 + tolerance or b.y1 > edge.y1 + tolerance]
 
 
+def _segment_hits_box(p: Any, q: Any, x0: float, y0: float, x1: float, y1: float) -> bool:
+    """Whether the segment p-q passes through the box [x0, x1] x [y0, y1] (Liang-Barsky clipping)."""
+    t0, t1 = 0.0, 1.0
+    dx, dy = q[0] - p[0], q[1] - p[1]
+    for step, room in ((-dx, p[0] - x0), (dx, x1 - p[0]), (-dy, p[1] - y0), (dy, y1 - p[1])):
+        if step == 0:
+            if room < 0:
+                return False
+            continue
+        t = room / step
+        if step < 0:
+            t0 = max(t0, t)
+        else:
+            t1 = min(t1, t)
+        if t0 > t1:
+            return False
+    return True
+
+
+def texts_over_lines(boxes: list[tuple[Any, str, Any]], lines: list[tuple[Any, str, Any]],
+                     inset: float = 0.2) -> list[tuple[str, str]]:
+    """Pairs (a text's words, a line's label) where a plotted line (as :func:`drawn_texts` records them with
+    ``lines``) runs through a text or one of its markers sits on it: the text's box less ``inset`` of its
+    height on each side (the box holds room above and below the letters), grown by half the line's width.
+    A text on a box of its own or with a halo (a label drawn over the lines on purpose, readable there) does
+    not count.
+
+    >>> import numpy as np
+    >>> from matplotlib.transforms import Bbox
+    >>> line = (None, "arm", (np.array([[0.0, 5.0], [100.0, 5.0]]), 1.0, 0.0))
+    >>> dot = (None, "joint", (np.array([[60.0, 30.0]]), None, 4.0))
+    >>> texts_over_lines([(None, "crossed", Bbox([[10, 0], [40, 10]])), (None, "above", Bbox([[10, 8], [40, 18]])),
+    ...                   (None, "on a joint", Bbox([[50, 26], [90, 36]]))], [line, dot])
+    [('crossed', 'arm'), ('on a joint', 'joint')]
+    """
+    import numpy as np
+
+    found = []
+    for t, what, b in boxes:
+        if t is not None and _drawn_on_its_own_box(t):
+            continue
+        pad = inset * b.height
+        for _, name, (pts, half_width, half_marker) in lines:
+            hit = False
+            if half_width is not None and len(pts) > 1:
+                grow = half_width - pad
+                x0, y0, x1, y1 = b.x0 - grow, b.y0 - grow, b.x1 + grow, b.y1 + grow
+                if x0 < x1 and y0 < y1:
+                    lo, hi = np.minimum(pts[:-1], pts[1:]), np.maximum(pts[:-1], pts[1:])
+                    near = np.flatnonzero((hi[:, 0] >= x0) & (lo[:, 0] <= x1) & (hi[:, 1] >= y0) & (lo[:, 1] <= y1))
+                    hit = any(_segment_hits_box(pts[i], pts[i + 1], x0, y0, x1, y1) for i in near)
+            if not hit and half_marker > 0:
+                r = half_marker
+                hit = bool(np.any((pts[:, 0] + r > b.x0 + pad) & (pts[:, 0] - r < b.x1 - pad)
+                                  & (pts[:, 1] + r > b.y0 + pad) & (pts[:, 1] - r < b.y1 - pad)))
+            if hit:
+                found.append((what, name))
+    return found
+
+
+def _drawn_on_its_own_box(t: Any) -> bool:
+    """Whether a text is drawn on a filled box of its own (``bbox=...``) or with a halo (a stroke path
+    effect): it reads over the lines it covers."""
+    patch = t.get_bbox_patch() if hasattr(t, "get_bbox_patch") else None
+    if patch is not None and patch.get_fill() and patch.get_facecolor()[3] > 0.5:
+        return True
+    return any(type(e).__name__ in ("withStroke", "Stroke") for e in (t.get_path_effects() or []))
+
+
 def text_owners(fig: Any) -> dict[int, Any]:
     """Each text of ``fig``'s plots (titles, axis and tick labels, legends, annotations) by ``id``, with the
     plot (Axes) it belongs to: a tick label knows its figure, not its plot."""
@@ -252,8 +373,9 @@ def texts_in_other_axes(boxes: list[tuple[Any, str, Any]], fig: Any, margin: flo
 
 def text_problems(fig: Any) -> list[str]:
     """What is wrong with a figure's text on a fixed canvas, as one full draw shows it: pairs of texts that
-    overlap (:func:`overlapping_texts`), texts cut off at the canvas edge (:func:`clipped_texts`) and texts
-    that reach into another plot (:func:`texts_in_other_axes`).
+    overlap (:func:`overlapping_texts`), texts cut off at the canvas edge (:func:`clipped_texts`), texts
+    that reach into another plot (:func:`texts_in_other_axes`) and texts that a plotted line runs through
+    (:func:`texts_over_lines`).
 
     >>> from matplotlib.figure import Figure
     >>> fig = Figure(figsize=(2, 1), dpi=100)
@@ -264,15 +386,19 @@ def text_problems(fig: Any) -> list[str]:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
-    with drawn_texts(fig) as boxes:
+    lines: list[tuple[Any, str, Any]] = []
+    with drawn_texts(fig, lines) as boxes:
         canvas.draw()
-    return describe_text_problems(boxes, fig)
+    return describe_text_problems(boxes, fig, lines=lines)
 
 
 def describe_text_problems(boxes: list[tuple[Any, str, Any]], fig: Any,
-                           owners: dict[int, Any] | None = None) -> list[str]:
-    """:func:`overlapping_texts`, :func:`clipped_texts` and :func:`texts_in_other_axes` of ``boxes`` in words
-    (``owners``: :func:`text_owners` of ``fig``, if known)."""
+                           owners: dict[int, Any] | None = None,
+                           lines: list[tuple[Any, str, Any]] | None = None) -> list[str]:
+    """:func:`overlapping_texts`, :func:`clipped_texts`, :func:`texts_in_other_axes` and, given the drawn
+    ``lines``, :func:`texts_over_lines` of ``boxes`` in words (``owners``: :func:`text_owners` of ``fig``, if
+    known)."""
     return ([f"{a!r} overlaps {b!r}" for a, b in overlapping_texts(boxes)]
             + [f"{what!r} is cut off at the edge" for what in clipped_texts(boxes, fig)]
-            + [f"{what!r} reaches into plot {i}" for what, i in texts_in_other_axes(boxes, fig, owners=owners)])
+            + [f"{what!r} reaches into plot {i}" for what, i in texts_in_other_axes(boxes, fig, owners=owners)]
+            + [f"{what!r} lies on {name!r}" for what, name in dict.fromkeys(texts_over_lines(boxes, lines or []))])

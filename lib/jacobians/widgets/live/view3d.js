@@ -447,7 +447,7 @@ function labelItem(parent, layer, text, attrs = {}) {
  */
 function dotItem(parent, layer, attrs) {
   const el = svg("circle", { "vector-effect": "non-scaling-stroke", ...attrs }, parent);
-  const r = Number(attrs.r) || 0;
+  let r = 0; // its radius in SVG units, read once it is shown (a deck's style may change it)
   /** @type {Dot} */
   const it = {
     el, layer, visible: true, depth: 0, p: [0, 0, 0],
@@ -462,6 +462,7 @@ function dotItem(parent, layer, attrs) {
       const a = pr(this.p);
       put(el, "cx", a[0].toFixed(2)); put(el, "cy", a[1].toFixed(2));
       // a dot of the front layer is a key that labels must not cover; a joint of the arm is not
+      if (!r) r = parseFloat(getComputedStyle(el).r) || Number(attrs.r) || 0;
       if (layer === "front") this.box = { x: a[0], y: a[1], hw: r, hh: r };
       this.depth = a[2];
     },
