@@ -79,7 +79,10 @@ sandbox:
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq bubblewrap >/dev/null; }
 
 # ------------------------------------------------------------------ the book
+# The notebooks are executed first, on every core, into the execution cache (tools/preexecute.py): Sphinx reads
+# the pages one at a time and would execute them one after the other; it then finds each one in the cache.
 book: vendor browser
+	$(PY) -m tools.preexecute
 	$(BIN)/jupyter-book build . $(JB_FLAGS)
 	$(PY) -m tools.make_exercises _build/html/exercises/student
 	$(PY) -m tools.build_slides $(SLIDES_PDF_ARGS)

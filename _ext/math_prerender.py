@@ -30,6 +30,7 @@ the page. A TeX error stops the build with the page and the formula.
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 import tempfile
@@ -90,16 +91,33 @@ def typeset(static: Path, pages: list[str] | list[Path], tex_macros: dict[str, A
         raise ExtensionError("math_prerender: node_modules/mathjax-full is missing: run `npm ci` (make setup does it)")
     if not pages:
         return []
-    args = [node, str(SCRIPT), str(static), json.dumps(tex_macros), *map(str, pages)]
+    # One Node process per core, each typesetting its share of the pages (each page and its fragments are
+    # written by one process only); shares balanced by the pages' bytes, the biggest first.
+    shares: list[list[str]] = [[] for _ in range(max(1, min(os.cpu_count() or 1, len(pages))))]
+    loads = [0] * len(shares)
+    for page in sorted(map(str, pages), key=lambda p: -Path(p).stat().st_size):
+        k = loads.index(min(loads))
+        shares[k].append(page)
+        loads[k] += Path(page).stat().st_size
+    fragments = fragments or {}
     with tempfile.TemporaryDirectory() as tmp:
-        if fragments:
-            spec = Path(tmp) / "fragments.json"
-            spec.write_text(json.dumps(fragments), encoding="utf-8")
-            args[2:2] = ["--fragments", str(spec)]
-        run = subprocess.run(args, capture_output=True, text=True, cwd=ROOT, check=False)
-    if run.returncode != 0:
-        raise ExtensionError(f"math_prerender: {run.stderr.strip()[-4000:]}")
-    return [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
+        procs = []
+        for k, share in enumerate(shares):
+            args = [node, str(SCRIPT), str(static), json.dumps(tex_macros), *share]
+            mine = {p: f for p, f in fragments.items() if p in share}
+            if mine:
+                spec = Path(tmp) / f"fragments-{k}.json"
+                spec.write_text(json.dumps(mine), encoding="utf-8")
+                args[2:2] = ["--fragments", str(spec)]
+            procs.append(subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT))
+        runs = [(proc, *proc.communicate()) for proc in procs]
+    for proc, _out, err in runs:
+        if proc.returncode != 0:
+            raise ExtensionError(f"math_prerender: {err.strip()[-4000:]}")
+    by_page = {c["page"]: c for _p, out, _e in runs for c in (json.loads(line) for line in out.splitlines()
+                                                                if line.startswith("{"))}
+    return [by_page[p] for p in map(str, pages) if p in by_page] + [c for p, c in by_page.items()
+                                                                    if p not in set(map(str, pages))]
 
 
 def setup(app: Sphinx) -> dict[str, Any]:

@@ -153,3 +153,32 @@ def test_which_pages_use_the_library(tmp_path):
     assert library_deps.uses_library(live)
     assert library_deps.uses_library(notebook)
     assert library_deps.uses_library(ROOT / "chapters" / "02_space_jacobian.md")
+
+
+def _preexecute(book: Path) -> str:
+    env = dict(os.environ, PYTHONPATH=str(book / "scratchlib"))
+    done = subprocess.run([sys.executable, "-m", "tools.preexecute", "--root", str(book), "--jobs", "2"], cwd=ROOT,
+                          env=env, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, (done.stdout + done.stderr)[-4000:]
+    return done.stdout
+
+
+@pytest.mark.skipif(not JB.exists(), reason="jupyter-book is not installed in this environment")
+def test_preexecuted_notebooks_are_the_ones_the_build_finds(tmp_path):
+    """tools/preexecute.py (make book runs it first, on every core) stores each notebook under the key the build
+    looks up: the build then executes nothing and shows the value; after a library change it runs the page again
+    itself, the build again executes nothing and shows the new value."""
+    book = _book(tmp_path)
+    out = _preexecute(book)
+    assert "preexecute: 1 of 1 notebooks cached" in out, out
+    log = _build(book)
+    assert _executed(log) == 0 and "Using cached notebook" in log, log[-3000:]
+    assert _shown(book) == "1111.25"
+
+    (book / "scratchlib" / "scratchvalue.py").write_text("VALUE = 2222.5\n")
+    out = _preexecute(book)
+    assert "the library changed" in out and "preexecute: 1 of 1 notebooks cached" in out, out
+    log = _build(book)
+    assert _executed(log) == 0 and "library_deps: the library changed; 1 pages that use it are read again" in log
+    assert _shown(book) == "2222.5"
+    assert "every notebook of the book is in the cache" in _preexecute(book)

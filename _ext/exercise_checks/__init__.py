@@ -33,8 +33,10 @@ from __future__ import annotations
 import hashlib
 import html
 import json
+import os
 import shutil
 import subprocess
+from concurrent.futures import ProcessPoolExecutor
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -163,7 +165,7 @@ def write_banks(out: Path, exercise_ids: list[str], sources: Path | None = None)
     """Write the bank script of each exercise the page checks into ``out`` (a folder), and the sources of its
     statements (``<id>.json``, a list of HTML strings) into ``sources``; returns those written.
     Skipped when the stamp of lib/ and the list of exercises are those of the banks already there."""
-    from course.exercises._bank import PAGE_KINDS, bank, statements
+    from course.exercises._bank import PAGE_KINDS
     wanted = sorted(e for e in set(exercise_ids) if exercise_kind(e) in PAGE_KINDS)
     stamp = _lib_stamp() + "\n" + ",".join(wanted)
     stamp_file = out / ".stamp"
@@ -173,16 +175,27 @@ def write_banks(out: Path, exercise_ids: list[str], sources: Path | None = None)
     out.mkdir(parents=True, exist_ok=True)
     if sources is not None:
         sources.mkdir(parents=True, exist_ok=True)
-        for e in wanted:
-            (sources / f"{e}.json").write_text(json.dumps(statements(e), ensure_ascii=False), encoding="utf-8")
-    for e in wanted:
-        data = json.dumps(bank(e), separators=(",", ":"), ensure_ascii=False, allow_nan=False)
-        # "</" cannot end the script early: JSON allows "<\/"
-        text = data.replace("</", "<\\/")
-        (out / f"{e}.js").write_text(f"(window.__courseBanks=window.__courseBanks||{{}})[{json.dumps(e)}]={text};\n",
-                                     encoding="utf-8")
+    # each exercise's bank is computed by the library on its own: on every core, in worker processes
+    workers = max(1, min(os.cpu_count() or 1, len(wanted)))
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        made = pool.map(_bank_files, wanted, [sources is not None] * len(wanted))
+        for e, (shown, script) in zip(wanted, made, strict=True):
+            if sources is not None:
+                (sources / f"{e}.json").write_text(shown, encoding="utf-8")
+            (out / f"{e}.js").write_text(script, encoding="utf-8")
     stamp_file.write_text(stamp)
     return wanted
+
+
+def _bank_files(exercise_id: str, with_statements: bool) -> tuple[str, str]:
+    """The statements' sources (JSON, when asked for) and the bank script of one exercise (in a worker process)."""
+    from course.exercises._bank import bank, statements
+
+    shown = json.dumps(statements(exercise_id), ensure_ascii=False) if with_statements else ""
+    data = json.dumps(bank(exercise_id), separators=(",", ":"), ensure_ascii=False, allow_nan=False)
+    # "</" cannot end the script early: JSON allows "<\/"
+    text = data.replace("</", "<\\/")
+    return shown, f"(window.__courseBanks=window.__courseBanks||{{}})[{json.dumps(exercise_id)}]={text};\n"
 
 
 def bundle(out_file: Path) -> None:
