@@ -180,8 +180,8 @@ def test_resolved_rate_forward_difference_velocities_and_3d():
         assert out.positions.shape == (51, 3)
         assert np.allclose(out.positions, arm.fk(out.thetas)[:, :3, 3])
         # step by step from the run's own state (tracking_tol): the rates solve J_v θ̇ = ṗ_d + K e to the solve's
-        # rounding (κ(J_v) TOL), each error vector is the one before plus the path’s move minus J_v θ̇ dt within
-        # the arm’s Taylor remainder D|Δ|₁²/2, and the errors stay under the recursion’s bound (O(dt): under 2 cm)
+        # rounding (κ(J_v) TOL), each error vector is the one before plus the path's move minus J_v θ̇ dt within
+        # the arm's Taylor remainder D|Δ|₁²/2, and the errors stay under the recursion's bound (O(dt): under 2 cm)
         worst, B = tracking_tol(arm, out.thetas, out.rates, path, t[1] - t[0], 2.0)
         assert worst <= 1 and np.all(out.errors <= B) and B.max() < 2e-2
         assert np.allclose(out.errors, np.linalg.norm(path - out.positions, axis=1), rtol=0, atol=1e-12)
