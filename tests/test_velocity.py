@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import jacobians as jac
 from jacobians import velocity as vel
-from jacobians.testing import chain_curvature, random_chain, random_theta
+from jacobians.testing import chain_curvature, random_chain, random_theta, tracking_tol
 
 RNG = np.random.default_rng(11)
 
@@ -179,7 +179,18 @@ def test_resolved_rate_forward_difference_velocities_and_3d():
         out = vel.resolved_rate(arm, theta0, path, dt=t[1] - t[0], method=method, damping=0.01)
         assert out.positions.shape == (51, 3)
         assert np.allclose(out.positions, arm.fk(out.thetas)[:, :3, 3])
-        assert out.errors.max() < 1e-3
+        # step by step from the run's own state (tracking_tol): the rates solve J_v θ̇ = ṗ_d + K e to the solve's
+        # rounding (κ(J_v) TOL), each error vector is the one before plus the path's move minus J_v θ̇ dt within
+        # the arm's Taylor remainder D|Δ|₁²/2, and the errors stay under the recursion's bound (O(dt): under 2 cm)
+        worst, B = tracking_tol(arm, out.thetas, out.rates, path, t[1] - t[0], 2.0)
+        assert worst <= 1 and np.all(out.errors <= B) and B.max() < 2e-2
+        assert np.allclose(out.errors, np.linalg.norm(path - out.positions, axis=1), rtol=0, atol=1e-12)
+        assert np.allclose(out.thetas[1:], out.thetas[:-1] + (t[1] - t[0]) * out.rates[:-1], rtol=0, atol=1e-12)
+        for k in range(50):
+            J_v = jac.geometric_jacobian(arm, out.thetas[k])[3:6]
+            cmd = (path[k + 1] - path[k]) / (t[1] - t[0]) + 2.0 * (path[k] - out.positions[k])
+            ref = np.linalg.pinv(J_v) @ cmd if method == "pinv" else np.linalg.solve(J_v.T @ J_v + 1e-4 * np.eye(5), J_v.T @ cmd)
+            assert np.allclose(out.rates[k], ref, rtol=0, atol=1e-12 * np.linalg.cond(J_v) * max(1, np.abs(cmd).max()))
         assert out.sigma_min.min() > 0.2
 
 
