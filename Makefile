@@ -160,7 +160,7 @@ test-browser: setup browser
 
 # the built book's pages in Chromium (part of test-browser)
 test-pages: setup browser
-	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadfile $(addprefix --ignore=,$(BOOKLESS_BROWSER))
+	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadscope $(addprefix --ignore=,$(BOOKLESS_BROWSER))
 
 # The browser tests that need no built book: the live views on the test harness pages (numbers against the
 # library, keyboard, contrast in both modes) and in a real JupyterLab. In make test they run on the chain without
@@ -175,7 +175,7 @@ test-live: setup browser
 
 # the deck tests alone (part of test-browser)
 test-slides: setup browser
-	$(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadfile
+	$(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadscope
 
 # A student's install: a wheel of the checkout into a fresh venv with [student] (from the pip cache), every
 # student notebook run there, a live view mounted in its JupyterLab; prints the time, size and package count.

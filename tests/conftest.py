@@ -52,6 +52,43 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.browser)
 
 
+#: test modules whose tests share one expensive load per parameter, kept in a per-process cache: test_pages.py
+#: (each page opened once, ``page_reports``) and test_decks.py (each deck walked once, ``walk``)
+SHARED_LOAD_MODULES = ("test_pages.py", "test_decks.py")
+
+
+def work_unit(nodeid: str) -> str:
+    """The unit of work that one xdist worker runs whole: one page's or one deck's tests in the modules above
+    (their load is shared, and the pages and decks spread over the workers), and every other module whole (its
+    module-scoped browser page or server is started once).
+
+    >>> work_unit("tests/browser/test_pages.py::test_math_is_typeset[chapters/01_twists.html]")
+    'tests/browser/test_pages.py[chapters/01_twists.html]'
+    >>> work_unit("tests/slides/test_decks.py::test_lectures_open_from_the_copy")
+    'tests/slides/test_decks.py'
+    >>> work_unit("tests/browser/test_chrome.py::test_x[a]")
+    'tests/browser/test_chrome.py'
+    """
+    module, _, test = nodeid.partition("::")
+    if Path(module).name in SHARED_LOAD_MODULES and test.endswith("]") and "[" in test:
+        return f"{module}[{test[test.index('[') + 1:-1]}]"
+    return module
+
+
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadscope`` with the work units of ``work_unit``. (xdist's ``loadgroup`` would say the same with
+    marks, but pytest-xdist 3.8 loses the marks' groups under pytest 9.2: pytest-dev/pytest-xdist#1386.)"""
+    if config.getvalue("dist") != "loadscope":
+        return None
+    from xdist.scheduler import LoadScopeScheduling
+
+    class ByWorkUnit(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return work_unit(nodeid)
+
+    return ByWorkUnit(config, log)
+
+
 @pytest.fixture(autouse=True)
 def _no_slide_frames_after_a_test():
     """A chapter's ``start_page`` (run by some tests in-process) asks every later animation for a second set

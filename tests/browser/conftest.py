@@ -38,9 +38,10 @@ def pytest_report_header(config):
 
 
 # ---------------------------------------------------------------- on both cores (make test-browser: -n 2)
-# With pytest-xdist's --dist loadfile each test module runs whole in one worker (the pages of
-# test_pages.py are each loaded once; a module's browser page or JupyterLab server is started once).
-# The page summary a worker writes is printed by the controller at the end.
+# With pytest-xdist's --dist loadscope and tests/conftest.py's work units, each page's tests of test_pages.py run
+# in one worker (the page is loaded once) and the pages spread over the workers; every other module runs whole in
+# one worker (its browser page or JupyterLab server is started once). The page summary a worker writes is printed
+# by the controller at the end.
 WORKER = os.environ.get("PYTEST_XDIST_WORKER", "")
 
 
