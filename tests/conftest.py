@@ -75,6 +75,7 @@ def work_unit(nodeid: str) -> str:
     return module
 
 
+@pytest.hookimpl(optionalhook=True)   # a run without pytest-xdist (-p no:xdist) does not know the hook
 def pytest_xdist_make_scheduler(config, log):
     """``--dist loadscope`` with the work units of ``work_unit``. (xdist's ``loadgroup`` would say the same with
     marks, but pytest-xdist 3.8 loses the marks' groups under pytest 9.2: pytest-dev/pytest-xdist#1386.)"""
