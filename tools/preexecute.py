@@ -41,35 +41,13 @@ def _config(root: Path = ROOT) -> dict[str, Any]:
     return config
 
 
-def _toc_files(node: Any) -> list[str]:
-    out: list[str] = []
-    if isinstance(node, dict):
-        for key in ("root", "file"):
-            if isinstance(node.get(key), str):
-                out.append(node[key])
-        for key, value in node.items():
-            if key not in ("root", "file"):
-                out += _toc_files(value)
-    elif isinstance(node, list):
-        for value in node:
-            out += _toc_files(value)
-    return out
-
-
 def book_notebooks(root: Path = ROOT) -> list[Path]:
     """The notebook pages of the table of contents (the book builds only those: ``only_build_toc_files``)."""
     from _ext.notebook_pages import is_notebook
 
-    toc = yaml.safe_load((root / "_toc.yml").read_text(encoding="utf-8"))
-    found: list[Path] = []
-    for name in dict.fromkeys(_toc_files(toc)):
-        for suffix in ("", ".md", ".ipynb"):
-            path = root / (name + suffix)
-            if path.is_file():
-                if is_notebook(path):
-                    found.append(path.resolve())
-                break
-    return found
+    from tools.build_slides import toc_files
+
+    return [path.resolve() for path in dict.fromkeys(toc_files(root)) if is_notebook(path)]
 
 
 def _reader(path: Path, extensions: list[str]) -> Any:
