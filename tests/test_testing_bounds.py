@@ -141,3 +141,41 @@ def test_taylor_tol_holds_for_exponential_remainders_and_rejects_a_first_order_t
         assert within(rem(1e-3), 4 * rem(5e-4), taylor_tol(rem, 1e-3, scale=np.abs(T).max()))
         if abs(d[0]) > 0.1:
             assert not within(bad(1e-3), 4 * bad(5e-4), taylor_tol(bad, 1e-3, scale=np.abs(T).max()))
+
+
+def test_resolved_rate_tol_covers_a_perturbed_run_and_rejects_a_wrong_step():
+    """A run from a start moved by η stays within E (computed with e0 = |η|) of the run shown, on random arms,
+    with the pseudo-inverse and with DLS; a run whose steps are 0.2 % long leaves it (a wrong dt or a rate scale)."""
+    from jacobians.testing import resolved_rate_tol
+    from jacobians.velocity import resolved_rate
+
+    rng = np.random.default_rng(36)
+    covered = rejected = tight = 0
+    for chain in _revolute_chains(rng, 8):
+        dim = 2 if chain.dof == 2 else 3
+        th0 = random_theta(chain, rng)
+        t = np.linspace(0, 1, 41)
+        # a reachable path: the tool point along a smooth joint motion
+        path = chain.fk(th0 + np.outer(np.sin(2 * t), rng.normal(scale=0.3, size=chain.dof)))[:, :dim, 3]
+        for damping in (0.0, 0.1):
+            if damping == 0.0 and dim > chain.dof:
+                continue
+            method = "pinv" if damping == 0.0 else "dls"
+            out = resolved_rate(chain, th0, path, 1 / 40, method=method, damping=max(damping, 1e-3), gain=2.0)
+            eta = 1e-10 * rng.normal(size=chain.dof)
+            moved = resolved_rate(chain, th0 + eta, path, 1 / 40, method=method, damping=max(damping, 1e-3), gain=2.0)
+            E, R = resolved_rate_tol(chain, out.thetas, out.rates, path, 1 / 40, 2.0, damping=damping,
+                                     e0=np.linalg.norm(moved.thetas[0] - out.thetas[0]))
+            E_m, _ = resolved_rate_tol(chain, moved.thetas, moved.rates, path, 1 / 40, 2.0, damping=damping)
+            ok = np.isfinite(E) & np.isfinite(E_m)
+            d = np.linalg.norm(moved.thetas - out.thetas, axis=1)
+            assert np.all(d[ok] <= E[ok] + E_m[ok])
+            dr = np.linalg.norm(moved.rates - out.rates, axis=1)
+            assert np.all(dr[ok] <= R[ok] + resolved_rate_tol(chain, moved.thetas, moved.rates, path, 1 / 40, 2.0,
+                                                              damping=damping)[1][ok])
+            covered += int(ok.sum())
+            tight += bool(np.any(E[ok] < 1e3 * np.maximum(d[ok], 1e-300)))
+            long_steps = resolved_rate(chain, th0, path, 1.002 / 40, method=method, damping=max(damping, 1e-3),
+                                       gain=2.0)
+            rejected += bool(np.any(np.linalg.norm(long_steps.thetas - out.thetas, axis=1)[ok] > E[ok]))
+    assert covered > 300 and rejected >= 8 and tight >= 8

@@ -22,7 +22,7 @@ from .lie import _exp_se3, _exp_so3
 __all__ = ["random_rotation", "random_transform", "random_chain", "random_theta",
            "EPS", "TOL", "close", "within", "fd_tol", "fd2_tol", "root_tol", "ode_tol",
            "pose_tol", "chain_curvature", "clik_step_tol", "euler_step_tol", "taylor_tol",
-           "tracking_tol"]
+           "tracking_tol", "resolved_rate_tol"]
 
 #: What the ``rng`` arguments accept: a generator, a seed, or None for a fresh one.
 RngLike: TypeAlias = "np.random.Generator | int | None"
@@ -526,3 +526,104 @@ def tracking_tol(chain: SerialChain, thetas: ArrayLike, rates: ArrayLike, path: 
         shortfall = dt * (pdot[k] + K * e[k]) - moved + (path[k + 1] - path[k] - pdot[k] * dt)
         B[k + 1] = (1.0 - K * dt) * B[k] + float(np.linalg.norm(shortfall)) + b
     return worst, B
+
+
+def resolved_rate_tol(chain: SerialChain, thetas: ArrayLike, rates: ArrayLike, path: ArrayLike, dt: float,
+                      gain: float, damping: float = 0.0, target_velocities: ArrayLike | None = None,
+                      e0: float = 0.0, ops: float = 512.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """How far a resolved-rate run may be from the same run in exact arithmetic: ``(E, R)``, per step.
+
+    ``E[k]`` bounds ``|θ_k - θ*_k|`` and ``R[k]`` bounds ``|θ̇_k - θ̇*_k|``, θ* the run of
+    ``velocity.resolved_rate`` computed exactly from any start within ``e0`` of ``thetas[0]``;
+    ``inf`` from the step where the argument no longer holds. Any machine's run of the same law
+    is within its own E of θ*, so a claim about the run shown (a rate above a threshold, a small
+    singular value) holds on every IEEE-754 machine when it holds with the margin that E and R give.
+
+    One step is ``θ_{k+1} = f(θ_k) = θ_k + dt θ̇(θ_k)``, ``θ̇ = J^# c``, ``c = ṗ_{d,k} + K (p_{d,k} - p(θ))``,
+    ``J^# = Jᵀ W``, ``W = (J Jᵀ + λ²)⁻¹`` (J = J_v, m×n, m <= n for the pseudo-inverse, λ = 0). Its
+    derivative along δ is ``(I - J^# J) DJ[δ]ᵀ W c - J^# DJ[δ] θ̇ - K J^# J δ``, where ``DJ[δ]``'s column
+    j is ``Σ_i δ_i ∂²p/∂θ_i∂θ_j``, of norm at most ``D |δ|₁`` (:func:`chain_curvature`), so
+    ``‖DJ[δ]‖ <= n D |δ|`` and ``|DJ[δ] θ̇| <= n D |δ| |θ̇|``. With ``‖I - J^# J‖ <= 1``,
+    ``‖J^#‖ <= g = min(1/(2λ), 1/σ)``, ``|W c| <= |c| / (σ² + λ²)`` (the first term vanishes for the
+    pseudo-inverse of a square J) and ``‖J^# J‖ <= 1``, the rate is Lipschitz with
+    ``L = n D (|c| / (σ² + λ²) + g |θ̇|) + K``, and the step map with
+    ``‖I - K dt J^# J‖ + dt n D (|c| / (σ² + λ²) + g |θ̇|)``, where
+    ``‖I - K dt J^# J‖ = 1 - K dt σ² / (σ² + λ²)`` for a square J (else 1). Every quantity is taken
+    at its worst over the ball of radius ``e = E[k]`` around θ_k: σ (the smallest singular value)
+    at least ``σ_k - n D e`` (Weyl: ``‖J(θ) - J(θ_k)‖ <= n D e``), ``|c|`` at most
+    ``|c_k| + K (σ_max + n D e) e``, ``|θ̇|`` at most ``(|θ̇_k| + ρ + (n D |c| / (σ² + λ²) + K) e) / (1 - n D g e)``
+    (the rate's own Lipschitz bound solved for its largest value, valid while ``2 n D g e <= 1``).
+    Rounding: the SVD solve is backward stable (J off by ``ops · EPS · σ_max``, c by ``ops · EPS`` of the
+    positions' size), so ``ρ = ops · EPS · (σ_max (|c| / (σ² + λ²) + g |θ̇_k|) + g · scale)``, and the
+    sum ``θ_k + dt θ̇_k`` adds ``EPS |θ_{k+1}|``. Hence ``E[k+1] = ‖Df‖ E[k] + dt ρ + EPS |θ_{k+1}|``,
+    ``R[k] = L E[k] + ρ``. The bound is first order in ``ops · EPS`` and assumes nothing else;
+    it is loose (each step's worst direction), so it runs out where the run passes close to a
+    singularity with large rates: there claims need another argument.
+
+    >>> import jacobians as jac
+    >>> arm = jac.robots.planar_2r(1.0, 1.0)
+    >>> path = arm.fk([-0.9, 1.8])[:2, 3] + np.outer(np.linspace(0, 0.5, 50), [1.0, 0.5])
+    >>> out = jac.velocity.resolved_rate(arm, [-0.9, 1.8], path, 0.02, gain=2.0)
+    >>> E, R = resolved_rate_tol(arm, out.thetas, out.rates, path, 0.02, 2.0)
+    >>> bool(E.max() < 1e-10)                   # 50 steps' rounding, each amplified by the steps after it
+    True
+    >>> moved = jac.velocity.resolved_rate(arm, [-0.9 + 1e-9, 1.8], path, 0.02, gain=2.0)   # a start 1e-9 off
+    >>> E9 = resolved_rate_tol(arm, out.thetas, out.rates, path, 0.02, 2.0, e0=1e-9)[0]
+    >>> bool(np.all(np.linalg.norm(moved.thetas - out.thetas, axis=1) <= E9))
+    True
+    >>> slow = jac.velocity.resolved_rate(arm, [-0.9, 1.8], path, 0.0201, gain=2.0)          # steps 0.5 % long
+    >>> bool(np.all(np.linalg.norm(slow.thetas - out.thetas, axis=1) <= 2 * E))
+    False
+    """
+    from .jacobian import geometric_jacobian
+
+    thetas, rates, path = (np.asarray(a, dtype=float) for a in (thetas, rates, path))
+    dt, K, lam = float(dt), float(gain), float(damping)
+    N, dim = path.shape
+    n = thetas.shape[1]
+    if lam == 0.0 and dim > n:
+        raise ValueError(f"resolved_rate_tol: the pseudo-inverse needs J_v of full row rank, m <= n; got m = {dim}, "
+                         f"n = {n}")
+    if not 0.0 <= K * dt <= 1.0:
+        raise ValueError(f"resolved_rate_tol needs 0 <= K dt <= 1, got {K * dt:.3g}")
+    if target_velocities is None:
+        pdot = np.zeros_like(path)
+        pdot[:-1] = np.diff(path, axis=0) / dt
+    else:
+        pdot = np.asarray(target_velocities, dtype=float)
+    nD = n * chain_curvature(chain)
+    scale = max(1.0, float(np.max(np.abs(path))))
+    square = dim == n
+    E = np.full(N, np.inf)
+    R = np.full(N, np.inf)
+    E[0] = float(e0)
+    for k in range(N):
+        e = float(E[k])
+        J = np.asarray(geometric_jacobian(chain, thetas[k]), dtype=float)[3:3 + dim]
+        sv = np.linalg.svd(J, compute_uv=False)
+        s_max, sig = float(sv[0]), (float(sv[-1]) if sv.size == dim else 0.0)
+        c = float(np.linalg.norm(pdot[k] + K * (path[k] - np.asarray(chain.fk(thetas[k]))[:dim, 3])))
+        sig_b = sig - nD * e
+        c_b = c + K * (s_max + nD * e) * e
+        if lam == 0.0 and sig_b <= 0.0:
+            break
+
+        def gains(sg: float, cc: float) -> tuple[float, float]:
+            """(g, |W c|) for a smallest singular value of at least sg."""
+            g = 1.0 / (2.0 * lam) if sg <= 0.0 else (1.0 / sg if lam == 0.0 else min(1.0 / (2.0 * lam), 1.0 / sg))
+            w = 0.0 if (lam == 0.0 and square) else cc / (max(sg, 0.0) ** 2 + lam**2)
+            return g, w
+
+        g, w = gains(sig, c)
+        g_b, w_b = gains(sig_b, c_b)
+        if 2.0 * nD * g_b * e > 1.0:
+            break
+        rate_k = float(np.linalg.norm(rates[k]))
+        rho = ops * EPS * (s_max * (w + g * rate_k) + g * scale)
+        rate_b = (rate_k + rho + (nD * w_b + K) * e) / (1.0 - nD * g_b * e)
+        contract = 1.0 - K * dt * (sig_b**2 / (sig_b**2 + lam**2) if square and sig_b > 0.0 else 0.0)
+        R[k] = (nD * (w_b + g_b * rate_b) + K) * e + rho
+        if k + 1 < N:
+            E[k + 1] = ((contract + dt * nD * (w_b + g_b * rate_b)) * e + dt * rho
+                        + EPS * float(np.linalg.norm(thetas[k + 1])))
+    return E, R
