@@ -3,8 +3,9 @@
 A scratch book (the book's execution settings, the extension, one notebook page
 that prints a value of a scratch library, one plain page) is built four times
 with ``jupyter-book build``: first build; library value changed (the page shows
-the new value); value restored (the old value again); no change at all (Sphinx
-reads nothing and no notebook is executed).
+the new value); value restored and the notebooks pre-run by tools/preexecute.py
+(the old value again, executed by the pre-run, none by the build); no change at
+all (Sphinx reads nothing and no notebook is executed).
 """
 
 from __future__ import annotations
@@ -94,31 +95,6 @@ def _executed(log: str) -> int:
     return len(re.findall(r"Executing notebook", log))
 
 
-@pytest.mark.skipif(not JB.exists(), reason="jupyter-book is not installed in this environment")
-def test_library_change_reaches_the_page_and_no_change_executes_nothing(tmp_path):
-    book = _book(tmp_path)
-    lib = book / "scratchlib" / "scratchvalue.py"
-
-    log = _build(book)
-    assert _shown(book) == "1111.25" and _executed(log) == 1
-
-    lib.write_text("VALUE = 2222.5\n")           # the library changes, the page's source does not
-    log = _build(book)
-    assert "library_deps: the library changed; 1 pages that use it are read again" in log, log[-3000:]
-    assert _executed(log) == 1, log[-3000:]
-    assert _shown(book) == "2222.5"
-
-    lib.write_text("VALUE = 1111.25\n")          # restored: the old value again (the cache was emptied)
-    log = _build(book)
-    assert _executed(log) == 1, log[-3000:]
-    assert _shown(book) == "1111.25"
-
-    log = _build(book)                            # nothing changed: nothing read, nothing executed
-    assert re.search(r"updating environment: .*0 added, 0 changed, 0 removed", log), log[-3000:]
-    assert _executed(log) == 0 and "library_deps" not in log, log[-3000:]
-    assert _shown(book) == "1111.25"
-
-
 def test_a_new_library_file_changes_the_hash_and_caches_are_stamped(tmp_path):
     sys.path.insert(0, str(ROOT / "_ext"))
     try:
@@ -164,21 +140,33 @@ def _preexecute(book: Path) -> str:
 
 
 @pytest.mark.skipif(not JB.exists(), reason="jupyter-book is not installed in this environment")
-def test_preexecuted_notebooks_are_the_ones_the_build_finds(tmp_path):
-    """tools/preexecute.py (make book runs it first, on every core) stores each notebook under the key the build
-    looks up: the build then executes nothing and shows the value; after a library change it runs the page again
-    itself, the build again executes nothing and shows the new value."""
+def test_library_change_reaches_the_page_with_or_without_the_prerun_and_no_change_executes_nothing(tmp_path):
+    """One scratch book, built four times and pre-run (tools/preexecute.py, make book's first step) twice:
+    a library change alone makes Sphinx execute the page again and show the new value; the pre-run stores each
+    notebook under the key the build looks up, so the build then executes nothing and shows the value; with
+    no change at all the build reads nothing and executes nothing."""
     book = _book(tmp_path)
-    out = _preexecute(book)
-    assert "preexecute: 1 of 1 notebooks cached" in out, out
-    log = _build(book)
-    assert _executed(log) == 0 and "Using cached notebook" in log, log[-3000:]
-    assert _shown(book) == "1111.25"
+    lib = book / "scratchlib" / "scratchvalue.py"
 
-    (book / "scratchlib" / "scratchvalue.py").write_text("VALUE = 2222.5\n")
+    log = _build(book)                            # no pre-run: Sphinx executes the page
+    assert _shown(book) == "1111.25" and _executed(log) == 1, log[-3000:]
+
+    lib.write_text("VALUE = 2222.5\n")           # the library changes, the page's source does not
+    log = _build(book)
+    assert "library_deps: the library changed; 1 pages that use it are read again" in log, log[-3000:]
+    assert _executed(log) == 1, log[-3000:]
+    assert _shown(book) == "2222.5"
+
+    lib.write_text("VALUE = 1111.25\n")          # restored, and pre-run: the build finds the page in the cache
     out = _preexecute(book)
     assert "the library changed" in out and "preexecute: 1 of 1 notebooks cached" in out, out
     log = _build(book)
-    assert _executed(log) == 0 and "library_deps: the library changed; 1 pages that use it are read again" in log
-    assert _shown(book) == "2222.5"
+    assert "library_deps: the library changed; 1 pages that use it are read again" in log, log[-3000:]
+    assert _executed(log) == 0 and "Using cached notebook" in log, log[-3000:]
+    assert _shown(book) == "1111.25"
     assert "every notebook of the book is in the cache" in _preexecute(book)
+
+    log = _build(book)                            # nothing changed: nothing read, nothing executed
+    assert re.search(r"updating environment: .*0 added, 0 changed, 0 removed", log), log[-3000:]
+    assert _executed(log) == 0 and "library_deps" not in log, log[-3000:]
+    assert _shown(book) == "1111.25"
