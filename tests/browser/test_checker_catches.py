@@ -48,6 +48,9 @@ BREAKAGES = {
                        '</div>', "animations", "did not change the frame"),
     "solution_never_opens": ("insert", '<details class="sd-dropdown"><summary onclick="event.preventDefault()">'
                              'Solution</summary><p>hidden forever</p></details>', "solutions", "does not open"),
+    "solution_under_a_cover": ("insert", '<div style="position:relative"><details class="sd-dropdown"><summary>Solution'
+                               '</summary><p>out of reach</p></details><div style="position:absolute;left:0;top:0;'
+                               'right:0;height:4em;z-index:5"></div></div>', "solutions", "covered"),
     # ---- page quality
     "overflowing_output": ("insert", '<div class="cell docutils container"><div class="cell_output docutils container">'
                            '<div style="width:1600px">an output wider than its box, broken on purpose</div></div></div>',

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +29,8 @@ from tools import build_slides
 ROOT = Path(__file__).resolve().parents[2]
 SITE = ROOT / "_build" / "html"
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
+#: BOOK_SHOTS=0 (make test): no screenshots (for a person to look at; no test reads them)
+SHOTS = os.environ.get("BOOK_SHOTS", "1") != "0"
 SOURCES = [s for s in build_slides.deck_sources() if "{live-view}" in s.read_text(encoding="utf-8")]
 #: decks whose live view must be on a slide (all four views are in the decks)
 MUST = {"01_twists": "story", "03_body_jacobian": "story", "07_conversions": "story",
@@ -122,7 +125,8 @@ def test_live_view_slides_show_the_librarys_numbers_and_arrows_still_move_on(dec
             after = el.evaluate(READ)
             assert after["markup"] != got["markup"], f"slide {i}: ArrowRight in the slider changed nothing"
             check(after, el)
-            page.screenshot(path=str(ARTIFACTS / f"live-{source.stem}-{i:02d}.png"))
+            if SHOTS:
+                page.screenshot(path=str(ARTIFACTS / f"live-{source.stem}-{i:02d}.png"))
             # focus out of the view (a click on the heading), then ArrowRight moves on (ArrowLeft back on the last)
             page.locator("section.present h2, section.present h1").first.click()
             assert page.evaluate("document.activeElement.closest('.jac-live')") is None

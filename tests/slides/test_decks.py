@@ -31,6 +31,8 @@ ROOT = Path(__file__).resolve().parents[2]
 SITE = ROOT / "_build" / "html"
 SLIDES = SITE / "slides"
 ARTIFACTS = ROOT / "_build" / "test-artifacts" / "slides"
+#: BOOK_SHOTS=0 (make test): no screenshot of each slide; they are for a person to look at, no test reads them
+SHOTS = os.environ.get("BOOK_SHOTS", "1") != "0"
 SOURCES = build_slides.deck_sources()
 IDS = [s.stem for s in SOURCES]
 
@@ -235,7 +237,8 @@ def walk(browser: Any, usb: Path, source: Path) -> dict[str, Any]:
         page.wait_for_timeout(120)
         slides.append(page.evaluate(MEASURE, i))
         content.append(page.evaluate(CONTENT, i))
-        page.screenshot(path=str(ARTIFACTS / f"{source.stem}-{i:02d}.png"))
+        if SHOTS:
+            page.screenshot(path=str(ARTIFACTS / f"{source.stem}-{i:02d}.png"))
     stuck_live = page.evaluate("[...document.querySelectorAll('.jac-live[data-view]')]"
                                ".filter((el) => el.dataset.ready !== '1').map((el) => el.id)")
     if stuck_live:
@@ -270,7 +273,7 @@ def walk(browser: Any, usb: Path, source: Path) -> dict[str, Any]:
         page.evaluate(f"Reveal.slide({i}, 0, 99)")
         page.wait_for_timeout(80)
         content.append(page.evaluate(CONTENT, i))
-        if i % 4 == 0:
+        if SHOTS and i % 4 == 0:
             page.screenshot(path=str(ARTIFACTS / f"{source.stem}-{i:02d}-1024.png"))
     page.close()
     _WALKS[source.stem] = {"slides": slides, "problems": problems, "animations": anims, "total": total,
