@@ -20,6 +20,7 @@ from numpy.random import Generator
 from sympy.simplify.fu import TR10i
 
 from jacobians.grading import Mistake
+from jacobians.testing import close
 
 #: The joints an arm can have: revolute about +z or -z, prismatic along x or y.
 JOINTS = ("R+", "R-", "Px", "Py")
@@ -159,7 +160,11 @@ def distinct_sym(ref: Any, mistakes: list[Mistake]) -> list[Mistake]:
     kept = []
     for m in mistakes:
         vals = [_at(m.value, p) for p in points]
-        if any(all(a.shape == b.shape and np.allclose(a, b, atol=1e-9) for a, b in zip(vals, s, strict=True))
+        # Equal expressions evaluate (evalf, 15 digits, then rounded to doubles) to within a few units of roundoff
+        # of their terms' size, a few dozen operations apart: close's TOL relative to max(1, size) holds with a
+        # margin. Different ones (a sign, a swapped length, a missing term) differ at these generic points by a
+        # fraction of the lengths, nine orders of magnitude more.
+        if any(all(a.shape == b.shape and close(a, b) for a, b in zip(vals, s, strict=True))
                for s in seen):
             continue
         seen.append(vals)

@@ -11,8 +11,9 @@ from numpy.typing import ArrayLike
 
 import jacobians as jac
 from jacobians.grading import Exercise, Mistake, numeric_exercise
+from jacobians.testing import TOL, fd_tol
 
-from ._checks import assert_close, reference_runs, size
+from ._checks import assert_close, assert_within, reference_runs, size
 from ._hand import planar_points, planar_trig
 from ._kinematics import DEG, Array, adj, blockdiag, expS, fk, inv_T, planar_chain, space_jac
 from ._latex import degs, vec
@@ -159,11 +160,17 @@ def _library_ch08_ex3(ex: Exercise) -> None:
     def centre(i: int) -> Callable[[Array], Array]:
         return lambda x: arm.link_poses(x)[i][:2, 3]
 
+    bound = 0.0
     for i in range(2):
         Jc = jac.numerical_jacobian(centre(i), th)
         Jw = np.array([[1.0, 1.0 if i == 1 else 0.0]])
         M_fd += m[i] * Jc.T @ Jc + m[i] * L[i] ** 2 / 12 * Jw.T @ Jw
-    np.testing.assert_allclose(ex.solution(), M_fd, atol=1e-6)
+        # Jc = J + E with |E_kj| <= δ = fd_tol (truncation plus rounding, from the centre's position itself), so an
+        # entry of JcᵀJc (a sum over the 2 rows) is off by at most 2 (2 δ max|J| + δ²), m_i times that in M
+        delta = fd_tol(centre(i), th)
+        bound += m[i] * 2 * (2 * delta * (float(np.abs(Jc).max()) + delta) + delta**2)
+    # the sums and the closed form add TOL of the terms' size
+    assert_within(ex.solution(), M_fd, bound + TOL * size(M_fd, ex.solution()), "mass matrix")
     assert np.isclose(ex.solution()[1, 1], m[1] * L[1] ** 2 / 3)
     assert np.isclose(ex.solution()[0, 1], m[1] * L[1] ** 2 / 3 + m[1] * L[0] * L[1] / 2 * np.cos(th[1]))
 
