@@ -563,7 +563,7 @@ def test_decks_standalone_folder_links_nothing_outside_but_the_book(usb):
 def test_cross_references_resolve_and_open_the_book_in_a_new_tab():
     """Every link on a slide to the book names a page of the site and an id on it, and opens a new tab;
     each content slide links its section of the book."""
-    from lxml import html as lxml_html   # libxml2's HTML parser: the book's pages are megabytes of SVG math
+    from lxml import html as lxml_html  # libxml2's HTML parser: the book's pages are megabytes of SVG math
 
     pages: dict[Path, set[str]] = {}
 
