@@ -4,8 +4,9 @@ Environment:
   BOOK_HTML   the built HTML folder (default: _build/html of the repository)
   BOOK_TOC    the table of contents naming the pages to test (default: _toc.yml)
   BOOK_ARTIFACTS  where screenshots go (default: _build/test-artifacts/browser)
-  BOOK_SHOTS  0: no full-page screenshots of the pages (make test: they are for a person to look at, no test
-              reads them, and they take about a third of each page's time); anything else or unset: take them
+  BOOK_SHOTS  0: no full-page screenshots of the pages, nor of each slide in tests/slides (make test: they are
+              for a person to look at, no test reads them, and they take about a third of each page's time);
+              anything else or unset: take them
 """
 
 from __future__ import annotations
