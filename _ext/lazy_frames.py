@@ -16,6 +16,12 @@ never plays it. For the book's HTML builder only, each animation is rewritten:
   or drags the animation, and while a frame is still on its way it waits on
   the frame it shows rather than flashing a blank one.
 
+Every other image of a book page (the figures) gets ``loading="lazy"`` too:
+the browser fetches it as it nears the screen, so on a slow connection the
+text, the math and the first screen's figures do not share the line with a
+chapter's worth of figures further down. Printing loads them all first
+(``tools/book_pdf.py``), and so do the browser checks (``bookcheck``).
+
 The notebooks and the decks (``revealjs`` builder) are left as they are.
 """
 
@@ -149,9 +155,12 @@ def externalise(html: str, write: Any, prefix: str) -> tuple[str, int]:
 
 
 def lazy_frames(app: Sphinx, doctree: nodes.document, docname: str) -> None:
-    """Move the inline frames of the page's animations into files (book HTML builder only)."""
+    """Move the inline frames of the page's animations into files, and load the page's images lazily (book HTML
+    builder only)."""
     if app.builder.name != "html":
         return
+    for image in doctree.findall(nodes.image):
+        image.setdefault("loading", "lazy")   # docutils' HTML writer: <img loading="lazy">
     folder = Path(app.outdir) / FRAME_DIR
 
     def write(name: str, data: bytes) -> None:

@@ -62,3 +62,32 @@ def test_not_a_png_is_an_error():
         html)
     with pytest.raises(ValueError, match="not a PNG"):
         lazy_frames.externalise(bad, lambda *a: None, "")
+
+
+def test_book_images_load_lazily_and_the_decks_are_left_alone(tmp_path):
+    """On the book's HTML builder every image node gets loading="lazy" (an image that already says how it loads
+    keeps it), and docutils' HTML writer, which Sphinx's calls for every image, writes it; the decks' builder
+    (revealjs) is left alone: a slide's figure must be there when the slide is shown or printed."""
+    from types import SimpleNamespace
+
+    from docutils import nodes
+    from docutils.core import publish_from_doctree
+    from docutils.utils import new_document
+
+    def page() -> nodes.document:
+        doc = new_document("page.md")
+        doc += nodes.image(uri="_images/fig.png", alt="a figure")
+        doc += nodes.image(uri="_images/top.png", alt="kept eager", loading="link")
+        return doc
+
+    def run(builder: str) -> nodes.document:
+        doc = page()
+        lazy_frames.lazy_frames(SimpleNamespace(builder=SimpleNamespace(name=builder), outdir=str(tmp_path)),
+                                doc, "chapters/page")
+        return doc
+
+    book = run("html")
+    assert [im.get("loading") for im in book.findall(nodes.image)] == ["lazy", "link"]
+    html = publish_from_doctree(book, writer_name="html5", settings_overrides={"output_encoding": "unicode"})
+    assert '<img alt="a figure" loading="lazy" src="_images/fig.png" />' in html, html
+    assert [im.get("loading") for im in run("revealjs").findall(nodes.image)] == [None, "link"]
