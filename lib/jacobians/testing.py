@@ -465,6 +465,16 @@ def taylor_tol(g: Callable[[float], ArrayLike], h: float, order: int = 2, scale:
     return float(1.5 * M * h ** (k + 1) / factorial(k + 1) + (1 + 2**k) * ops * EPS * F)
 
 
+def _target_velocities(path: np.ndarray, dt: float, given: ArrayLike | None) -> np.ndarray:
+    """The path's velocities as a resolved-rate run feeds them forward: ``given``, or the forward differences of
+    the path (the last one zero)."""
+    if given is not None:
+        return np.asarray(given, dtype=float)
+    pdot = np.zeros_like(path)
+    pdot[:-1] = np.diff(path, axis=0) / dt
+    return pdot
+
+
 def tracking_tol(chain: SerialChain, thetas: ArrayLike, rates: ArrayLike, path: ArrayLike, dt: float,
                  gain: float, target_velocities: ArrayLike | None = None) -> tuple[float, NDArray[np.float64]]:
     """Check a resolved-rate run step by step; return ``(worst, B)``: ``worst <= 1`` when every step is right,
@@ -505,11 +515,7 @@ def tracking_tol(chain: SerialChain, thetas: ArrayLike, rates: ArrayLike, path: 
     dt, K = float(dt), float(gain)
     if not 0.0 <= K * dt <= 1.0:
         raise ValueError(f"tracking_tol needs 0 <= K dt <= 1, got {K * dt:.3g}")
-    if target_velocities is None:
-        pdot = np.zeros_like(path)
-        pdot[:-1] = np.diff(path, axis=0) / dt
-    else:
-        pdot = np.asarray(target_velocities, dtype=float)
+    pdot = _target_velocities(path, dt, target_velocities)
     dim = path.shape[1]
     D = chain_curvature(chain)
     e = path - np.asarray(chain.fk(thetas), dtype=float)[:, :dim, 3]
@@ -586,11 +592,7 @@ def resolved_rate_tol(chain: SerialChain, thetas: ArrayLike, rates: ArrayLike, p
                          f"n = {n}")
     if not 0.0 <= K * dt <= 1.0:
         raise ValueError(f"resolved_rate_tol needs 0 <= K dt <= 1, got {K * dt:.3g}")
-    if target_velocities is None:
-        pdot = np.zeros_like(path)
-        pdot[:-1] = np.diff(path, axis=0) / dt
-    else:
-        pdot = np.asarray(target_velocities, dtype=float)
+    pdot = _target_velocities(path, dt, target_velocities)
     nD = n * chain_curvature(chain)
     scale = max(1.0, float(np.max(np.abs(path))))
     square = dim == n
