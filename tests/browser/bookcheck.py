@@ -554,20 +554,25 @@ def _ids_in(path: Path) -> set[str]:
     return _ID_CACHE[path]
 
 
-#: every dropdown of the page, marked data-bookcheck-drop="k": its content must be hidden, its opener (a
-#: togglebutton's button, an admonition's title, a <summary>) must be what a pointer at its centre hits once it is
-#: scrolled into view; then it is clicked there (the opener's own click, as a pointer's click dispatches it)
-_DROPDOWNS_OPEN_JS = """() => {
-  const out = [];
+#: what the two passes below share: whether an element is drawn, and a dropdown's head (its <summary> or admonition
+#: title) and the content that head shows or hides
+_DROPDOWN_PARTS = """
   const shown = (el) => el.checkVisibility({ opacityProperty: true, visibilityProperty: true })
     && el.getClientRects().length > 0;
-  document.querySelectorAll('.admonition.dropdown, details.sd-dropdown, details.toggle-details').forEach((box, k) => {
+  const parts = (box) => {
     const details = box.tagName === 'DETAILS';
-    const head = box.querySelector(details ? ':scope > summary' : ':scope > .admonition-title');
-    const title = ((head || box).textContent || '').trim().slice(0, 60);
-    const body = box.querySelector(details ? ':scope > :not(summary)' : ':scope > :not(.admonition-title)');
-    box.setAttribute('data-bookcheck-drop', String(k));
-    const item = { title, clicked: false, problem: '' };
+    return { head: box.querySelector(details ? ':scope > summary' : ':scope > .admonition-title'),
+             body: box.querySelector(details ? ':scope > :not(summary)' : ':scope > :not(.admonition-title)') };
+  };
+"""
+#: every dropdown of the page: its content must be hidden, its opener (a togglebutton's button, an admonition's
+#: title, a <summary>) must be what a pointer at its centre hits once it is scrolled into view; then it is clicked
+#: there (the opener's own click, as a pointer's click dispatches it) and marked data-bookcheck-clicked
+_DROPDOWNS_OPEN_JS = "() => {" + _DROPDOWN_PARTS + """
+  const out = [];
+  document.querySelectorAll('.admonition.dropdown, details.sd-dropdown, details.toggle-details').forEach((box) => {
+    const { head, body } = parts(box);
+    const item = { title: ((head || box).textContent || '').trim().slice(0, 60), clicked: false, problem: '' };
     out.push(item);
     if (!body || !head) { item.problem = 'no content'; return; }
     if (shown(body)) { item.problem = 'content visible before it is opened (toggle not set up)'; return; }
@@ -587,17 +592,9 @@ _DROPDOWNS_OPEN_JS = """() => {
   return out;
 }"""
 #: the titles of the dropdowns clicked above whose content is still hidden
-_DROPDOWNS_HIDDEN_JS = """() => {
-  const shown = (el) => el.checkVisibility({ opacityProperty: true, visibilityProperty: true })
-    && el.getClientRects().length > 0;
-  const out = [];
-  document.querySelectorAll('[data-bookcheck-clicked]').forEach((box) => {
-    const details = box.tagName === 'DETAILS';
-    const head = box.querySelector(details ? ':scope > summary' : ':scope > .admonition-title');
-    const body = box.querySelector(details ? ':scope > :not(summary)' : ':scope > :not(.admonition-title)');
-    if (head && body && !shown(body)) out.push(head.textContent.trim().slice(0, 60));
-  });
-  return out;
+_DROPDOWNS_HIDDEN_JS = "() => {" + _DROPDOWN_PARTS + """
+  return Array.from(document.querySelectorAll('[data-bookcheck-clicked]')).map(parts)
+    .filter(({ head, body }) => head && body && !shown(body)).map(({ head }) => head.textContent.trim().slice(0, 60));
 }"""
 _DROPDOWNS_SHOWN_JS = "() => (" + _DROPDOWNS_HIDDEN_JS + ")().length === 0"
 
