@@ -17,7 +17,8 @@ For each page it prints, in seconds from the start of the navigation:
   ``span.math``/``div.math`` holds an ``mjx-container``) and the fonts loaded;
 * ``math``: every formula of the page typeset, and the fonts loaded;
 * ``live``: every live view mounted (its host has ``data-ready``), that is the
-  page responds to its sliders; "-" when the page has none;
+  page responds to its sliders: the moment the last one got it, seen by a
+  MutationObserver; "-" when the page has none;
 * ``MB``: bytes that went over the wire (compressed, headers included),
   decimal megabytes, everything the visit downloaded until the network was
   quiet.
@@ -110,6 +111,15 @@ PROBE = """(() => {
       .observe({type: 'largest-contentful-paint', buffered: true});
   } catch (e) {}
   const typeset = m => !!m.querySelector('mjx-container');
+  // the moment each live view became ready (its host got data-ready), seen as it happens: a view may mount
+  // before the page is parsed to its end (its script is async), and a busy page delays the polling below
+  const readyAt = new Map();
+  new MutationObserver(records => {
+    for (const r of records) {
+      const t = r.target;
+      if (t.dataset && t.dataset.ready === '1' && !readyAt.has(t)) readyAt.set(t, performance.now());
+    }
+  }).observe(document, {subtree: true, attributes: true, attributeFilter: ['data-ready']});
   const tick = () => {
     const now = performance.now();
     const fonts = document.fonts.status === 'loaded';
@@ -124,8 +134,10 @@ PROBE = """(() => {
     if (document.readyState !== 'loading') {
       if (b.math === null && math.every(typeset) && fonts) b.math = now;
       if (b.live === null) {
-        const views = document.querySelectorAll('[data-model]');
-        if (Array.from(views).every(v => v.dataset.ready === '1')) b.live = views.length ? now : -1;
+        const views = Array.from(document.querySelectorAll('[data-model]'));
+        if (views.every(v => v.dataset.ready === '1')) {
+          b.live = views.length ? Math.max(...views.map(v => readyAt.has(v) ? readyAt.get(v) : now)) : -1;
+        }
       }
     }
     if (b.math1 === null || b.math === null || b.live === null) setTimeout(tick, 100);
