@@ -1,8 +1,9 @@
 """The browser checks can fail: pages broken on purpose must be reported.
 
 A scratch copy of the built book is made in a temp folder (symlinks to the
-real build, so it is cheap); one page is copied and broken in several ways,
-each in its own file, and :func:`bookcheck.check_page` must name the breakage.
+real build, so it is cheap); one page (the conventions page, cut to its first
+section) is copied and broken in several ways, each in its own file, and
+:func:`bookcheck.check_page` must name the breakage.
 The sources and the real build are never touched.
 """
 
@@ -140,6 +141,34 @@ def _overlay(book: Path, dest: Path) -> Path:
     return dest
 
 
+def _first_section_only(html: str) -> str:
+    """The page with only the first section under its title (and that section's entry in the page's contents):
+    each check of a copy then reads a quarter of the conventions page, with its math, its title and the book
+    around it."""
+    start, end = html.find("<article"), html.find("</article>")
+    assert 0 < start < end, "the page has no <article>"
+    depth, parts = 0, []  # [id, start, end] of each section just under the page's own section
+    for m in re.finditer(r'<section\b[^>]*>|</section>', html[start:end]):
+        if m.group(0) == "</section>":
+            if depth == 2:
+                parts[-1][2] = start + m.end()
+            depth -= 1
+        else:
+            depth += 1
+            if depth == 2:
+                sid = re.search(r'\bid="([^"]*)"', m.group(0))
+                assert sid, f"a section without an id: {m.group(0)}"
+                parts.append([sid.group(1), start + m.start(), None])
+    assert len(parts) >= 2 and depth == 0, f"expected two sections or more under the title, got {[p[0] for p in parts]}"
+    out = html[:parts[1][1]] + html[parts[-1][2]:]
+    for sid, _s, _e in parts[1:]:
+        out, n = re.subn(r'<li class="toc-h\d nav-item toc-entry"><a class="reference internal nav-link" href="#'
+                         + re.escape(sid) + r'">[^<]*</a></li>', "", out)
+        assert n >= 1, f"no entry of the page's contents links to #{sid}"
+        assert f'href="#{sid}"' not in out, f"a link to the dropped section #{sid} is left"
+    return out
+
+
 def _break(html: str, how: str, payload: str | None) -> str:
     if how == "insert":  # after the page's title in the article (the first <h1> is a print-only copy)
         start = max(html.find("<article"), 0)
@@ -164,8 +193,10 @@ def broken_book(book_html, tmp_path_factory):
     if not (book_html / base_page).exists():
         pytest.fail(f"{book_html / base_page} is missing: the breakage tests copy that page", pytrace=False)
     root = _overlay(book_html, tmp_path_factory.mktemp("broken-book"))
-    original = (book_html / base_page).read_text(encoding="utf-8")
-    assert 'data-tex="' in original and 'class="math' in original, "conventions page should have typeset math"
+    original = _first_section_only((book_html / base_page).read_text(encoding="utf-8"))
+    assert original.count('data-tex="') > 10 and 'class="math' in original, "the page copied should have typeset math"
+    (root / "chapters" / "conventions.html").unlink()  # the control: the same page, trimmed the same way
+    (root / "chapters" / "conventions.html").write_text(original, encoding="utf-8")
     for name, (how, payload, _aspect, _text) in BREAKAGES.items():
         (root / "chapters" / f"broken_{name}.html").write_text(_break(original, how, payload), encoding="utf-8")
     for name, (payload, _aspects) in NOT_BROKEN.items():
@@ -203,7 +234,8 @@ def broken_reports(broken_book, browser_context):
 
 @pytest.fixture(scope="module")
 def control(broken_book, browser_context):
-    """The same page, unmodified, in the scratch copy: what it already complains about."""
+    """The same page, cut the same way and otherwise unmodified, in the scratch copy: what it already complains
+    about."""
     root, base = broken_book
     return bookcheck.check_page(browser_context, base, root, "chapters/conventions.html", shots=None, settle_ms=100)
 
