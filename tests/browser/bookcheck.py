@@ -13,6 +13,7 @@ import functools
 import http.server
 import os
 import re
+import shutil
 import tempfile
 import threading
 from dataclasses import dataclass, field
@@ -954,7 +955,7 @@ def main(argv: list[str] | None = None) -> int:
     pages = args.pages or pages_from_toc(args.toc)
     bad = 0
     with BookServer(args.html) as server, sync_playwright() as p:
-        context, _profile = launch_browser(p)
+        context, profile = launch_browser(p)
         for path in pages:
             r = check_page(context, server.base, args.html, path, shots=args.shots)
             print(r.summary())
@@ -969,6 +970,7 @@ def main(argv: list[str] | None = None) -> int:
                 for url, size in sorted(r.sizes, key=lambda t: -t[1]):
                     print(f"   {size / 1024:8.1f} KiB  {url}")
         context.close()
+        shutil.rmtree(profile, ignore_errors=True)
     return 1 if bad else 0
 
 
