@@ -103,8 +103,11 @@ site: book
 # read the built site, then the targets that rewrite it; and the stages that need no built site (static
 # checks, library, JavaScript, a student's install). The book executes its notebooks one at a time, so the
 # other chain fills the second core. Each stage's output is printed whole when it ends (--output-sync); a
-# failing stage fails the run.
-test: setup browser sandbox
+# failing stage fails the run. Before them, the Python packages and the npm ones install side by side (the two
+# apt-get installs, when needed, one after the other: they share dpkg's lock).
+test:
+	$(MAKE) -j2 --output-sync=target setup
+	$(MAKE) browser sandbox
 	$(MAKE) -j2 --output-sync=target test-site lint test-lib test-js test-live test-install
 
 # the book, the browser tests on it (without the pages' screenshots, which are for a person: `make test-browser`
