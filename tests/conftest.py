@@ -14,7 +14,7 @@ The rule that splits ``make test-lib`` from the browser stages (``make test-brow
 
 from __future__ import annotations
 
-import shutil
+import contextlib
 import sys
 from pathlib import Path
 
@@ -107,13 +107,9 @@ def browser_context():
     import bookcheck  # tests/browser, on the pythonpath (pyproject.toml)
     from playwright.sync_api import sync_playwright
 
-    with sync_playwright() as p:
+    with sync_playwright() as p, contextlib.ExitStack() as stack:
         try:
-            context, profile = bookcheck.launch_browser(p)
+            context = stack.enter_context(bookcheck.opened_browser(p))
         except FileNotFoundError as exc:
             pytest.fail(str(exc), pytrace=False)
-        try:
-            yield context
-        finally:
-            context.close()
-            shutil.rmtree(profile, ignore_errors=True)
+        yield context

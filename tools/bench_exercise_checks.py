@@ -13,7 +13,6 @@ the page). Budgets (the issue's): a check <= 50 ms median, a bank <= 100 KB, a f
 
 from __future__ import annotations
 
-import shutil
 import statistics
 import sys
 from pathlib import Path
@@ -46,8 +45,7 @@ def main() -> None:
           f"median {statistics.median(statements) / 1024:.1f} KB (one a variant; the page loads the reader's)")
     all_times: list[float] = []
     weights: dict[str, tuple[int, int]] = {}
-    with bookcheck.BookServer(HTML) as server, sync_playwright() as p:
-        context, profile = bookcheck.launch_browser(p)
+    with bookcheck.BookServer(HTML) as server, sync_playwright() as p, bookcheck.opened_browser(p) as context:
         for page in sorted((ROOT / "exercises").glob("*.md")):
             tab = context.new_page()
             responses: list = []
@@ -78,8 +76,6 @@ def main() -> None:
             print(f"{page.stem}: {len(times)} checks, median {statistics.median(times):.3f} ms, "
                   f"worst {max(times):.2f} ms; banks "
                   + ", ".join(f"{e} {sizes[e] / 1024:.0f} KB" for e in ids if e in sizes))
-        context.close()
-        shutil.rmtree(profile, ignore_errors=True)
     print(f"all pages: {len(all_times)} checks, median {statistics.median(all_times):.3f} ms "
           f"(budget 50 ms), worst {max(all_times):.2f} ms")
     print("first visit of each exercise page (budget 2 MB = 2,000,000 bytes):")

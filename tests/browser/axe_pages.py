@@ -25,7 +25,6 @@ which prints each violation with its nodes.
 from __future__ import annotations
 
 import json
-import shutil
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -182,8 +181,7 @@ def main(argv: list[str]) -> int:
     html = ROOT / "_build" / "html"
     paths = args or [*book_pages(html, ROOT / "_toc.yml"), *deck_pages(html)]
     total = 0
-    with bookcheck.BookServer(html) as server, sync_playwright() as p:
-        context, profile = bookcheck.launch_browser(p)
+    with bookcheck.BookServer(html) as server, sync_playwright() as p, bookcheck.opened_browser(p) as context:
         for path in paths:
             for r in check_modes(context, server.base, path, ("dark",) if dark else ("light", "dark")):
                 mode = r.mode
@@ -192,8 +190,6 @@ def main(argv: list[str]) -> int:
                     print(line)
                 if not r.violations:
                     print(f"{path} [{mode}] clean ({r.passes} rules pass)")
-        context.close()
-        shutil.rmtree(profile, ignore_errors=True)
     print(json.dumps({"violations": total, "pages": len(paths)}))
     return 1 if total else 0
 

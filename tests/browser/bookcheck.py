@@ -9,6 +9,7 @@ returns a :class:`PageReport` whose ``problems`` maps an aspect ("console",
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import http.server
 import os
@@ -119,6 +120,17 @@ def launch_browser(playwright):
         service_workers="block",
     )
     return context, profile
+
+
+@contextlib.contextmanager
+def opened_browser(playwright):
+    """``launch_browser``'s context, closed on leaving, with its profile folder removed."""
+    context, profile = launch_browser(playwright)
+    try:
+        yield context
+    finally:
+        context.close()
+        shutil.rmtree(profile, ignore_errors=True)
 
 
 # ---------------------------------------------------------------- the report
@@ -954,8 +966,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     pages = args.pages or pages_from_toc(args.toc)
     bad = 0
-    with BookServer(args.html) as server, sync_playwright() as p:
-        context, profile = launch_browser(p)
+    with BookServer(args.html) as server, sync_playwright() as p, opened_browser(p) as context:
         for path in pages:
             r = check_page(context, server.base, args.html, path, shots=args.shots)
             print(r.summary())
@@ -969,8 +980,6 @@ def main(argv: list[str] | None = None) -> int:
             if args.sizes:
                 for url, size in sorted(r.sizes, key=lambda t: -t[1]):
                     print(f"   {size / 1024:8.1f} KiB  {url}")
-        context.close()
-        shutil.rmtree(profile, ignore_errors=True)
     return 1 if bad else 0
 
 
