@@ -124,7 +124,7 @@ lint: setup
 	$(BIN)/ruff check lib tools _ext tests
 	$(BIN)/mypy
 	$(BIN)/mypy _ext
-	node_modules/.bin/eslint lib/jacobians/widgets/live tests/js _ext/exercise_checks
+	node_modules/.bin/eslint lib/jacobians/widgets/live tests/js _ext/exercise_checks tools
 	node_modules/.bin/tsc -p jsconfig.json
 
 # every test not marked `browser` (tests/conftest.py: a test under tests/browser, tests/install or tests/site,

@@ -1,5 +1,5 @@
 // ESLint for the course's own JavaScript: the live views and the exercise pages' checker (browser ES
-// modules; the checker is bundled by esbuild for the book), and their Node tests.
+// modules; the checker is bundled by esbuild for the book), their Node tests, and the build's Node scripts (tools/*.cjs).
 import js from "@eslint/js";
 import globals from "globals";
 
@@ -14,6 +14,11 @@ export default [
       "prefer-const": "error",
       "no-var": "error",
     },
+  },
+  {
+    files: ["tools/**/*.cjs"],
+    languageOptions: { ecmaVersion: 2022, sourceType: "commonjs", globals: { ...globals.node } },
+    rules: { "no-unused-vars": ["error", { argsIgnorePattern: "^_" }], "prefer-const": "error", "no-var": "error" },
   },
   {
     files: ["tests/js/**/*.mjs"],

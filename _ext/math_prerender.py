@@ -5,12 +5,13 @@ a slow CPU) showed the formulas 15-25 s after the text. Here the pages written
 by an HTML build go through ``tools/prerender_math.cjs`` (MathJax 3.2.2 in
 Node, npm ``mathjax-full``) at the end of the build: each formula becomes
 MathJax's SVG output, with the hidden MathML screen readers read, and the page
-no longer loads MathJax. SVG rather than CommonHTML: the glyphs are paths,
-written once per page (MathJax's global font cache, a hidden ``<svg>`` at the
-start of the body) and drawn with ``<use>``, so a page downloads no font (the
-CommonHTML output needed up to a dozen, and the first screen waited for them)
-and weighs 25-40 % less; the paths are filled with the text's colour (dark
-mode). Sizes are in em, as the CommonHTML output's were.
+no longer loads MathJax. SVG rather than CommonHTML: the glyphs are paths, so a
+page downloads no font (the CommonHTML output needed up to a dozen, and the
+first screen waited for them). Each formula is flattened to one ``<path>`` (or
+one per colour; ``tools/flatten_math_svg.cjs``), where MathJax writes a ``<g>``
+per MathML node and a ``<use>`` per glyph: the slow phone's first screen
+waited on the browser's work on those elements. The paths are filled with the
+text's colour (dark mode). Sizes are in em, as the CommonHTML output's were.
 
 Each formula keeps its TeX in ``data-tex``: ``_theme/math_menu.js`` loads
 MathJax with its menu and explorer (speech, zoom, copy as TeX) only when a
@@ -20,7 +21,7 @@ formula again from its TeX.
 Fragments: another extension may leave, in ``app.course_math_fragments``, HTML typeset with a page but shown
 later by its scripts (``{pagename: [{"src": <JSON list of HTML strings>, "out": <folder>, "key": <name>}]}``;
 the exercise pages' statements, ``_ext/exercise_checks``). Each string k is typeset with the page's own MathJax
-document, so the page's glyph cache holds its characters, and written to ``<out>/<k>.js`` as
+document and written to ``<out>/<k>.js`` as
 ``window.__courseStatements["<key>/<k>"] = "<html>"``.
 
 Only the book (the ``html`` builder): the decks (``revealjs``) keep MathJax in

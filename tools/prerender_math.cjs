@@ -9,10 +9,11 @@
 // MathML for screen readers (mjx-assistive-mml); the element keeps its TeX in data-tex (the on-demand menu,
 // _theme/math_menu.js, typesets it again from there). SVG rather than CommonHTML: a formula drawn with paths needs
 // no font, so a page downloads none of MathJax's fonts (on a slow phone the first screen's math no longer waits
-// for them) and its HTML and fonts together weigh about a third less. The glyphs' paths are written once per
-// page (MathJax's global font cache: one hidden <svg id="MJX-SVG-global-cache"> at the start of the body), each
-// formula refers to them with <use>; the shapes are filled with currentColor, so they follow the text's colour
-// (dark mode). Sizes are in em of MathJax's font, as the CommonHTML output's were (see SVG.prototype.ex below).
+// for them). Each formula's SVG is flattened (tools/flatten_math_svg.cjs): its glyphs and rules become one <path>
+// in the formula's coordinates, where MathJax writes a <g> per MathML node and a <use> per glyph, so that the
+// browser has a tenth of the elements to parse, style and lay out. The shapes are filled with currentColor, so
+// they follow the text's colour (dark mode). Sizes are in em of MathJax's font, as the CommonHTML output's were
+// (see SVG.prototype.ex below).
 // The output's CSS goes into one <style> in the page's head (not MathJax's own id: MathJax in the page, loaded by
 // the menu, would replace it). <static-dir> is the site's _static (unused by the SVG output; kept so that the
 // callers stay as they were). The page's MathJax configuration and startup.js are removed. A TeX error stops the
@@ -20,8 +21,8 @@
 //
 // Fragments (--fragments): {"<page.html>": [{"src", "out", "key"}]}. For each entry, src is a JSON list of HTML
 // strings with math in \( \) and \[ \] (HTML-escaped TeX, as the library's statement_html writes it, for the
-// exercise pages' statements); string k is typeset with that page's MathJax document, so that the page's glyph
-// cache holds its glyphs, and written to <out>/<k>.js as window.__courseStatements["<key>/<k>"] = "<html>".
+// exercise pages' statements); string k is typeset (a fragment draws its own glyphs, as every formula does) and
+// written to <out>/<k>.js as window.__courseStatements["<key>/<k>"] = "<html>".
 //
 // Prints one JSON line per page: {"page", "math", "css"} (formulas, fragments' included; CSS bytes).
 "use strict";
@@ -35,6 +36,7 @@ const { liteAdaptor } = require("mathjax-full/js/adaptors/liteAdaptor.js");
 const { RegisterHTMLHandler } = require("mathjax-full/js/handlers/html.js");
 const { AssistiveMmlHandler } = require("mathjax-full/js/a11y/assistive-mml.js");
 require("mathjax-full/js/input/tex/AllPackages.js");
+const { flattenSvg } = require("./flatten_math_svg.cjs");
 
 // The packages the browser's configuration loads, and those its autoload
 // would fetch when a formula uses them (physics is not autoloaded: left out).
@@ -78,7 +80,8 @@ function source(tag, text) {
   return null;
 }
 
-// What an earlier run wrote: the typeset formulas (back to their TeX), the page's math CSS and menu settings
+// What an earlier run wrote: the typeset formulas (back to their TeX), the page's math CSS and menu settings (and
+// the hidden glyph cache of a page typeset with shared glyphs, MathJax's fontCache "global")
 const TYPESET = /<(span|div)( class="[^"]*"[^>]*?) data-tex="([^"]*)">(<span class="eqno">[\s\S]*?<\/span>)?<mjx-container[\s\S]*?<\/mjx-container><\/\1>/g;
 const OURS = /<style id="course-math-styles">[\s\S]*?<\/style>\n?|<script type="application\/json" id="math-menu-config">[\s\S]*?<\/script>\n?|<svg [^>]*id="MJX-SVG-global-cache"[\s\S]*?<\/svg>\n?/g;
 
@@ -93,13 +96,21 @@ function untypeset(html) {
 const PROCESS = /(<div class="(?:[^"]*\s)?mathjax_process(?:\s[^"]*)?"[^>]*>)((?:(?!<div)[\s\S])*?)(<\/div>)/g;
 const DELIMITED = /\\\[([\s\S]*?)\\\]|\\\(([\s\S]*?)\\\)/g;
 
+/** The formula `tex` typeset in `doc` (an mjx-container), its SVG flattened (tools/flatten_math_svg.cjs). */
+function convert(doc, tex, display) {
+  const node = doc.convert(tex, { display });
+  const svg = adaptor.childNodes(node).find(c => adaptor.kind(c) === "svg");
+  if (svg) flattenSvg(adaptor, svg);
+  return node;
+}
+
 /** An HTML fragment with its \( \) and \[ \] math typeset in `doc` (as the page's math is). */
 function typesetFragment(html, doc, errors) {
   let count = 0;
   const out = html.replace(DELIMITED, (whole, display, inline) => {
     const isDisplay = display !== undefined;
     const tex = unescapeHtml(isDisplay ? display : inline);
-    const node = adaptor.outerHTML(doc.convert(tex, { display: isDisplay }));
+    const node = adaptor.outerHTML(convert(doc, tex, isDisplay));
     if (/<mjx-merror|data-mjx-error/.test(node)) errors.push(tex);
     count += 1;
     const tag = isDisplay ? "div" : "span";
@@ -130,7 +141,7 @@ function render(page, macros, fragments) {
   let html = untypeset(fs.readFileSync(page, "utf8"));
   const doc = mathjax.document("", {
     InputJax: new TeX({ packages: PACKAGES, macros }),
-    OutputJax: new SVG({ fontCache: "global" }),
+    OutputJax: new SVG({ fontCache: "none" }),
   });
   let count = 0;
   const errors = [];
@@ -140,8 +151,7 @@ function render(page, macros, fragments) {
     const src = !attrs.includes("data-tex=") && source(tag, text);  // (typeset already: left as it is)
     if (!src) return whole;
     const [tex, display] = src;
-    const node = doc.convert(tex, { display });
-    const out = adaptor.outerHTML(node);
+    const out = adaptor.outerHTML(convert(doc, tex, display));
     if (/<mjx-merror|data-mjx-error/.test(out)) errors.push(tex);
     count += 1;
     return `<${tag}${attrs} data-tex="${escapeAttr(tex)}">${eqno[0]}${out}</${tag}>`;
@@ -162,9 +172,6 @@ function render(page, macros, fragments) {
     const style = adaptor.textContent(doc.outputJax.styleSheet(doc));
     css = style.length;
     const menu = JSON.stringify({ macros }).replace(/</g, "\\u003c");
-    // the glyphs' paths, before the first formula that uses them (the parser shows each formula as it reads it)
-    const cache = adaptor.outerHTML(doc.outputJax.pageElements(doc));
-    html = html.replace(/<body[^>]*>/, (open) => `${open}${cache}\n`);
     html = html.replace("</head>", `<style id="course-math-styles">\n${style}</style>\n`
       + `<script type="application/json" id="math-menu-config">${menu}</script>\n</head>`);
   }
@@ -190,4 +197,6 @@ function main(argv) {
   return 0;
 }
 
-process.exitCode = main(process.argv.slice(2));
+module.exports = { PACKAGES };
+
+if (require.main === module) process.exitCode = main(process.argv.slice(2));
