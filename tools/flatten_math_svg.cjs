@@ -188,8 +188,8 @@ function main(argv) {
     OutputJax: new SVG({ fontCache: "none" }),
   });
   const formulas = tex.map(([t, display]) => {
-    const mathjaxSvg = adaptor.outerHTML(doc.convert(t, { display }));
     const node = doc.convert(t, { display });
+    const mathjaxSvg = adaptor.outerHTML(node);
     const svg = adaptor.childNodes(node).find(c => adaptor.kind(c) === "svg");
     const r = flattenSvg(adaptor, svg);
     return { tex: t, display, mathjax: mathjaxSvg, flat: adaptor.outerHTML(node),
