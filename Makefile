@@ -29,6 +29,12 @@ SLIDES_PDF_ARGS = $(if $(filter 0,$(SLIDES_PDF)),--no-pdf,$(if $(filter-out 1,$(
 #: animations included
 TEST_SLIDES_PDF := 05_geometric_jacobian
 
+# STAGE_CPU=tools/stage_cpu.sh: each stage of make test (the book's steps, each test run) in a cgroup of its own,
+# its wall time and CPU seconds printed when it ends (for measuring where make test's time goes; empty: nothing)
+STAGE_CPU ?=
+export STAGE_RUN ?= $(shell date +%s)
+stage = $(if $(STAGE_CPU),$(STAGE_CPU) $(1))
+
 .PHONY: help setup book site test test-site lint test-lib coverage test-js test-live test-notebooks test-browser test-pages test-slides test-install test-targets test-numerics bench lab slides slides-pdf exercises clean distclean vendor browser grade sandbox
 
 help:
@@ -82,10 +88,10 @@ sandbox:
 # The notebooks are executed first, on every core, into the execution cache (tools/preexecute.py): Sphinx reads
 # the pages one at a time and would execute them one after the other; it then finds each one in the cache.
 book: vendor browser
-	$(PY) -m tools.preexecute
-	$(BIN)/jupyter-book build . $(JB_FLAGS)
-	$(PY) -m tools.make_exercises _build/html/exercises/student
-	$(PY) -m tools.build_slides $(SLIDES_PDF_ARGS)
+	$(call stage,book-preexecute) $(PY) -m tools.preexecute
+	$(call stage,book-sphinx) $(BIN)/jupyter-book build . $(JB_FLAGS)
+	$(call stage,book-exercises) $(PY) -m tools.make_exercises _build/html/exercises/student
+	$(call stage,book-slides) $(PY) -m tools.build_slides $(SLIDES_PDF_ARGS)
 	$(if $(filter 0,$(BOOK_PDF)),@echo "No whole-book PDF (BOOK_PDF=0)",$(PY) -m tools.book_pdf _build/html)
 	@$(REFRESH_COMPRESSED)
 	@echo "The book is in _build/html/index.html (student notebooks in exercises/student/, lecture slides in slides/)"
@@ -121,10 +127,10 @@ test-site: setup
 	$(MAKE) test-targets
 
 lint: setup
-	$(BIN)/ruff check lib tools _ext tests
-	$(BIN)/mypy
-	$(BIN)/mypy _ext
-	node_modules/.bin/eslint lib/jacobians/widgets/live tests/js _ext/exercise_checks tools
+	$(call stage,lint) $(BIN)/ruff check lib tools _ext tests
+	$(call stage,lint) $(BIN)/mypy
+	$(call stage,lint) $(BIN)/mypy _ext
+	$(call stage,lint) node_modules/.bin/eslint lib/jacobians/widgets/live tests/js _ext/exercise_checks tools
 	node_modules/.bin/tsc -p jsconfig.json
 
 # every test not marked `browser` (tests/conftest.py: a test under tests/browser, tests/install or tests/site,
@@ -134,7 +140,7 @@ lint: setup
 # runs the same tests with it.
 LIB_TESTS := -m "not browser" -q lib/jacobians lib/course tests
 test-lib: setup sandbox
-	MPLBACKEND=Agg $(BIN)/pytest -n auto $(LIB_TESTS)
+	MPLBACKEND=Agg $(call stage,test-lib) $(BIN)/pytest -n auto $(LIB_TESTS)
 
 # test-lib's tests with the library's line coverage (jacobians, course), printed per file (not part of make test)
 coverage: setup sandbox
@@ -142,8 +148,8 @@ coverage: setup sandbox
 
 # the live views' numeric modules under Node, against values the library writes (no browser)
 test-js: setup
-	$(PY) -m tools.js_fixtures _build/js-fixtures.json
-	JS_FIXTURES=_build/js-fixtures.json node --test tests/js/
+	$(call stage,test-js) $(PY) -m tools.js_fixtures _build/js-fixtures.json
+	JS_FIXTURES=_build/js-fixtures.json $(call stage,test-js) node --test tests/js/
 
 # nbval on every notebook, without building the book. Not part of make test: the book build runs the same
 # cells and fails on any error (tests/test_book_executes_notebooks.py keeps that true).
@@ -163,7 +169,8 @@ test-browser: setup browser
 
 # the built book's pages in Chromium (part of test-browser)
 test-pages: setup browser
-	$(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadscope $(addprefix --ignore=,$(BOOKLESS_BROWSER))
+	$(call stage,test-pages) $(BIN)/pytest tests/browser -m browser -q -n 2 --dist loadscope \
+	  $(addprefix --ignore=,$(BOOKLESS_BROWSER))
 
 # The browser tests that need no built book: the live views on the test harness pages (numbers against the
 # library, keyboard, contrast in both modes) and in a real JupyterLab. In make test they run on the chain without
@@ -174,21 +181,21 @@ BOOKLESS_BROWSER := tests/browser/test_live_kinematics.py tests/browser/test_liv
   tests/browser/test_live_theme.py tests/browser/test_live_lab.py
 test-live: setup browser
 	BOOK_HTML=_build/no-book-for-test-live BOOK_ARTIFACTS=_build/test-artifacts/live \
-	  $(BIN)/pytest $(BOOKLESS_BROWSER) -m browser -q -p no:xdist -p no:cacheprovider
+	  $(call stage,test-live) $(BIN)/pytest $(BOOKLESS_BROWSER) -m browser -q -p no:xdist -p no:cacheprovider
 
 # the deck tests alone (part of test-browser)
 test-slides: setup browser
-	$(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadscope
+	$(call stage,test-slides) $(BIN)/pytest tests/slides -m browser -q -n 2 --dist loadscope
 
 # A student's install: a wheel of the checkout into a fresh venv with [student] (from the pip cache), every
 # student notebook run there, a live view mounted in its JupyterLab; prints the time, size and package count.
 test-install: setup browser
-	$(BIN)/pytest tests/install -q -p no:cacheprovider
+	$(call stage,test-install) $(BIN)/pytest tests/install -q -p no:cacheprovider
 
 # After make book: make slides, exercises, vendor and slides-pdf in turn, the site crawled for missing files after
 # each (SITE_TARGETS_PDF=0 leaves slides-pdf out). Rewrites the built site, so it runs after the tests that read it.
 test-targets: setup
-	$(BIN)/pytest tests/site -q -p no:xdist
+	$(call stage,test-targets) $(BIN)/pytest tests/site -q -p no:xdist
 
 # The floating-point comparisons (library vs JavaScript, Pinocchio, Modern Robotics) on two other OpenBLAS
 # kernels than the one this CPU picks, each run in reverse order (pytest-reverse): a tolerance that only held
