@@ -175,3 +175,52 @@ test("a glyph drawn again in another place repeats its relative moves (the page 
   assert.equal(glyphs[0], glyphs[2]);
   assert.notEqual(d.split("M")[1], d.split("M")[3]);  // (in two places)
 });
+
+/** Every glyph and rule of MathJax's SVG under `node`, its outline's points in the root's coordinates, exact. */
+function exactPoints(node, transforms = []) {
+  const out = [];
+  for (const child of adaptor.childNodes(node)) {
+    const kind = adaptor.kind(child);
+    if (kind === "#text") continue;
+    const own = adaptor.getAttribute(child, "transform");
+    const t = own ? [...transforms, own] : transforms;
+    if (kind === "path" || kind === "rect") {
+      let d = adaptor.getAttribute(child, "d");
+      if (kind === "rect") {
+        const [x, y, w, h] = ["x", "y", "width", "height"].map((a) => Number(adaptor.getAttribute(child, a) || 0));
+        d = `M${x} ${y}V${y + h}H${x + w}V${y}Z`;
+      }
+      if (!/[Mm]/.test(d)) continue;
+      out.push(...endpoints(t.length ? svgpath(d).transform(t.join(" ")) : svgpath(d)));
+    } else out.push(...exactPoints(child, t));
+  }
+  return out;
+}
+
+/** The end point of each segment of a path (absolute), in order. */
+function endpoints(p) {
+  const pts = [];
+  p.abs().unshort().iterate((s, _i, x, y) => {
+    if (s[0] === "Z") pts.push([x, y]);
+    else if (s[0] === "H") pts.push([s[1], y]);
+    else if (s[0] === "V") pts.push([x, s[1]]);
+    else pts.push([s[s.length - 2], s[s.length - 1]]);
+  });
+  return pts;
+}
+
+test("every point of a flattened formula is within one font unit of where MathJax's transforms put it", () => {
+  for (const tex of ["\\frac{x_1^{2}}{\\sqrt{y_{k_j}}} + \\left[\\begin{matrix} a & b \\\\ \\dot\\theta & e^{-x}\\end{matrix}\\right]",
+    "\\sum_{i=1}^{n} J_{b}^{\\dagger} \\mathcal{V}_{s} \\overline{q}"]) {
+    const node = doc.convert(tex, { display: true });
+    const svg = adaptor.childNodes(node).find((c) => adaptor.kind(c) === "svg");
+    const exact = exactPoints(svg);
+    assert.ok(flattenSvg(adaptor, svg).after === 1);
+    const got = endpoints(svgpath(adaptor.getAttribute(adaptor.childNodes(svg)[0], "d")));
+    assert.equal(got.length, exact.length, tex);
+    let worst = 0;
+    got.forEach(([x, y], k) => { worst = Math.max(worst, Math.hypot(x - exact[k][0], y - exact[k][1])); });
+    assert.ok(worst <= Math.SQRT2, `${tex}: a point is ${worst} units from its place`);
+    assert.ok(exact.length > 100);
+  }
+});
