@@ -4,7 +4,7 @@
 // one paint that are painted one after another become one <path>. A formula of 30 glyphs was about 60 elements in
 // the page (a <g> per MathML node, a <use> per glyph, and a hidden copy of each <use>'s glyph); it becomes one
 // <path>, or one per run of a colour. On a slow phone, the browser's work on those elements, not their bytes,
-// kept the page from showing (chapter 6 had 10,400 of them in its math; about 720 are left).
+// kept the page from showing (chapter 6 had 11,000 SVG elements in its math; 1,090 are left).
 //
 // What a formula looks like does not change:
 // - painting order is kept (only neighbours of one paint merge);
@@ -13,9 +13,10 @@
 // - coordinates are rounded to MathJax's font unit (1/1000 em: 0.016 px at 16 px);
 // - where two shapes overlap, one path is antialiased once, where separate ones were blended: a pixel at such an
 //   edge may change by at most a quarter of full coverage (tests/browser/test_math_flatten.py compares them).
-// Anything else (a <line> of \cancel, a <text> for a character the TeX fonts lack, a link) is kept as it was,
-// under one <g> with its ancestors' transforms and paint. A formula with a nested <svg> (a table with equation
-// numbers, laid out by the browser's width) or an element with an id (a link's target) is left whole.
+// Anything else (a <line> of \cancel, a <text> for a character the TeX fonts lack, a link, the nested <svg> that
+// stretches a tall delimiter's middle piece and clips it to its place) is kept as it was, under one <g> with its
+// ancestors' transforms and paint. A formula with a table of equation numbers (nested <svg>s laid out by the
+// browser's width) or an element with an id (a link's target) is left whole.
 //
 // As a command (the browser test's input): node tools/flatten_math_svg.cjs <in.json> <out.json>, where in.json is
 // {"tex": [[<TeX>, <display>], ...], "macros": {...}}: writes, for each formula, MathJax's SVG and the flattened
@@ -41,7 +42,9 @@ function num(v) { return v === undefined || v === null || v === "" ? 0 : Number(
 function flattenable(adaptor, node) {
   for (const child of adaptor.childNodes(node)) {
     if (adaptor.kind(child) === "#text" || adaptor.kind(child) === "#comment") continue;
-    if (adaptor.kind(child) === "svg" || adaptor.getAttribute(child, "id")) return false;
+    if (adaptor.getAttribute(child, "id")) return false;
+    if (adaptor.kind(child) === "svg"
+        && (adaptor.hasAttribute(child, "data-table") || adaptor.hasAttribute(child, "data-labels"))) return false;
     if (!flattenable(adaptor, child)) return false;
   }
   return true;

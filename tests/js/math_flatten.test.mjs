@@ -161,6 +161,18 @@ test("a line (\\cancel) is kept, under a group with its ancestors' transforms an
   assert.equal(adaptor.getAttribute(g, "stroke"), "currentColor");
 });
 
+test("a tall delimiter's stretched middle (a nested svg that clips it) is kept; the rest is one path", () => {
+  const { result, children } = flat("J = \\begin{bmatrix}1\\\\0\\\\0\\\\0\\\\1\\\\2\\end{bmatrix}");
+  const kept = children.filter((c) => adaptor.kind(c) === "g");
+  assert.equal(kept.length, 2);  // the two brackets' middles
+  for (const g of kept) {
+    const svg = adaptor.childNodes(g)[0];
+    assert.equal(adaptor.kind(svg), "svg");
+    assert.ok(adaptor.getAttribute(svg, "viewBox"));
+  }
+  assert.ok(result.before >= 4 * result.after, JSON.stringify(result));
+});
+
 test("a formula with a nested svg (an equation number) is left whole", () => {
   const { result, svg } = flat("x = 1 \\tag{3}");
   assert.equal(result, null);
