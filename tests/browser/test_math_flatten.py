@@ -102,7 +102,9 @@ def test_flattening_draws_fewer_elements(drawn):
     # every formula the flattener takes becomes at most as many elements, and the book's as a whole a tenth
     assert all(r["after"] <= r["before"] for r in flat)
     assert after * 10 <= before, (before, after)
-    assert len(flat) >= 0.95 * len(rows), [r["tex"] for r in rows if r["after"] is None][:20]
+    # only a table of equation numbers (laid out by the browser's width) leaves a formula whole
+    assert all(r["after"] is not None or 'data-labels="true"' in r["mathjax"] for r in rows), \
+        [r["tex"] for r in rows if r["after"] is None][:20]
 
 
 def test_flattened_formulas_look_the_same(drawn, browser_context):
