@@ -172,24 +172,13 @@ module.exports = { flattenSvg };
 
 function main(argv) {
   const fs = require("fs");
-  const { mathjax } = require("mathjax-full/js/mathjax.js");
-  const { TeX } = require("mathjax-full/js/input/tex.js");
-  const { SVG } = require("mathjax-full/js/output/svg.js");
-  const { liteAdaptor } = require("mathjax-full/js/adaptors/liteAdaptor.js");
-  const { RegisterHTMLHandler } = require("mathjax-full/js/handlers/html.js");
-  require("mathjax-full/js/input/tex/AllPackages.js");
-  const { PACKAGES } = require("./prerender_math.cjs");
+  const { adaptor, newDocument } = require("./prerender_math.cjs");  // (typeset as the book is)
   if (argv.length !== 2) {
     process.stderr.write("usage: node tools/flatten_math_svg.cjs <in.json> <out.json>\n");
     return 2;
   }
   const { tex, macros } = JSON.parse(fs.readFileSync(argv[0], "utf8"));
-  const adaptor = liteAdaptor();
-  RegisterHTMLHandler(adaptor);
-  const doc = mathjax.document("", {
-    InputJax: new TeX({ packages: PACKAGES, macros: macros || {} }),
-    OutputJax: new SVG({ fontCache: "none" }),
-  });
+  const doc = newDocument(macros || {});
   const formulas = tex.map(([t, display]) => {
     const node = doc.convert(t, { display });
     const mathjaxSvg = adaptor.outerHTML(node);

@@ -137,12 +137,17 @@ function renderFragments(list, doc, errors) {
   return count;
 }
 
-function render(page, macros, fragments) {
-  let html = untypeset(fs.readFileSync(page, "utf8"));
-  const doc = mathjax.document("", {
+/** A MathJax document that typesets as the book does: its packages, the book's macros, SVG glyphs inline. */
+function newDocument(macros) {
+  return mathjax.document("", {
     InputJax: new TeX({ packages: PACKAGES, macros }),
     OutputJax: new SVG({ fontCache: "none" }),
   });
+}
+
+function render(page, macros, fragments) {
+  let html = untypeset(fs.readFileSync(page, "utf8"));
+  const doc = newDocument(macros);
   let count = 0;
   const errors = [];
   html = html.replace(MATH, (whole, tag, attrs, body) => {
@@ -197,6 +202,6 @@ function main(argv) {
   return 0;
 }
 
-module.exports = { PACKAGES };
+module.exports = { adaptor, newDocument };
 
 if (require.main === module) process.exitCode = main(process.argv.slice(2));
